@@ -1,0 +1,87 @@
+#include "cli.h"
+
+#include "clump_command.h"
+#include "mesh.h"
+
+#include <CLI/CLI.hpp>
+#include <exception>
+#include <iostream>
+
+namespace armour {
+
+int armour_main(int argc, const char *const *argv) {
+    CLI::App app{"armour-fsi: breakwater armour units as sphere clumps, DEM and coupled with waves.\n"
+                 "All quantities are SI: m, kg, s, N; densities in kg/m^3."};
+    app.require_subcommand(1);
+
+    ClumpRequest clump;
+    CLI::App *clump_cmd = app.add_subcommand(
+        "clump",
+        "Build a sphere clump of a cube, a dolos or a closed STL, measure its error against the exact "
+        "shape and write LIGGGHTS files. Without --spheres, picks the fewest spheres meeting "
+        "--tol-volume and --tol-surface.");
+    auto *shape_opt = clump_cmd->add_option("--shape", clump.shape, "Built-in unit: cube or dolos");
+    auto *stl_opt =
+        clump_cmd->add_option("--stl", clump.stl, "Closed triangle mesh (ASCII or binary STL, m)");
+    shape_opt->excludes(stl_opt);
+    clump_cmd->add_option("--size", clump.size, "Cube edge length [m]");
+    clump_cmd->add_option("--chamfer", clump.chamfer,
+                          "Cube edge chamfer, cut into each face [m] (default 0)");
+    clump_cmd->add_option("--height", clump.height, "Dolos overall height H [m]");
+    clump_cmd->add_option("--waist", clump.waist, "Dolos waist ratio: shank thickness / H [-], 0.25-0.50")
+        ->capture_default_str();
+    auto *spheres_opt = clump_cmd->add_option("--spheres", clump.spheres,
+                                              "Number of spheres N (>= 1); omit for tolerance mode");
+    auto *tol_v = clump_cmd
+                      ->add_option("--tol-volume", clump.tol_volume,
+                                   "Tolerance mode: max |volume error| as a fraction [-]")
+                      ->capture_default_str();
+    auto *tol_s = clump_cmd
+                      ->add_option("--tol-surface", clump.tol_surface,
+                                   "Tolerance mode: max surface RMS deviation as a fraction of Dn [-]")
+                      ->capture_default_str();
+    spheres_opt->excludes(tol_v)->excludes(tol_s);
+    clump_cmd->add_option("--max-spheres", clump.max_spheres, "Tolerance mode: largest N to try")
+        ->capture_default_str();
+    clump_cmd->add_option("--method", clump.method, "Clump method: greedy (baseline) or optimised")
+        ->capture_default_str();
+    clump_cmd->add_option("--density", clump.density, "Unit density [kg/m^3]")->capture_default_str();
+    clump_cmd->add_option("--seed", clump.seed, "Random seed (results are deterministic per seed)")
+        ->capture_default_str();
+    clump_cmd->add_option("--out", clump.out, "Output directory (written atomically)")->required();
+
+    DemoRequest demo;
+    CLI::App *demo_cmd = app.add_subcommand(
+        "demo",
+        "Default job: clumps of a 1 m cube and a 2 m dolos (2400 kg/m^3) with the fewest spheres meeting "
+        "the tolerances, both methods, and their error table.");
+    demo_cmd->add_option("--out", demo.out, "Output directory (written atomically)")->capture_default_str();
+    demo_cmd->add_option("--tol-volume", demo.tol_volume, "Max |volume error| as a fraction [-]")
+        ->capture_default_str();
+    demo_cmd
+        ->add_option("--tol-surface", demo.tol_surface, "Max surface RMS deviation as a fraction of Dn [-]")
+        ->capture_default_str();
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError &e) {
+        return app.exit(e) == 0 ? 0 : 1;
+    }
+    try {
+        if (clump_cmd->parsed()) {
+            clump.fixed_count = spheres_opt->count() > 0;
+            return run_clump(clump);
+        }
+        if (demo_cmd->parsed())
+            return run_demo(demo);
+    } catch (const InputError &e) {
+        std::cerr << "armour: error: " << e.what() << '\n';
+        return 2;
+    } catch (const std::exception &e) {
+        std::cerr << "armour: internal error: " << e.what() << '\n';
+        return 4;
+    }
+    return 1;
+}
+
+} // namespace armour

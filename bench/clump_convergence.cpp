@@ -1,0 +1,66 @@
+// Clump error and build cost against sphere count, for both methods.
+//
+// Usage
+//     bench_clump_convergence OUT_DIR [N,N,...]
+// Prints a table and writes OUT_DIR/clump_convergence.json (and summary.json);
+// bench/plot_clump_convergence.py turns it into OUT_DIR/clump_convergence.png.
+#include "clump_evaluator.h"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+using namespace armour;
+
+int main(int argc, char **argv) {
+    if (argc < 2) {
+        std::fprintf(stderr, "usage: %s OUT_DIR [N,N,...]\n", argv[0]);
+        return 1;
+    }
+    const std::filesystem::path out = argv[1];
+    std::vector<int> counts = {5, 10, 15, 20, 30, 40, 50, 60, 80, 100, 150, 200};
+    if (argc > 2) {
+        counts.clear();
+        std::stringstream list(argv[2]);
+        for (std::string item; std::getline(list, item, ',');)
+            counts.push_back(std::stoi(item));
+    }
+    std::filesystem::create_directories(out);
+    const Shape shapes[] = {make_cube_shape(1.0, 0.0, 2400.0),
+                            make_dolos_shape(2.0, kDolosWaistDefault, 2400.0)};
+    nlohmann::json rows = nlohmann::json::array();
+    std::printf("%-6s %-10s %5s %10s %10s %10s %10s %9s\n", "shape", "method", "N", "vol.err%", "surfRMS%",
+                "surfMax%", "inertia%", "build[s]");
+    for (const Shape &shape : shapes)
+        for (ClumpMethod method : {ClumpMethod::greedy, ClumpMethod::optimised})
+            for (int n : counts) {
+                const auto start = std::chrono::steady_clock::now();
+                const Clump clump = build_clump(shape, method, n, 1);
+                const double seconds =
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+                const ClumpQuality q = evaluate_clump(shape, clump);
+                std::printf("%-6s %-10s %5d %+10.3f %10.3f %10.3f %10.3f %9.3f\n", shape.kind.c_str(),
+                            method_name(method).c_str(), n, 100 * q.volume_error, 100 * q.surface_rms,
+                            100 * q.surface_max, 100 * q.inertia_error, seconds);
+                std::fflush(stdout);
+                rows.push_back({{"shape", shape.kind},
+                                {"method", method_name(method)},
+                                {"spheres", n},
+                                {"volume_error", q.volume_error},
+                                {"surface_rms", q.surface_rms},
+                                {"surface_max", q.surface_max},
+                                {"inertia_error", q.inertia_error},
+                                {"centroid_offset", q.centroid_offset},
+                                {"build_seconds", seconds},
+                                {"Dn", q.Dn}});
+            }
+    const nlohmann::json doc = {
+        {"units", "errors as fractions (surface as fraction of Dn), build_seconds in s"}, {"rows", rows}};
+    std::ofstream(out / "clump_convergence.json") << doc.dump(2) << "\n";
+    std::ofstream(out / "summary.json") << doc.dump(2) << "\n";
+    return 0;
+}

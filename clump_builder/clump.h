@@ -1,0 +1,51 @@
+// Sphere clumps: overlapping spheres that stand in for an exact unit shape.
+//
+// Description
+//     Two builders fill a Shape with N spheres, both deterministic for a seed:
+//       greedy     baseline: maximal inscribed spheres chosen greedily to
+//                  cover the most still-uncovered volume (never protrude).
+//       optimised  starts from the greedy clump, then moves centres and radii
+//                  (spheres may protrude) to minimise the squared distance
+//                  between the exact surface and the clump surface, keeping
+//                  the interior covered and the exterior empty; finally one
+//                  common radius offset makes the clump volume equal the exact
+//                  volume.
+//     Sphere centres are in the unit frame (origin at the exact centroid), m.
+//
+// Usage
+//     Shape shape = make_dolos_shape(2.0, 0.33, 2400.0);
+//     Clump clump = build_clump(shape, ClumpMethod::optimised, 40, 1);
+#pragma once
+
+#include "shapes.h"
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace armour {
+
+struct Sphere {
+    Eigen::Vector3d center; // m, unit frame
+    double radius;          // m
+};
+using Clump = std::vector<Sphere>;
+
+enum class ClumpMethod { greedy, optimised };
+
+std::string method_name(ClumpMethod method);
+// Throws InputError for an unknown name; lists the known ones.
+ClumpMethod parse_method(const std::string &name);
+
+// Builds a clump of exactly `spheres` spheres (>= 1).
+Clump build_clump(const Shape &shape, ClumpMethod method, int spheres, std::uint64_t seed = 1);
+
+// Volume of the union of the spheres (m^3), by exact chord lengths along a
+// grid of lines (2D midpoint rule with `lines` x `lines` lines).
+double clump_volume(const Clump &clump, int lines = 400);
+
+// Mass properties of the union of the spheres at `density`, same integration.
+MassProperties clump_mass_properties(const Clump &clump, double density, int lines = 400);
+
+} // namespace armour

@@ -1,0 +1,19 @@
+// Private to clump_builder: the individual builders behind build_clump().
+#pragma once
+
+#include "clump.h"
+#include "shape_query.h"
+
+namespace armour::detail {
+
+// Greedy maximal inscribed spheres on a lattice of ~`lattice_points` interior points.
+Clump greedy_inscribed(const Shape &shape, const ShapeQuery &query, int spheres, std::uint64_t seed,
+                       int lattice_points = 30000);
+
+// Moves centres and radii of `start` to fit the exact surface, then matches volume.
+Clump optimise_clump(const Shape &shape, const ShapeQuery &query, Clump start, std::uint64_t seed);
+
+// Adds one common offset to every radius so that the union volume equals `volume`.
+Clump match_volume(Clump clump, double volume);
+
+} // namespace armour::detail

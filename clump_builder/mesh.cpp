@@ -1,0 +1,77 @@
+#include "mesh.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <random>
+
+namespace armour {
+
+double signed_volume(const TriangleMesh &mesh) {
+    double six_volume = 0.0;
+    for (const auto &t : mesh.triangles) {
+        const auto &a = mesh.vertices[t[0]];
+        const auto &b = mesh.vertices[t[1]];
+        const auto &c = mesh.vertices[t[2]];
+        six_volume += a.dot(b.cross(c));
+    }
+    return six_volume / 6.0;
+}
+
+double surface_area(const TriangleMesh &mesh) {
+    double area = 0.0;
+    for (const auto &t : mesh.triangles) {
+        const auto &a = mesh.vertices[t[0]];
+        area += 0.5 * (mesh.vertices[t[1]] - a).cross(mesh.vertices[t[2]] - a).norm();
+    }
+    return area;
+}
+
+std::vector<Eigen::Vector3d> sample_surface(const TriangleMesh &mesh, int count, std::uint64_t seed,
+                                            std::vector<Eigen::Vector3d> *normals) {
+    std::vector<double> cumulative_area;
+    cumulative_area.reserve(mesh.triangles.size());
+    double total = 0.0;
+    for (const auto &t : mesh.triangles) {
+        const auto &a = mesh.vertices[t[0]];
+        total += 0.5 * (mesh.vertices[t[1]] - a).cross(mesh.vertices[t[2]] - a).norm();
+        cumulative_area.push_back(total);
+    }
+    std::vector<Eigen::Vector3d> points;
+    if (count <= 0 || total <= 0.0)
+        return points;
+    points.reserve(count);
+    if (normals) {
+        normals->clear();
+        normals->reserve(count);
+    }
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> uniform(0.0, 1.0);
+    for (int i = 0; i < count; ++i) {
+        const double pick = uniform(rng) * total;
+        auto it = std::upper_bound(cumulative_area.begin(), cumulative_area.end(), pick);
+        const std::size_t k = std::min<std::size_t>(it - cumulative_area.begin(), mesh.triangles.size() - 1);
+        const auto &t = mesh.triangles[k];
+        const auto &a = mesh.vertices[t[0]];
+        const auto &b = mesh.vertices[t[1]];
+        const auto &c = mesh.vertices[t[2]];
+        double u = uniform(rng);
+        double v = uniform(rng);
+        if (u + v > 1.0) { // reflect into the triangle: keeps the density uniform
+            u = 1.0 - u;
+            v = 1.0 - v;
+        }
+        points.push_back(a + u * (b - a) + v * (c - a));
+        if (normals)
+            normals->push_back((b - a).cross(c - a).normalized());
+    }
+    return points;
+}
+
+TriangleMesh translated(const TriangleMesh &mesh, const Eigen::Vector3d &offset) {
+    TriangleMesh moved = mesh;
+    for (auto &v : moved.vertices)
+        v += offset;
+    return moved;
+}
+
+} // namespace armour

@@ -1,0 +1,44 @@
+// Plain geometry types shared by every part of armour-fsi.
+//
+// Description
+//     A closed triangle mesh in SI units (metres). Triangles are vertex index
+//     triples ordered counter-clockwise when seen from outside, so every face
+//     normal points out of the solid. No CGAL type appears here: CGAL stays
+//     inside a few .cpp files to keep the build short.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace armour {
+
+struct TriangleMesh {
+    std::vector<Eigen::Vector3d> vertices;     // m
+    std::vector<std::array<int, 3>> triangles; // outward (counter-clockwise)
+};
+
+// Bad user input (a file, a key, a value). The message is one line that names
+// the file or option and the reason; the CLI prints it and exits non-zero.
+struct InputError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+// Signed volume enclosed by the mesh (m^3); positive for an outward mesh.
+double signed_volume(const TriangleMesh &mesh);
+
+// Total surface area (m^2).
+double surface_area(const TriangleMesh &mesh);
+
+// Area-weighted uniform random points on the surface, deterministic for a seed.
+// Outward unit normals are returned when `normals` is not null.
+std::vector<Eigen::Vector3d> sample_surface(const TriangleMesh &mesh, int count, std::uint64_t seed,
+                                            std::vector<Eigen::Vector3d> *normals = nullptr);
+
+// The mesh moved by `offset` (m).
+TriangleMesh translated(const TriangleMesh &mesh, const Eigen::Vector3d &offset);
+
+} // namespace armour

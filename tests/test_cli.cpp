@@ -1,0 +1,186 @@
+// The `armour` command line: results on good input; one error line, a
+// non-zero exit and no output directory on bad input.
+#include "cli.h"
+#include "shapes.h"
+#include "stl_io.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+class Cli : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() /
+               ("armour_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    // Runs `armour args...`, returns the exit code and keeps stderr.
+    int run(std::vector<std::string> args) {
+        args.insert(args.begin(), "armour");
+        std::vector<const char *> argv;
+        for (const auto &a : args)
+            argv.push_back(a.c_str());
+        ::testing::internal::CaptureStderr();
+        const int code = armour::armour_main(static_cast<int>(argv.size()), argv.data());
+        err_ = ::testing::internal::GetCapturedStderr();
+        return code;
+    }
+
+    // Bad input: exit 2, exactly one line naming `what`, and nothing left in dir_.
+    void expect_rejected(std::vector<std::string> args, const std::string &what) {
+        const std::string out = (dir_ / "out").string();
+        args.push_back("--out");
+        args.push_back(out);
+        EXPECT_EQ(run(args), 2) << err_;
+        EXPECT_NE(err_.find(what), std::string::npos) << err_;
+        // Progress lines may precede it; the error is one line, the last.
+        const std::size_t at = err_.find("armour: error: ");
+        ASSERT_NE(at, std::string::npos) << err_;
+        EXPECT_TRUE(at == 0 || err_[at - 1] == '\n') << err_;
+        EXPECT_EQ(err_.find('\n', at), err_.size() - 1) << err_;
+        for (const auto &entry : fs::directory_iterator(dir_))
+            EXPECT_NE(entry.path().filename().string().rfind("out", 0), 0u)
+                << "left behind: " << entry.path();
+    }
+
+    fs::path dir_;
+    std::string err_;
+};
+
+nlohmann::json read_json(const fs::path &path) {
+    std::ifstream in(path);
+    return nlohmann::json::parse(in);
+}
+
+} // namespace
+
+TEST_F(Cli, ClumpWritesEveryFileWithConsistentSummary) {
+    const fs::path out = dir_ / "cube";
+    ASSERT_EQ(run({"clump", "--shape", "cube", "--size", "0.5", "--spheres", "12", "--out", out.string()}), 0)
+        << err_;
+    for (const char *name : {"summary.json", "clump.spheres", "template.liggghts", "shape.stl", "clump.stl"})
+        EXPECT_TRUE(fs::exists(out / name)) << name;
+    const auto s = read_json(out / "summary.json");
+    for (const char *key : {"spheres", "volume_error", "surface_rms", "surface_max", "inertia_error",
+                            "centroid_offset", "build_seconds", "Dn", "volume_exact", "method"})
+        EXPECT_TRUE(s.contains(key)) << key;
+    EXPECT_EQ(s["spheres"], 12);
+    EXPECT_EQ(s["method"], "optimised");
+    EXPECT_NEAR(s["volume_exact"].get<double>(), 0.125, 1e-12);
+    EXPECT_NEAR(s["Dn"].get<double>(), 0.5, 1e-12);
+    EXPECT_NEAR(s["mass"].get<double>(), 0.125 * 2400.0, 1e-9);
+    // The exact shape file is the cube itself, centred on its centroid.
+    const armour::TriangleMesh shape = armour::read_stl((out / "shape.stl").string());
+    EXPECT_NEAR(armour::signed_volume(shape), 0.125, 1e-6);
+    int lines = 0;
+    std::ifstream spheres(out / "clump.spheres");
+    for (std::string line; std::getline(spheres, line);)
+        lines += !line.empty() && line[0] != '#';
+    EXPECT_EQ(lines, 12);
+}
+
+TEST_F(Cli, ToleranceModeRecordsTheSearch) {
+    const fs::path out = dir_ / "dolos";
+    ASSERT_EQ(run({"clump", "--shape", "dolos", "--height", "1.5", "--tol-volume", "0.02", "--tol-surface",
+                   "0.03", "--out", out.string()}),
+              0)
+        << err_;
+    const auto s = read_json(out / "summary.json");
+    EXPECT_LE(std::abs(s["volume_error"].get<double>()), 0.02);
+    EXPECT_LE(s["surface_rms"].get<double>(), 0.03);
+    EXPECT_TRUE(s["tolerance"]["met"].get<bool>());
+    EXPECT_GE(s["tolerance"]["tried"].size(), 2u);
+}
+
+TEST_F(Cli, StlInputIsCentredAndMeasured) {
+    // A cube off the origin: the unit frame puts its centroid at the origin.
+    armour::TriangleMesh mesh = armour::translated(armour::make_cube_mesh(2.0), Eigen::Vector3d(5, 6, 7));
+    const fs::path stl = dir_ / "block.stl";
+    armour::write_stl(mesh, stl.string(), false);
+    const fs::path out = dir_ / "block";
+    ASSERT_EQ(run({"clump", "--stl", stl.string(), "--spheres", "5", "--out", out.string()}), 0) << err_;
+    const auto s = read_json(out / "summary.json");
+    EXPECT_NEAR(s["volume_exact"].get<double>(), 8.0, 1e-9);
+    const armour::TriangleMesh centred = armour::read_stl((out / "shape.stl").string());
+    Eigen::Vector3d lower = Eigen::Vector3d::Constant(1e9);
+    for (const auto &v : centred.vertices)
+        lower = lower.cwiseMin(v);
+    EXPECT_NEAR((lower - Eigen::Vector3d(-1, -1, -1)).norm(), 0.0, 1e-6);
+}
+
+TEST_F(Cli, RejectsBadShapeArguments) {
+    expect_rejected({"clump", "--shape", "tetrapod", "--size", "1", "--spheres", "5"}, "--shape");
+    expect_rejected({"clump", "--shape", "cube", "--size", "-1", "--spheres", "5"}, "--size");
+    expect_rejected({"clump", "--shape", "cube", "--size", "0", "--spheres", "5"}, "--size");
+    expect_rejected({"clump", "--shape", "dolos", "--height", "0", "--spheres", "5"}, "--height");
+    expect_rejected({"clump", "--shape", "dolos", "--height", "2", "--waist", "0.6", "--spheres", "5"},
+                    "--waist");
+    expect_rejected({"clump", "--shape", "dolos", "--height", "2", "--waist", "0.2", "--spheres", "5"},
+                    "--waist");
+    expect_rejected({"clump", "--shape", "cube", "--size", "1", "--spheres", "0"}, "--spheres");
+    expect_rejected({"clump", "--shape", "cube", "--size", "1", "--spheres", "-3"}, "--spheres");
+    expect_rejected({"clump", "--shape", "cube", "--size", "1", "--density", "0", "--spheres", "3"},
+                    "--density");
+    expect_rejected({"clump", "--shape", "cube", "--size", "1", "--method", "magic", "--spheres", "3"},
+                    "--method");
+    expect_rejected({"clump", "--spheres", "3"}, "--shape");
+}
+
+TEST_F(Cli, RejectsBadStlFiles) {
+    expect_rejected({"clump", "--stl", (dir_ / "missing.stl").string(), "--spheres", "5"}, "missing.stl");
+    armour::TriangleMesh open = armour::make_cube_mesh(1.0);
+    open.triangles.pop_back();
+    const fs::path open_stl = dir_ / "open.stl";
+    armour::write_stl(open, open_stl.string());
+    expect_rejected({"clump", "--stl", open_stl.string(), "--spheres", "5"}, "open.stl");
+    const fs::path junk = dir_ / "junk.stl";
+    std::ofstream(junk) << "solid junk\n  facet normal 0 0 1\n    outer loop\n      vertex 0 0\n";
+    expect_rejected({"clump", "--stl", junk.string(), "--spheres", "5"}, "junk.stl");
+}
+
+TEST_F(Cli, RejectsImpossibleTolerances) {
+    expect_rejected({"clump", "--shape", "cube", "--size", "1", "--tol-volume", "0", "--tol-surface", "0.02"},
+                    "--tol-volume");
+    expect_rejected(
+        {"clump", "--shape", "cube", "--size", "1", "--tol-volume", "0.01", "--tol-surface", "-0.1"},
+        "--tol-surface");
+    // Reachable in principle, not with 6 spheres: the search says how close it got.
+    expect_rejected({"clump", "--shape", "cube", "--size", "1", "--tol-volume", "0.01", "--tol-surface",
+                     "0.001", "--max-spheres", "6"},
+                    "cannot be met with at most 6 spheres");
+}
+
+TEST_F(Cli, HelpStatesUnits) {
+    ::testing::internal::CaptureStdout();
+    const std::vector<const char *> argv = {"armour", "clump", "--help"};
+    EXPECT_EQ(armour::armour_main(3, argv.data()), 0);
+    const std::string help = ::testing::internal::GetCapturedStdout();
+    for (const char *needle : {"--size", "[m]", "--density", "[kg/m^3]", "--tol-surface", "of Dn"})
+        EXPECT_NE(help.find(needle), std::string::npos) << needle;
+}
+
+TEST_F(Cli, ReplacesAnEarlierResultWhole) {
+    const fs::path out = dir_ / "again";
+    ASSERT_EQ(run({"clump", "--shape", "cube", "--size", "1", "--spheres", "4", "--out", out.string()}), 0);
+    ASSERT_EQ(run({"clump", "--shape", "cube", "--size", "1", "--spheres", "6", "--out", out.string()}), 0);
+    EXPECT_EQ(read_json(out / "summary.json")["spheres"], 6);
+    // A failing run leaves the earlier result untouched.
+    EXPECT_EQ(run({"clump", "--shape", "cube", "--size", "-1", "--spheres", "6", "--out", out.string()}), 2);
+    EXPECT_EQ(read_json(out / "summary.json")["spheres"], 6);
+    int entries = 0;
+    for ([[maybe_unused]] const auto &entry : fs::directory_iterator(dir_))
+        ++entries;
+    EXPECT_EQ(entries, 1); // no staging or backup directories left
+}

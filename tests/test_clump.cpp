@@ -1,0 +1,218 @@
+// Sphere clumps: union integrals, the evaluator on cases with known answers,
+// and the behaviour of both builders.
+#include "clump_evaluator.h"
+#include "clump_io.h"
+#include "shape_query.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+using namespace armour;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+double sphere_volume(double r) {
+    return 4.0 / 3.0 * kPi * r * r * r;
+}
+
+const Shape &unit_cube() {
+    static const Shape cube = make_cube_shape(1.0, 0.0, 1000.0);
+    return cube;
+}
+
+const Shape &dolos() {
+    static const Shape shape = make_dolos_shape(2.0, kDolosWaistDefault, 2400.0);
+    return shape;
+}
+
+} // namespace
+
+TEST(ClumpVolume, SingleSphereMatchesFormula) {
+    const Clump one = {{Eigen::Vector3d(0.3, -0.2, 0.1), 0.7}};
+    EXPECT_NEAR(clump_volume(one), sphere_volume(0.7), 1e-4 * sphere_volume(0.7));
+}
+
+TEST(ClumpVolume, OverlapIsCountedOnce) {
+    // Two equal spheres at centre distance d overlap in a lens of volume
+    // pi (4R + d)(2R - d)^2 / 12.
+    const double R = 0.5, d = 0.6;
+    const Clump two = {{Eigen::Vector3d(0, 0, 0), R}, {Eigen::Vector3d(d, 0, 0), R}};
+    const double lens = kPi * (4 * R + d) * (2 * R - d) * (2 * R - d) / 12.0;
+    const double expected = 2 * sphere_volume(R) - lens;
+    EXPECT_NEAR(clump_volume(two), expected, 2e-4 * expected);
+}
+
+TEST(ClumpVolume, SphereInertiaIsTwoFifthsMR2) {
+    const double r = 0.4, density = 2400.0;
+    const MassProperties p = clump_mass_properties({{Eigen::Vector3d(1, 2, 3), r}}, density);
+    const double m = density * sphere_volume(r);
+    EXPECT_NEAR(p.mass, m, 1e-4 * m);
+    EXPECT_NEAR((p.centroid - Eigen::Vector3d(1, 2, 3)).norm(), 0.0, 1e-6);
+    for (int k = 0; k < 3; ++k)
+        EXPECT_NEAR(p.inertia(k, k), 0.4 * m * r * r, 1e-3 * 0.4 * m * r * r);
+    EXPECT_NEAR(p.inertia(0, 1), 0.0, 1e-6 * m * r * r);
+}
+
+TEST(ClumpVolume, DisjointSpheresCentroidIsMassWeighted) {
+    const Clump two = {{Eigen::Vector3d(0, 0, 0), 0.2}, {Eigen::Vector3d(1, 0, 0), 0.4}};
+    const MassProperties p = clump_mass_properties(two, 1.0);
+    const double w = sphere_volume(0.4) / (sphere_volume(0.2) + sphere_volume(0.4));
+    EXPECT_NEAR(p.centroid.x(), w, 1e-4);
+}
+
+TEST(ClumpEvaluator, InscribedSphereInCubeHasKnownErrors) {
+    // A unit cube represented by its inscribed sphere (r = a/2): every error is analytic.
+    const Clump ball = {{Eigen::Vector3d::Zero(), 0.5}};
+    const ClumpQuality q = evaluate_clump(unit_cube(), ball);
+    EXPECT_NEAR(q.volume_error, kPi / 6.0 - 1.0, 1e-4);
+    EXPECT_NEAR(q.centroid_offset, 0.0, 1e-6);
+    // I_sphere = (2/5) (rho pi/6) (1/4) = rho pi / 60; I_cube = rho / 6.
+    EXPECT_NEAR(q.inertia_error, 1.0 - (kPi / 60.0) / (1.0 / 6.0), 1e-3);
+    // Farthest exact point: a corner, sqrt(3)/2 - 1/2 from the sphere.
+    EXPECT_NEAR(q.exact_to_clump.max, std::sqrt(3.0) / 2.0 - 0.5, 0.01);
+    // Farthest sphere point: along a diagonal, 1/2 - 1/(2 sqrt(3)) from the faces.
+    EXPECT_NEAR(q.clump_to_exact.max, 0.5 - 0.5 / std::sqrt(3.0), 0.005);
+    EXPECT_GE(q.surface_max, q.exact_to_clump.max);
+    EXPECT_GT(q.surface_rms, 0.0);
+}
+
+TEST(ClumpEvaluator, DistanceToUnionBoundaryIgnoresBuriedSurface) {
+    // Two spheres overlapping along x. The point p = (0, 0, 0.2) lies inside
+    // both; its radial projections onto each sphere fall inside the other, so
+    // the nearest boundary point is on the seam circle (x = 0, radius
+    // sqrt(R^2 - 0.25^2)), straight above p.
+    const double R = 0.35;
+    const Clump pair = {{Eigen::Vector3d(-0.25, 0, 0), R}, {Eigen::Vector3d(0.25, 0, 0), R}};
+    const double seam = std::sqrt(R * R - 0.25 * 0.25);
+    const std::vector<Eigen::Vector3d> points = {
+        Eigen::Vector3d(0, 0, 0.2),   // inside, nearest point on the seam
+        Eigen::Vector3d(-0.25, 0, 0), // a centre: nearest exposed point radially at R
+        Eigen::Vector3d(0, 0, 0.6),   // outside: exact formula
+    };
+    const std::vector<double> d = distances_to_clump_surface(pair, points, 200000);
+    EXPECT_NEAR(d[0], seam - 0.2, 0.004); // boundary-sample spacing bounds the error
+    EXPECT_NEAR(d[1], R, 1e-12);
+    EXPECT_NEAR(d[2], std::hypot(0.25, 0.6) - R, 1e-12);
+}
+
+TEST(ClumpBuilders, AreDeterministicForASeed) {
+    for (ClumpMethod method : {ClumpMethod::greedy, ClumpMethod::optimised}) {
+        const Clump a = build_clump(dolos(), method, 12, 7);
+        const Clump b = build_clump(dolos(), method, 12, 7);
+        ASSERT_EQ(a.size(), 12u);
+        ASSERT_EQ(a.size(), b.size());
+        for (std::size_t i = 0; i < a.size(); ++i) {
+            EXPECT_EQ(a[i].center, b[i].center);
+            EXPECT_EQ(a[i].radius, b[i].radius);
+        }
+    }
+}
+
+TEST(ClumpBuilders, RejectFewerThanOneSphere) {
+    EXPECT_THROW(build_clump(unit_cube(), ClumpMethod::optimised, 0), InputError);
+    EXPECT_THROW(parse_method("voronoi"), InputError);
+}
+
+TEST(ClumpBuilders, GreedySpheresStayInside) {
+    const Clump clump = build_clump(dolos(), ClumpMethod::greedy, 30, 3);
+    const ShapeQuery query(dolos().mesh);
+    for (const Sphere &s : clump) // an inscribed sphere's centre is at least r deep
+        EXPECT_LE(query.signed_distance(s.center), -s.radius * (1 - 1e-12));
+    EXPECT_LT(evaluate_clump(dolos(), clump).volume_error, 0.0);
+}
+
+TEST(ClumpBuilders, ErrorsShrinkAsSpheresGrow) {
+    for (const Shape *shape : {&unit_cube(), &dolos()}) {
+        double previous_rms = HUGE_VAL, previous_greedy_volume = HUGE_VAL;
+        for (int n : {8, 25, 80}) {
+            const ClumpQuality opt = evaluate_clump(*shape, build_clump(*shape, ClumpMethod::optimised, n));
+            const ClumpQuality greedy = evaluate_clump(*shape, build_clump(*shape, ClumpMethod::greedy, n));
+            EXPECT_LT(opt.surface_rms, previous_rms) << shape->kind << " N=" << n;
+            EXPECT_LT(std::abs(greedy.volume_error), previous_greedy_volume) << shape->kind << " N=" << n;
+            previous_rms = opt.surface_rms;
+            previous_greedy_volume = std::abs(greedy.volume_error);
+        }
+    }
+}
+
+TEST(ClumpBuilders, OptimisedMatchesVolumeAndBeatsBaseline) {
+    for (const Shape *shape : {&unit_cube(), &dolos()})
+        for (int n : {10, 40}) {
+            const Clump clump = build_clump(*shape, ClumpMethod::optimised, n);
+            const ClumpQuality opt = evaluate_clump(*shape, clump);
+            const ClumpQuality greedy = evaluate_clump(*shape, build_clump(*shape, ClumpMethod::greedy, n));
+            EXPECT_LT(std::abs(opt.volume_error), 1e-3) << shape->kind << " N=" << n;
+            EXPECT_LT(opt.surface_rms, greedy.surface_rms) << shape->kind << " N=" << n;
+            EXPECT_LT(opt.inertia_error, greedy.inertia_error) << shape->kind << " N=" << n;
+            for (const Sphere &s : clump) // documented floor on radii (DEM time step)
+                EXPECT_GE(s.radius, 0.03 * shape->Dn() * (1 - 1e-9));
+        }
+}
+
+TEST(ClumpTolerance, FewestSpheresMeetsBothTolerances) {
+    const double tol_volume = 0.01, tol_surface = 0.03;
+    const ToleranceSearch s =
+        fewest_spheres(unit_cube(), ClumpMethod::optimised, tol_volume, tol_surface, 200);
+    ASSERT_TRUE(s.met);
+    EXPECT_LE(std::abs(s.quality.volume_error), tol_volume);
+    EXPECT_LE(s.quality.surface_rms, tol_surface);
+    EXPECT_EQ(static_cast<int>(s.clump.size()), s.quality.spheres);
+    // One sphere fewer was tried and failed: the search brackets the answer.
+    bool fewer_failed = false;
+    for (const auto &q : s.tried)
+        if (q.spheres == s.quality.spheres - 1)
+            fewer_failed = q.surface_rms > tol_surface || std::abs(q.volume_error) > tol_volume;
+    EXPECT_TRUE(fewer_failed);
+}
+
+TEST(ClumpTolerance, ReportsWhenItCannotBeMet) {
+    const ToleranceSearch s = fewest_spheres(unit_cube(), ClumpMethod::optimised, 0.01, 0.001, 12);
+    EXPECT_FALSE(s.met);
+    EXPECT_LE(s.quality.spheres, 12);
+    EXPECT_THROW(fewest_spheres(unit_cube(), ClumpMethod::optimised, 0.0, 0.02, 10), InputError);
+    EXPECT_THROW(fewest_spheres(unit_cube(), ClumpMethod::optimised, 0.01, -1.0, 10), InputError);
+}
+
+TEST(ClumpFiles, SphereFileRoundTripsAndSnippetCarriesExactMass) {
+    const Clump clump = build_clump(unit_cube(), ClumpMethod::optimised, 6);
+    const auto dir = std::filesystem::temp_directory_path() / "armour_test_clump_files";
+    std::filesystem::create_directories(dir);
+    const std::string path = (dir / "clump.spheres").string();
+    write_sphere_file(clump, path, "test");
+    std::ifstream in(path);
+    std::vector<Sphere> read;
+    for (std::string line; std::getline(in, line);) {
+        if (line.empty() || line[0] == '#')
+            continue;
+        std::istringstream fields(line);
+        Sphere s{};
+        fields >> s.center.x() >> s.center.y() >> s.center.z() >> s.radius;
+        read.push_back(s);
+    }
+    ASSERT_EQ(read.size(), clump.size());
+    for (std::size_t i = 0; i < clump.size(); ++i) {
+        EXPECT_EQ(read[i].center, clump[i].center);
+        EXPECT_EQ(read[i].radius, clump[i].radius);
+    }
+    const std::string snippet = liggghts_template_snippet(unit_cube(), clump, path);
+    EXPECT_NE(snippet.find("nspheres 6 "), std::string::npos);
+    EXPECT_NE(snippet.find("mass 1000 use_density"), std::string::npos);
+    // I = m a^2 / 6 with exactly zero products, so LIGGGHTS keeps the unit frame.
+    EXPECT_NE(snippet.find("inertia_tensor 166.666666667 0 0 166.666666667 0 166.666666667"),
+              std::string::npos)
+        << snippet;
+    std::filesystem::remove_all(dir);
+}
+
+TEST(ClumpFiles, SurfaceMeshIsOutwardAndCloseToTheSpheres) {
+    const Clump one = {{Eigen::Vector3d(1, 0, 0), 0.5}};
+    const TriangleMesh mesh = clump_surface_mesh(one, 3);
+    const double v = signed_volume(mesh);
+    EXPECT_GT(v, 0.0);
+    EXPECT_NEAR(v, sphere_volume(0.5), 0.02 * sphere_volume(0.5));
+}
