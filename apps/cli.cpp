@@ -2,6 +2,7 @@
 
 #include "clump_command.h"
 #include "mesh.h"
+#include "run_command.h"
 
 #include <CLI/CLI.hpp>
 #include <exception>
@@ -62,6 +63,19 @@ int armour_main(int argc, const char *const *argv) {
         ->add_option("--tol-surface", demo.tol_surface, "Max surface RMS deviation as a fraction of Dn [-]")
         ->capture_default_str();
 
+    RunRequest run;
+    CLI::App *run_cmd = app.add_subcommand(
+        "run",
+        "Run a scene file (TOML, SI units; see docs/scenes.md) with the DEM engine: writes summary.json, "
+        "bodies.h5 (+ bodies.xdmf for ParaView) and the resolved scene to --out.");
+    run_cmd->add_option("scene", run.scene, "Scene file (.toml)")->required();
+    run_cmd->add_option("--out", run.out, "Output directory (replaced if it holds an earlier run)")
+        ->required();
+    run_cmd->add_option("--set", run.overrides,
+                        "Override a scene key, TOML syntax: --set run.duration=0.5 --set unit.0.spheres=20");
+    run_cmd->add_option("--cache", run.cache,
+                        "Clump cache folder (default $ARMOUR_CACHE or ~/.cache/armour-fsi)");
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError &e) {
@@ -74,6 +88,8 @@ int armour_main(int argc, const char *const *argv) {
         }
         if (demo_cmd->parsed())
             return run_demo(demo);
+        if (run_cmd->parsed())
+            return run_scene(run);
     } catch (const InputError &e) {
         std::cerr << "armour: error: " << e.what() << '\n';
         return 2;

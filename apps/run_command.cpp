@@ -1,0 +1,336 @@
+// Runs a scene: engine set-up, time loop with progress, recording, analysis.
+#include "run_command.h"
+
+#include "body_recorder.h"
+#include "clump_io.h"
+#include "liggghts_engine.h"
+#include "scene_setup.h"
+#include "staged_output.h"
+#include "stl_io.h"
+
+#include <Eigen/Geometry>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <unistd.h>
+
+namespace armour {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+class Progress {
+  public:
+    Progress(double duration, bool terminal) : duration_(duration), terminal_(terminal) {}
+    void update(double t) {
+        const double elapsed =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+        const double fraction = std::min(1.0, t / duration_);
+        const double eta = fraction > 0.0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
+        if (terminal_) {
+            const int filled = static_cast<int>(30 * fraction);
+            std::fprintf(stderr, "\r[%-30s] t = %.3f / %.3f s  ETA %.0f s ", std::string(filled, '#').c_str(),
+                         t, duration_, eta);
+            if (fraction >= 1.0)
+                std::fputc('\n', stderr);
+        } else if (fraction >= next_report_ - 1e-12) {
+            std::fprintf(stderr, "run: t = %.3f / %.3f s (%3.0f %%), ETA %.0f s\n", t, duration_,
+                         100 * fraction, eta);
+            next_report_ += 0.1;
+        }
+    }
+    double seconds() const {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    }
+
+  private:
+    double duration_;
+    bool terminal_;
+    double next_report_ = 0.1;
+    std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+double rotation_deg(const Eigen::Quaterniond &a, const Eigen::Quaterniond &b) {
+    return 2.0 * std::acos(std::min(1.0, std::abs(a.dot(b)))) * 180.0 / kPi;
+}
+
+json nullable(const std::optional<double> &v) {
+    return v ? json(*v) : json(nullptr);
+}
+
+double pair_friction(const EngineSettings &s, int a, int b) {
+    for (const auto &p : s.pairs)
+        if (p.friction >= 0.0 && ((p.a == s.materials[a].name && p.b == s.materials[b].name) ||
+                                  (p.a == s.materials[b].name && p.b == s.materials[a].name)))
+            return p.friction;
+    return std::min(s.materials[a].friction, s.materials[b].friction);
+}
+
+// Tilt: gravity turns about +y; the angle at which the unit first slides
+// (moves along x by 1 % of Dn without turning) and first topples (turns by
+// 10 degrees), each taken back to the last sample at which it was still at
+// rest: slower than 5 mm/s (soft contacts creep at ~0.1-1 mm/s well before
+// sliding) or turning slower than 0.05 rad/s.
+struct TiltAnalysis {
+    double rate = 0.0, max = 0.0, Dn = 1.0;
+    std::optional<Pose> reference;
+    double last_still_slide = 0.0, last_still_turn = 0.0;
+    std::optional<double> slide, topple;
+    bool finished = false; // slid a whole Dn or turned past 45 degrees: nothing more to learn
+
+    double angle(double t) const { return std::min(rate * t, max); }
+    void sample(double t, const BodyState &s) {
+        const double theta = angle(t);
+        if (!reference) {
+            if (theta >= 1.0) // after the unit has settled on the plane
+                reference = s.pose;
+            return;
+        }
+        const double moved = s.pose.position.x() - reference->position.x();
+        const double turned = rotation_deg(s.pose.orientation, reference->orientation);
+        if (std::abs(s.velocity.x()) < 5e-3 && !slide)
+            last_still_slide = theta;
+        if (s.angular_velocity.norm() < 5e-2 && !topple)
+            last_still_turn = theta;
+        if (!slide && moved > 0.01 * Dn && turned < 5.0)
+            slide = last_still_slide;
+        if (!topple && turned > 10.0)
+            topple = last_still_turn;
+        finished = (slide && moved > Dn) || (topple && turned > 45.0);
+    }
+};
+
+struct BounceAnalysis {
+    double floor_z = 0.0, drop = 0.0, lowest_offset = 0.0;
+    bool contact = false, rising = false;
+    double apex = -HUGE_VAL;
+    bool done = false;
+    void sample(const BodyState &s) {
+        if (done)
+            return;
+        const double bottom = s.pose.position.z() - lowest_offset - floor_z;
+        if (s.contact_force.norm() > 0.0)
+            contact = true;
+        if (contact && s.contact_force.norm() == 0.0 && s.velocity.z() > 0.0)
+            rising = true;
+        if (rising) {
+            apex = std::max(apex, bottom);
+            if (s.velocity.z() < 0.0)
+                done = true;
+        }
+    }
+};
+
+// Armour layer on the first slope wall, from the final poses. With the units'
+// centres in slope coordinates (s up the slope, y across), the covered area is
+// A = (s_max - s_min + Dn) (y_max - y_min + Dn), capped at the slope's width;
+// packing density = N Dn^2 / A (the coastal-engineering definition, units per
+// Dn^2 of slope) and porosity = 1 - N V / (A t), with t the layer thickness:
+// the highest sphere surface above the slope plane.
+json slope_layer_figures(const Scene &scene, const SceneSetup &setup, const std::vector<BodyState> &states) {
+    const SceneWall *slope = nullptr;
+    for (const auto &w : scene.walls)
+        if (w.type == "slope") {
+            slope = &w;
+            break;
+        }
+    if (!slope)
+        return {{"units", states.size()}, {"packing_density", nullptr}, {"porosity", nullptr}};
+    const double alpha = std::atan2(1.0, slope->cot);
+    const Eigen::Vector3d origin(slope->toe_x, 0.0, slope->floor_z);
+    const Eigen::Vector3d along(std::cos(alpha), 0.0, std::sin(alpha)),
+        normal(-std::sin(alpha), 0.0, std::cos(alpha));
+    double s_min = HUGE_VAL, s_max = -HUGE_VAL, y_min = HUGE_VAL, y_max = -HUGE_VAL, top = 0.0, volume = 0.0,
+           Dn = 0.0;
+    int n = 0;
+    for (std::size_t i = 0; i < states.size(); ++i) {
+        const int unit = setup.bodies[i].unit;
+        const Eigen::Vector3d c = states[i].pose.position - origin;
+        if (c.dot(along) < -setup.unit_Dn[unit] || c.dot(normal) < -setup.unit_Dn[unit])
+            continue; // not on the slope (e.g. fell off seaward)
+        ++n;
+        s_min = std::min(s_min, c.dot(along));
+        s_max = std::max(s_max, c.dot(along));
+        y_min = std::min(y_min, c.y());
+        y_max = std::max(y_max, c.y());
+        volume += setup.units[unit].props.volume;
+        Dn = std::max(Dn, setup.unit_Dn[unit]);
+        for (const auto &sph : setup.units[unit].clump) {
+            const Eigen::Vector3d p =
+                states[i].pose.position + states[i].pose.orientation * sph.center - origin;
+            top = std::max(top, p.dot(normal) + sph.radius);
+        }
+    }
+    if (n == 0)
+        return {{"units", 0}, {"packing_density", nullptr}, {"porosity", nullptr}};
+    const double area = (s_max - s_min + Dn) * std::min(slope->width, y_max - y_min + Dn);
+    return {{"units", n},
+            {"units_total", states.size()},
+            {"packing_density", n * Dn * Dn / area},
+            {"porosity", 1.0 - volume / (area * top)},
+            {"layer_area", area},
+            {"layer_thickness", top},
+            {"slope_angle_deg", alpha * 180.0 / kPi}};
+}
+
+} // namespace
+
+int run_scene(const RunRequest &r) {
+    const bool terminal = ::isatty(STDERR_FILENO) != 0;
+    const Scene scene = load_scene(r.scene, r.overrides);
+    SceneSetup setup = build_scene(scene, r.cache.empty() ? default_cache_dir() : r.cache, true);
+    if (scene.engine != "liggghts")
+        throw InputError(scene.file + ": key 'run.engine': '" + scene.engine +
+                         "' is not available in this build (available: liggghts)");
+    if (r.out.empty())
+        throw InputError("--out: an output directory is required");
+
+    // Everything is checked before the output folder is touched.
+    const fs::path out = fs::absolute(r.out);
+    setup.settings.work_dir = (out / "liggghts").string();
+    std::unique_ptr<RigidBodyEngine> engine = make_liggghts_engine(setup.settings);
+    for (const auto &u : setup.units)
+        engine->add_template(u);
+    for (const auto &w : setup.walls)
+        engine->add_wall(w);
+    for (const auto &b : setup.bodies)
+        engine->add_body(b);
+    const TimeStepReport dt = engine->time_step_report();
+
+    std::error_code ec;
+    if (fs::exists(out / "summary.json", ec) || fs::exists(out / "bodies.h5", ec))
+        fs::remove_all(out, ec); // an earlier result of this command is replaced
+    fs::create_directories(out / "units", ec);
+    if (ec)
+        throw InputError("--out: cannot create " + out.string() + ": " + ec.message());
+    write_text_file(out / "scene.resolved.toml", resolved_scene_toml(scene));
+    std::vector<RecorderUnit> recorder_units;
+    for (const auto &u : setup.units) {
+        const fs::path dir = out / "units" / u.name;
+        fs::create_directories(dir);
+        write_sphere_file(u.clump, (dir / "clump.spheres").string(), u.name);
+        write_stl(u.mesh, (dir / "shape.stl").string(), true, u.name);
+        recorder_units.push_back({u.name, u.mesh});
+    }
+    std::vector<int> body_unit;
+    for (const auto &b : setup.bodies)
+        body_unit.push_back(b.unit);
+    BodyRecorder recorder(
+        (out / "bodies.h5").string(), (out / "bodies.xdmf").string(), recorder_units, body_unit,
+        {{"scene", scene.name}, {"engine", engine->name()}, {"dt", std::to_string(dt.used)}});
+
+    std::vector<BodyState> states(setup.bodies.size());
+    auto record = [&] {
+        for (int i = 0; i < engine->body_count(); ++i)
+            states[i] = engine->state(i);
+        recorder.append(engine->time(), states);
+    };
+
+    TiltAnalysis tilt;
+    tilt.rate = scene.tilt_rate;
+    tilt.max = scene.tilt_max;
+    tilt.Dn = setup.unit_Dn[setup.bodies[0].unit];
+    BounceAnalysis bounce;
+    if (scene.analysis == "bounce") {
+        const BodyInit &b = setup.bodies[0];
+        double low = HUGE_VAL;
+        for (const auto &s : setup.units[b.unit].clump)
+            low = std::min(low, (b.pose.orientation * s.center).z() - s.radius);
+        bounce.lowest_offset = -low;
+        for (const auto &w : scene.walls)
+            if (w.type == "plane") {
+                bounce.floor_z = w.point.z();
+                break;
+            }
+        bounce.drop = b.pose.position.z() + low - bounce.floor_z;
+    }
+    const double g = scene.gravity.norm();
+    auto set_tilt = [&](double t) {
+        const double theta = tilt.angle(t) * kPi / 180.0;
+        engine->set_gravity(Eigen::Vector3d(g * std::sin(theta), 0.0, -g * std::cos(theta)));
+    };
+
+    Progress progress(scene.duration, terminal);
+    if (scene.analysis == "tilt")
+        set_tilt(0.0);
+    record();
+    const long outputs = std::lround(std::ceil(scene.duration / scene.output_interval - 1e-9));
+    for (long k = 1; k <= outputs; ++k) {
+        const double target = std::min(scene.duration, static_cast<double>(k) * scene.output_interval);
+        if (scene.analysis == "tilt") {
+            // Gravity turns in increments of at most 0.1 degree.
+            const double piece = std::max(dt.used, 0.1 / std::max(scene.tilt_rate, 1e-12));
+            while (engine->time() < target - 0.5 * dt.used) {
+                set_tilt(engine->time());
+                engine->advance(std::min(piece, target - engine->time()));
+            }
+        } else {
+            engine->advance(target - engine->time());
+        }
+        record();
+        if (scene.analysis == "tilt")
+            tilt.sample(engine->time(), states[0]);
+        if (tilt.finished) {
+            std::fprintf(stderr, "run: tilt test decided at t = %.3f s, stopping\n", engine->time());
+            break;
+        }
+        if (scene.analysis == "bounce")
+            bounce.sample(states[0]);
+        progress.update(engine->time());
+    }
+    recorder.close();
+    const double wall_seconds = progress.seconds();
+
+    json spheres = json::object();
+    for (std::size_t k = 0; k < setup.units.size(); ++k)
+        spheres[setup.units[k].name] = setup.unit_spheres[k];
+    json summary = {
+        {"command", "run"},
+        {"scene", scene.name},
+        {"engine", engine->name()},
+        {"spheres_per_unit", spheres},
+        {"units", static_cast<int>(setup.bodies.size())},
+        {"dt", dt.used},
+        {"dt_limit", dt.limit},
+        {"dt_forced", dt.forced},
+        {"dt_rule", dt.rule},
+        {"rayleigh_time", dt.rayleigh},
+        {"contact_duration", dt.contact_duration},
+        {"steps", engine->steps()},
+        {"simulated_seconds", engine->time()},
+        {"wall_seconds", wall_seconds},
+        {"wall_seconds_per_simulated_second", wall_seconds / std::max(engine->time(), 1e-300)},
+        {"files", {{"bodies", "bodies.h5"}, {"paraview", "bodies.xdmf"}, {"scene", "scene.resolved.toml"}}},
+        {"si_units", {{"dt", "s"}, {"wall_seconds", "s"}, {"angles", "deg"}, {"lengths", "m"}}}};
+    if (scene.analysis == "tilt") {
+        const int wall_material = setup.walls.empty() ? 0 : setup.walls[0].material;
+        const double mu =
+            pair_friction(setup.settings, setup.units[setup.bodies[0].unit].material, wall_material);
+        summary["mu"] = mu;
+        summary["slide_angle_deg"] = nullable(tilt.slide);
+        summary["topple_angle_deg"] = nullable(tilt.topple);
+        summary["slide_angle_analytic_deg"] = std::atan(mu) * 180.0 / kPi;
+    }
+    if (scene.analysis == "bounce") {
+        summary["drop_height"] = bounce.drop;
+        summary["rebound_height"] = bounce.done ? json(bounce.apex) : json(nullptr);
+        summary["bounce_height_ratio"] = bounce.done ? json(bounce.apex / bounce.drop) : json(nullptr);
+        summary["restitution_effective"] =
+            bounce.done ? json(std::sqrt(std::max(0.0, bounce.apex / bounce.drop))) : json(nullptr);
+    }
+    if (scene.analysis == "slope")
+        summary.update(slope_layer_figures(scene, setup, states));
+    write_text_file(out / "summary.json", summary.dump(2) + "\n");
+    std::printf("%s: %d units, %ld steps of %.3g s, %.1f s wall -> %s\n", scene.name.c_str(),
+                static_cast<int>(setup.bodies.size()), engine->steps(), dt.used, wall_seconds, out.c_str());
+    return 0;
+}
+
+} // namespace armour

@@ -1,0 +1,20 @@
+// `armour run SCENE --out DIR [--set key=value ...]`.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace armour {
+
+struct RunRequest {
+    std::string scene;
+    std::string out;
+    std::vector<std::string> overrides; // --set key=value
+    std::string cache;                  // clump cache folder; empty = default
+};
+
+// Returns the exit status (0 on success); throws InputError before anything
+// is written when the scene cannot run.
+int run_scene(const RunRequest &request);
+
+} // namespace armour

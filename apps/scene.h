@@ -1,0 +1,137 @@
+// A scene file: the single source of truth for one `armour run`.
+//
+// Description
+//     TOML (toml++), SI units. Every key below is documented in docs/scenes.md
+//     and every example lives in scenes/. load_scene() checks every key and
+//     value before anything runs: an unknown key, a missing key or a bad value
+//     throws InputError "FILE:LINE: key 'a.b': reason". Overrides given as
+//     --set key=value (dotted path, TOML value syntax; arrays of tables by
+//     index, e.g. unit.0.spheres=20) are applied before the checks, so they
+//     are checked the same way, and the resolved scene can be written back.
+//
+// Usage
+//     Scene scene = load_scene("scenes/drop_bounce.toml", {"run.duration=0.5"});
+//     write_resolved_scene(scene, "OUT/scene.resolved.toml");
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace armour {
+
+struct SceneUnit {
+    std::string name;
+    std::string shape;       // "cube" | "dolos" | "stl"
+    double size = 0.0;       // cube edge, m
+    double chamfer = 0.0;    // m
+    double height = 0.0;     // dolos H, m
+    double waist = 0.33;     // dolos waist ratio
+    std::string stl;         // path, resolved relative to the scene file
+    double density = 2400.0; // kg/m^3
+    int spheres = 0;         // > 0: fixed count; 0: tolerance mode
+    double tol_volume = 0.01;
+    double tol_surface = 0.02;
+    std::string method = "optimised";
+    std::string material; // name of a [[material]]
+};
+
+struct SceneMaterial {
+    std::string name;
+    double youngs_modulus = 5e7; // Pa
+    double poisson_ratio = 0.25;
+    double restitution = 0.5;
+    double friction = 0.6;
+    double rolling_friction = 0.0;
+};
+
+struct SceneMaterialPair {
+    std::string a, b;
+    std::optional<double> restitution, friction, rolling_friction;
+};
+
+// type "plane": point, normal, size (edge of the square patch, m)
+// type "slope": a 1:cot slope rising in +x: toe at x = toe_x on the floor z = floor_z,
+//               cot (horizontal per vertical, e.g. 1.5), height (m), width along y (m),
+//               toe_height (m, a vertical step at the toe, 0 = none), floor included
+// type "box":   min, max (m): floor and four side walls, open top
+// type "stl":   file (resolved relative to the scene file)
+struct SceneWall {
+    std::string name;
+    std::string type;
+    Eigen::Vector3d point = Eigen::Vector3d::Zero();
+    Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+    double size = 10.0;
+    double toe_x = 0.0, floor_z = 0.0, cot = 1.5, height = 1.0, width = 2.0, toe_height = 0.0;
+    Eigen::Vector3d min = Eigen::Vector3d::Zero(), max = Eigen::Vector3d::Zero();
+    std::string file;
+    std::string material;
+};
+
+// One explicitly placed body.
+struct SceneBody {
+    std::string unit;
+    Eigen::Vector3d position = Eigen::Vector3d::Zero();         // m, centre of mass
+    Eigen::Vector4d orientation = Eigen::Vector4d(1, 0, 0, 0);  // quaternion w, x, y, z (normalised on load)
+    Eigen::Vector3d velocity = Eigen::Vector3d::Zero();         // m/s
+    Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero(); // rad/s
+    std::array<bool, 3> fixed_translation{{false, false, false}};
+    std::array<bool, 3> fixed_rotation{{false, false, false}};
+};
+
+// Random drop: `count` units at random non-overlapping poses in a region,
+// released at rest, then the run settles them.
+struct SceneDrop {
+    std::string unit;
+    int count = 0;
+    Eigen::Vector3d min = Eigen::Vector3d::Zero(), max = Eigen::Vector3d::Zero(); // m
+    std::uint64_t seed = 1;
+};
+
+// Regular pattern on a slope wall: rows along the slope, columns along y,
+// each unit resting `gap` (m) above the slope surface.
+struct ScenePattern {
+    std::string unit;
+    std::string wall; // name of a "slope" wall
+    int rows = 1, columns = 1;
+    double spacing = 0.0; // m between centres (0 = 1.05 x unit bounding size)
+    double gap = 0.01;    // m
+};
+
+struct Scene {
+    std::string file; // path as given
+    std::string name;
+    // [run]
+    std::string engine = "liggghts";
+    double duration = 1.0;         // s
+    double output_interval = 0.01; // s
+    double time_step = 0.0;        // s; 0 = automatic
+    bool force_time_step = false;
+    Eigen::Vector3d gravity = Eigen::Vector3d(0, 0, -9.81);                                          // m/s^2
+    Eigen::Vector3d domain_min = Eigen::Vector3d(-5, -5, -1), domain_max = Eigen::Vector3d(5, 5, 5); // m
+    // [contact]
+    std::string contact_model = "hertz";  // hertz | hooke
+    double characteristic_velocity = 1.0; // m/s
+    // [analysis]: what the summary reports
+    std::string analysis = "none"; // none | tilt | slope | bounce
+    double tilt_rate = 0.0;        // deg/s, tilt: gravity turns about +y at this rate
+    double tilt_max = 60.0;        // deg, tilt: stop here
+    std::vector<SceneMaterial> materials;
+    std::vector<SceneMaterialPair> material_pairs;
+    std::vector<SceneUnit> units;
+    std::vector<SceneWall> walls;
+    std::vector<SceneBody> bodies;
+    std::vector<SceneDrop> drops;
+    std::vector<ScenePattern> patterns;
+};
+
+// `overrides` are "dotted.key=toml_value" strings (from --set).
+Scene load_scene(const std::string &path, const std::vector<std::string> &overrides = {});
+
+// The scene after overrides and defaults, as TOML (echoed into every output folder).
+std::string resolved_scene_toml(const Scene &scene);
+
+} // namespace armour

@@ -1,0 +1,38 @@
+// From a Scene to what an engine needs: unit templates (clumps built or read
+// from the cache), materials, wall meshes and initial body poses, all checked.
+#pragma once
+
+#include "rigid_body_engine.h"
+#include "scene.h"
+
+#include <string>
+#include <vector>
+
+namespace armour {
+
+struct SceneSetup {
+    EngineSettings settings;
+    std::vector<UnitTemplate> units; // index = scene unit index
+    std::vector<Wall> walls;
+    std::vector<BodyInit> bodies;
+    std::vector<double> unit_Dn; // m
+    std::vector<int> unit_spheres;
+};
+
+// Builds (or reads from `cache_dir`) every clump, makes the walls and places
+// the bodies. Throws InputError naming the scene key for anything that cannot
+// run: overlapping bodies (named in pairs), bodies outside the domain, a drop
+// region too small for its units, a pattern wall that is not a slope.
+SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool progress);
+
+// The default clump cache: $ARMOUR_CACHE, else $XDG_CACHE_HOME/armour-fsi,
+// else ~/.cache/armour-fsi.
+std::string default_cache_dir();
+
+// Wall surfaces (m, world frame), exposed for tests.
+TriangleMesh plane_wall(const Eigen::Vector3d &point, const Eigen::Vector3d &normal, double size);
+TriangleMesh slope_wall(const SceneWall &wall, const Eigen::Vector3d &domain_min,
+                        const Eigen::Vector3d &domain_max);
+TriangleMesh box_wall(const Eigen::Vector3d &min, const Eigen::Vector3d &max);
+
+} // namespace armour

@@ -1,0 +1,682 @@
+// Scene files: every key read with its unit and default, every bad input
+// rejected with one line naming file, line and key, --set overrides checked
+// like the file, and the resolved scene reloading to the same Scene.
+#include "mesh.h"
+#include "scene.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <tuple>
+#include <vector>
+
+namespace fs = std::filesystem;
+using armour::InputError;
+using armour::load_scene;
+using armour::Scene;
+
+namespace {
+
+// Every key of every section, with values that differ from the defaults.
+const char *kFull = R"(# a complete scene
+name = "full"
+
+[run]
+engine = "bullet"
+duration = 2.5
+output_interval = 0.05
+time_step = 1e-5
+force_time_step = true
+gravity = [0, 0, -9]
+domain_min = [-2, -3, -1]
+domain_max = [4, 3, 5]
+
+[contact]
+model = "hooke"
+characteristic_velocity = 2
+
+[analysis]
+kind = "tilt"
+tilt_rate = 5
+tilt_max = 45.5
+
+[[material]]
+name = "concrete"
+youngs_modulus = 1e8
+poisson_ratio = 0.2
+restitution = 0.4
+friction = 0.7
+rolling_friction = 0.05
+
+[[material]]
+name = "steel"
+youngs_modulus = 2e8
+
+[[material_pair]]
+a = "concrete"
+b = "steel"
+friction = 0.3
+
+[[unit]]
+name = "cube"
+shape = "cube"
+size = 0.2
+chamfer = 0.01
+density = 2300
+spheres = 20
+tol_volume = 0.05
+tol_surface = 0.04
+method = "greedy"
+material = "concrete"
+
+[[unit]]
+name = "dolos"
+shape = "dolos"
+height = 0.3
+waist = 0.4
+material = "steel"
+
+[[unit]]
+name = "mesh"
+shape = "stl"
+stl = "meshes/unit.stl"
+material = "concrete"
+
+[[wall]]
+name = "floor"
+type = "plane"
+point = [0, 0, 0.5]
+normal = [0, 0, 2]
+size = 4
+material = "steel"
+
+[[wall]]
+name = "slope"
+type = "slope"
+toe_x = 1
+floor_z = -0.5
+cot = 2
+height = 1.5
+width = 1.2
+toe_height = 0.1
+material = "concrete"
+
+[[wall]]
+type = "box"
+min = [-1, -1, 0]
+max = [1, 1, 2]
+material = "concrete"
+
+[[wall]]
+name = "scan"
+type = "stl"
+file = "meshes/unit.stl"
+material = "steel"
+
+[[body]]
+unit = "cube"
+position = [0.1, 0.2, 0.3]
+orientation = [0, 0, 0, 2]
+velocity = [1, 0, -1]
+angular_velocity = [0, 3, 0]
+fixed_translation = [true, false, true]
+fixed_rotation = [false, true, false]
+
+[[drop]]
+unit = "dolos"
+count = 7
+min = [-1, -1, 1]
+max = [1, 1, 2]
+seed = 42
+
+[[pattern]]
+unit = "cube"
+wall = "slope"
+rows = 3
+columns = 4
+spacing = 0.25
+gap = 0.002
+)";
+
+// Only what is required; everything else defaults.
+const char *kMinimal = R"(name = "minimal"
+
+[[material]]
+name = "m"
+
+[[unit]]
+name = "u"
+shape = "cube"
+size = 0.2
+
+[[body]]
+unit = "u"
+position = [0, 0, 1]
+)";
+
+class SceneFile : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        dir_ =
+            fs::temp_directory_path() /
+            ("armour_scene_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+        fs::remove_all(dir_);
+        fs::create_directories(dir_ / "meshes");
+        std::ofstream(dir_ / "meshes" / "unit.stl") << "solid x\nendsolid x\n";
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    std::string write(const std::string &text, const std::string &name = "scene.toml") {
+        const fs::path p = dir_ / name;
+        std::ofstream(p) << text;
+        return p.string();
+    }
+
+    // The one-line message load_scene throws, or "" if it accepted the scene.
+    static std::string error_of(const std::string &path, const std::vector<std::string> &overrides = {}) {
+        try {
+            load_scene(path, overrides);
+        } catch (const InputError &e) {
+            return e.what();
+        }
+        return "";
+    }
+
+    // A minimal scene with `line` replacing the line that starts with `prefix`
+    // (or appended when `prefix` is empty); returns the file and the 1-based
+    // line the change landed on.
+    std::pair<std::string, int> minimal_with(const std::string &prefix, const std::string &line) {
+        std::vector<std::string> lines;
+        std::string l;
+        std::istringstream in(kMinimal);
+        while (std::getline(in, l))
+            lines.push_back(l);
+        int at = 0;
+        if (prefix.empty()) {
+            lines.push_back(line);
+            at = static_cast<int>(lines.size());
+        } else {
+            for (std::size_t i = 0; i < lines.size(); ++i)
+                if (lines[i].rfind(prefix, 0) == 0) {
+                    lines[i] = line;
+                    at = static_cast<int>(i) + 1;
+                    break;
+                }
+        }
+        EXPECT_GT(at, 0) << "no line starts with " << prefix;
+        std::string text;
+        for (const auto &x : lines)
+            text += x + "\n";
+        return {write(text), at};
+    }
+
+    // The error is one line: FILE:LINE: key 'KEY': ...
+    void expect_error(const std::string &path, int line, const std::string &key,
+                      const std::string &reason = "", const std::vector<std::string> &overrides = {}) {
+        const std::string e = error_of(path, overrides);
+        ASSERT_FALSE(e.empty()) << "accepted";
+        EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+        const std::string head = path + ":" + std::to_string(line) + ": key '" + key + "': ";
+        EXPECT_EQ(e.rfind(head, 0), 0u) << e << "\nexpected to start with: " << head;
+        EXPECT_NE(e.find(reason), std::string::npos) << e << "\nexpected to contain: " << reason;
+    }
+
+    fs::path dir_;
+};
+
+void expect_same(const Scene &a, const Scene &b) {
+    EXPECT_EQ(a.name, b.name);
+    EXPECT_EQ(a.engine, b.engine);
+    EXPECT_EQ(a.duration, b.duration);
+    EXPECT_EQ(a.output_interval, b.output_interval);
+    EXPECT_EQ(a.time_step, b.time_step);
+    EXPECT_EQ(a.force_time_step, b.force_time_step);
+    EXPECT_EQ(a.gravity, b.gravity);
+    EXPECT_EQ(a.domain_min, b.domain_min);
+    EXPECT_EQ(a.domain_max, b.domain_max);
+    EXPECT_EQ(a.contact_model, b.contact_model);
+    EXPECT_EQ(a.characteristic_velocity, b.characteristic_velocity);
+    EXPECT_EQ(a.analysis, b.analysis);
+    EXPECT_EQ(a.tilt_rate, b.tilt_rate);
+    EXPECT_EQ(a.tilt_max, b.tilt_max);
+    ASSERT_EQ(a.materials.size(), b.materials.size());
+    for (std::size_t i = 0; i < a.materials.size(); ++i) {
+        const auto &x = a.materials[i], &y = b.materials[i];
+        EXPECT_EQ(x.name, y.name);
+        EXPECT_EQ(x.youngs_modulus, y.youngs_modulus);
+        EXPECT_EQ(x.poisson_ratio, y.poisson_ratio);
+        EXPECT_EQ(x.restitution, y.restitution);
+        EXPECT_EQ(x.friction, y.friction);
+        EXPECT_EQ(x.rolling_friction, y.rolling_friction);
+    }
+    ASSERT_EQ(a.material_pairs.size(), b.material_pairs.size());
+    for (std::size_t i = 0; i < a.material_pairs.size(); ++i) {
+        const auto &x = a.material_pairs[i], &y = b.material_pairs[i];
+        EXPECT_EQ(x.a, y.a);
+        EXPECT_EQ(x.b, y.b);
+        EXPECT_EQ(x.restitution, y.restitution);
+        EXPECT_EQ(x.friction, y.friction);
+        EXPECT_EQ(x.rolling_friction, y.rolling_friction);
+    }
+    ASSERT_EQ(a.units.size(), b.units.size());
+    for (std::size_t i = 0; i < a.units.size(); ++i) {
+        const auto &x = a.units[i], &y = b.units[i];
+        EXPECT_EQ(x.name, y.name);
+        EXPECT_EQ(x.shape, y.shape);
+        EXPECT_EQ(x.size, y.size);
+        EXPECT_EQ(x.chamfer, y.chamfer);
+        EXPECT_EQ(x.height, y.height);
+        EXPECT_EQ(x.waist, y.waist);
+        EXPECT_EQ(x.stl, y.stl);
+        EXPECT_EQ(x.density, y.density);
+        EXPECT_EQ(x.spheres, y.spheres);
+        EXPECT_EQ(x.tol_volume, y.tol_volume);
+        EXPECT_EQ(x.tol_surface, y.tol_surface);
+        EXPECT_EQ(x.method, y.method);
+        EXPECT_EQ(x.material, y.material);
+    }
+    ASSERT_EQ(a.walls.size(), b.walls.size());
+    for (std::size_t i = 0; i < a.walls.size(); ++i) {
+        const auto &x = a.walls[i], &y = b.walls[i];
+        EXPECT_EQ(x.name, y.name);
+        EXPECT_EQ(x.type, y.type);
+        EXPECT_EQ(x.point, y.point);
+        EXPECT_EQ(x.normal, y.normal);
+        EXPECT_EQ(x.size, y.size);
+        EXPECT_EQ(x.toe_x, y.toe_x);
+        EXPECT_EQ(x.floor_z, y.floor_z);
+        EXPECT_EQ(x.cot, y.cot);
+        EXPECT_EQ(x.height, y.height);
+        EXPECT_EQ(x.width, y.width);
+        EXPECT_EQ(x.toe_height, y.toe_height);
+        EXPECT_EQ(x.min, y.min);
+        EXPECT_EQ(x.max, y.max);
+        EXPECT_EQ(x.file, y.file);
+        EXPECT_EQ(x.material, y.material);
+    }
+    ASSERT_EQ(a.bodies.size(), b.bodies.size());
+    for (std::size_t i = 0; i < a.bodies.size(); ++i) {
+        const auto &x = a.bodies[i], &y = b.bodies[i];
+        EXPECT_EQ(x.unit, y.unit);
+        EXPECT_EQ(x.position, y.position);
+        EXPECT_EQ(x.orientation, y.orientation);
+        EXPECT_EQ(x.velocity, y.velocity);
+        EXPECT_EQ(x.angular_velocity, y.angular_velocity);
+        EXPECT_EQ(x.fixed_translation, y.fixed_translation);
+        EXPECT_EQ(x.fixed_rotation, y.fixed_rotation);
+    }
+    ASSERT_EQ(a.drops.size(), b.drops.size());
+    for (std::size_t i = 0; i < a.drops.size(); ++i) {
+        const auto &x = a.drops[i], &y = b.drops[i];
+        EXPECT_EQ(x.unit, y.unit);
+        EXPECT_EQ(x.count, y.count);
+        EXPECT_EQ(x.min, y.min);
+        EXPECT_EQ(x.max, y.max);
+        EXPECT_EQ(x.seed, y.seed);
+    }
+    ASSERT_EQ(a.patterns.size(), b.patterns.size());
+    for (std::size_t i = 0; i < a.patterns.size(); ++i) {
+        const auto &x = a.patterns[i], &y = b.patterns[i];
+        EXPECT_EQ(x.unit, y.unit);
+        EXPECT_EQ(x.wall, y.wall);
+        EXPECT_EQ(x.rows, y.rows);
+        EXPECT_EQ(x.columns, y.columns);
+        EXPECT_EQ(x.spacing, y.spacing);
+        EXPECT_EQ(x.gap, y.gap);
+    }
+}
+
+} // namespace
+
+TEST_F(SceneFile, FullSceneReadsEveryKey) {
+    const std::string path = write(kFull);
+    const Scene s = load_scene(path);
+    EXPECT_EQ(s.file, path);
+    EXPECT_EQ(s.name, "full");
+    EXPECT_EQ(s.engine, "bullet");
+    EXPECT_DOUBLE_EQ(s.duration, 2.5);
+    EXPECT_DOUBLE_EQ(s.output_interval, 0.05);
+    EXPECT_DOUBLE_EQ(s.time_step, 1e-5);
+    EXPECT_TRUE(s.force_time_step);
+    EXPECT_EQ(s.gravity, Eigen::Vector3d(0, 0, -9));
+    EXPECT_EQ(s.domain_min, Eigen::Vector3d(-2, -3, -1));
+    EXPECT_EQ(s.domain_max, Eigen::Vector3d(4, 3, 5));
+    EXPECT_EQ(s.contact_model, "hooke");
+    EXPECT_DOUBLE_EQ(s.characteristic_velocity, 2.0);
+    EXPECT_EQ(s.analysis, "tilt");
+    EXPECT_DOUBLE_EQ(s.tilt_rate, 5.0);
+    EXPECT_DOUBLE_EQ(s.tilt_max, 45.5);
+
+    ASSERT_EQ(s.materials.size(), 2u);
+    EXPECT_EQ(s.materials[0].name, "concrete");
+    EXPECT_DOUBLE_EQ(s.materials[0].youngs_modulus, 1e8);
+    EXPECT_DOUBLE_EQ(s.materials[0].poisson_ratio, 0.2);
+    EXPECT_DOUBLE_EQ(s.materials[0].restitution, 0.4);
+    EXPECT_DOUBLE_EQ(s.materials[0].friction, 0.7);
+    EXPECT_DOUBLE_EQ(s.materials[0].rolling_friction, 0.05);
+    EXPECT_DOUBLE_EQ(s.materials[1].youngs_modulus, 2e8);
+    ASSERT_EQ(s.material_pairs.size(), 1u);
+    EXPECT_EQ(s.material_pairs[0].a, "concrete");
+    EXPECT_EQ(s.material_pairs[0].b, "steel");
+    EXPECT_FALSE(s.material_pairs[0].restitution.has_value());
+    ASSERT_TRUE(s.material_pairs[0].friction.has_value());
+    EXPECT_DOUBLE_EQ(*s.material_pairs[0].friction, 0.3);
+    EXPECT_FALSE(s.material_pairs[0].rolling_friction.has_value());
+
+    ASSERT_EQ(s.units.size(), 3u);
+    const auto &cube = s.units[0];
+    EXPECT_EQ(cube.shape, "cube");
+    EXPECT_DOUBLE_EQ(cube.size, 0.2);
+    EXPECT_DOUBLE_EQ(cube.chamfer, 0.01);
+    EXPECT_DOUBLE_EQ(cube.density, 2300);
+    EXPECT_EQ(cube.spheres, 20);
+    EXPECT_DOUBLE_EQ(cube.tol_volume, 0.05);
+    EXPECT_DOUBLE_EQ(cube.tol_surface, 0.04);
+    EXPECT_EQ(cube.method, "greedy");
+    EXPECT_EQ(cube.material, "concrete");
+    EXPECT_EQ(s.units[1].shape, "dolos");
+    EXPECT_DOUBLE_EQ(s.units[1].height, 0.3);
+    EXPECT_DOUBLE_EQ(s.units[1].waist, 0.4);
+    EXPECT_EQ(s.units[1].material, "steel");
+    EXPECT_EQ(s.units[1].spheres, 0); // no `spheres`: tolerance mode
+    // STL paths are relative to the scene file, stored absolute.
+    EXPECT_TRUE(fs::path(s.units[2].stl).is_absolute()) << s.units[2].stl;
+    EXPECT_TRUE(fs::equivalent(s.units[2].stl, dir_ / "meshes" / "unit.stl"));
+
+    ASSERT_EQ(s.walls.size(), 4u);
+    EXPECT_EQ(s.walls[0].name, "floor");
+    EXPECT_EQ(s.walls[0].point, Eigen::Vector3d(0, 0, 0.5));
+    EXPECT_EQ(s.walls[0].normal, Eigen::Vector3d(0, 0, 1)); // normalised
+    EXPECT_DOUBLE_EQ(s.walls[0].size, 4);
+    EXPECT_EQ(s.walls[0].material, "steel");
+    const auto &slope = s.walls[1];
+    EXPECT_EQ(slope.type, "slope");
+    EXPECT_DOUBLE_EQ(slope.toe_x, 1);
+    EXPECT_DOUBLE_EQ(slope.floor_z, -0.5);
+    EXPECT_DOUBLE_EQ(slope.cot, 2);
+    EXPECT_DOUBLE_EQ(slope.height, 1.5);
+    EXPECT_DOUBLE_EQ(slope.width, 1.2);
+    EXPECT_DOUBLE_EQ(slope.toe_height, 0.1);
+    EXPECT_EQ(s.walls[2].type, "box");
+    EXPECT_EQ(s.walls[2].name, "box_2"); // unnamed walls get type_index
+    EXPECT_EQ(s.walls[2].min, Eigen::Vector3d(-1, -1, 0));
+    EXPECT_EQ(s.walls[2].max, Eigen::Vector3d(1, 1, 2));
+    EXPECT_TRUE(fs::equivalent(s.walls[3].file, dir_ / "meshes" / "unit.stl"));
+
+    ASSERT_EQ(s.bodies.size(), 1u);
+    const auto &b = s.bodies[0];
+    EXPECT_EQ(b.unit, "cube");
+    EXPECT_EQ(b.position, Eigen::Vector3d(0.1, 0.2, 0.3));
+    EXPECT_EQ(b.orientation, Eigen::Vector4d(0, 0, 0, 1)); // normalised
+    EXPECT_EQ(b.velocity, Eigen::Vector3d(1, 0, -1));
+    EXPECT_EQ(b.angular_velocity, Eigen::Vector3d(0, 3, 0));
+    EXPECT_EQ(b.fixed_translation, (std::array<bool, 3>{{true, false, true}}));
+    EXPECT_EQ(b.fixed_rotation, (std::array<bool, 3>{{false, true, false}}));
+
+    ASSERT_EQ(s.drops.size(), 1u);
+    EXPECT_EQ(s.drops[0].unit, "dolos");
+    EXPECT_EQ(s.drops[0].count, 7);
+    EXPECT_EQ(s.drops[0].min, Eigen::Vector3d(-1, -1, 1));
+    EXPECT_EQ(s.drops[0].max, Eigen::Vector3d(1, 1, 2));
+    EXPECT_EQ(s.drops[0].seed, 42u);
+
+    ASSERT_EQ(s.patterns.size(), 1u);
+    EXPECT_EQ(s.patterns[0].wall, "slope");
+    EXPECT_EQ(s.patterns[0].rows, 3);
+    EXPECT_EQ(s.patterns[0].columns, 4);
+    EXPECT_DOUBLE_EQ(s.patterns[0].spacing, 0.25);
+    EXPECT_DOUBLE_EQ(s.patterns[0].gap, 0.002);
+}
+
+TEST_F(SceneFile, DefaultsFillWhatIsAbsent) {
+    const Scene s = load_scene(write(kMinimal));
+    EXPECT_EQ(s.engine, "liggghts");
+    EXPECT_DOUBLE_EQ(s.duration, 1.0);
+    EXPECT_DOUBLE_EQ(s.output_interval, 0.01);
+    EXPECT_DOUBLE_EQ(s.time_step, 0.0);
+    EXPECT_FALSE(s.force_time_step);
+    EXPECT_EQ(s.gravity, Eigen::Vector3d(0, 0, -9.81));
+    EXPECT_EQ(s.domain_min, Eigen::Vector3d(-5, -5, -1));
+    EXPECT_EQ(s.domain_max, Eigen::Vector3d(5, 5, 5));
+    EXPECT_EQ(s.contact_model, "hertz");
+    EXPECT_DOUBLE_EQ(s.characteristic_velocity, 1.0);
+    EXPECT_EQ(s.analysis, "none");
+    EXPECT_DOUBLE_EQ(s.tilt_max, 60.0);
+    ASSERT_EQ(s.materials.size(), 1u);
+    EXPECT_DOUBLE_EQ(s.materials[0].youngs_modulus, 5e7);
+    EXPECT_DOUBLE_EQ(s.materials[0].poisson_ratio, 0.25);
+    EXPECT_DOUBLE_EQ(s.materials[0].restitution, 0.5);
+    EXPECT_DOUBLE_EQ(s.materials[0].friction, 0.6);
+    EXPECT_DOUBLE_EQ(s.materials[0].rolling_friction, 0.0);
+    ASSERT_EQ(s.units.size(), 1u);
+    const auto &u = s.units[0];
+    EXPECT_DOUBLE_EQ(u.chamfer, 0.0);
+    EXPECT_DOUBLE_EQ(u.density, 2400.0);
+    EXPECT_EQ(u.spheres, 0);
+    EXPECT_DOUBLE_EQ(u.tol_volume, 0.01);
+    EXPECT_DOUBLE_EQ(u.tol_surface, 0.02);
+    EXPECT_EQ(u.method, "optimised");
+    EXPECT_EQ(u.material, "m"); // the only material
+    ASSERT_EQ(s.bodies.size(), 1u);
+    EXPECT_EQ(s.bodies[0].orientation, Eigen::Vector4d(1, 0, 0, 0));
+    EXPECT_EQ(s.bodies[0].velocity, Eigen::Vector3d::Zero());
+    EXPECT_EQ(s.bodies[0].fixed_rotation, (std::array<bool, 3>{{false, false, false}}));
+    EXPECT_TRUE(s.walls.empty());
+    EXPECT_TRUE(s.drops.empty());
+}
+
+TEST_F(SceneFile, IntegerAcceptedWhereFloatExpected) {
+    const auto [path, line] = minimal_with("size", "size = 1");
+    EXPECT_DOUBLE_EQ(load_scene(path).units[0].size, 1.0);
+}
+
+TEST_F(SceneFile, OverridesScalarNestedIndexedAndCreated) {
+    const std::string path = write(kFull);
+    const Scene s = load_scene(path, {"run.duration=0.5",          // nested scalar
+                                      "name = \"renamed\"",        // root string, spaces around '='
+                                      "unit.0.spheres=30",         // array of tables by index
+                                      "unit.1.spheres=12",         // created: a known key absent in the file
+                                      "run.gravity=[0, 0, -1.62]", // array value
+                                      "run.gravity.0=0.5",         // one entry of an array
+                                      "wall.1.cot=3",              // integer where a float is expected
+                                      "material_pair.0.restitution=0.9"});
+    EXPECT_DOUBLE_EQ(s.duration, 0.5);
+    EXPECT_EQ(s.name, "renamed");
+    EXPECT_EQ(s.units[0].spheres, 30);
+    EXPECT_EQ(s.units[1].spheres, 12);
+    EXPECT_EQ(s.gravity, Eigen::Vector3d(0.5, 0, -1.62));
+    EXPECT_DOUBLE_EQ(s.walls[1].cot, 3.0);
+    ASSERT_TRUE(s.material_pairs[0].restitution.has_value());
+    EXPECT_DOUBLE_EQ(*s.material_pairs[0].restitution, 0.9);
+    // Untouched values survive.
+    EXPECT_DOUBLE_EQ(s.output_interval, 0.05);
+}
+
+TEST_F(SceneFile, OverrideCreatesAbsentSection) {
+    const Scene s = load_scene(write(kMinimal), {"analysis.kind=\"bounce\"", "contact.model=\"hooke\""});
+    EXPECT_EQ(s.analysis, "bounce");
+    EXPECT_EQ(s.contact_model, "hooke");
+}
+
+TEST_F(SceneFile, OverriddenValuesAreCheckedAndBlameSet) {
+    const std::string path = write(kFull);
+    const std::string e = error_of(path, {"run.duration=-1"});
+    EXPECT_EQ(e.rfind("--set: key 'run.duration': must be > 0 s (got -1)", 0), 0u) << e;
+    const std::string t = error_of(path, {"unit.0.size=\"big\""});
+    EXPECT_EQ(t.rfind("--set: key 'unit.0.size': must be a number", 0), 0u) << t;
+}
+
+TEST_F(SceneFile, MalformedOverridesAreRejected) {
+    const std::string path = write(kFull);
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"run.duration", "expected KEY=VALUE"},
+        {"run.duration=", "empty value"},
+        {"=1", "empty key"},
+        {"run..duration=1", "empty segment"},
+        {"name=hello", "bad TOML value"},               // unquoted string
+        {"run.durration=1", "did you mean 'duration'"}, // unknown key cannot be created
+        {"unit.5.size=1", "index 5 out of range"},
+        {"unit.size=1", "is an array"},
+        {"nothere.x=1", "does not exist"},
+        {"run.duration.x=1", "not a table"},
+        {"run.duration=1\nname=\"x\"", "single TOML value"},
+    };
+    for (const auto &[set, reason] : cases) {
+        const std::string e = error_of(path, {set});
+        EXPECT_EQ(e.rfind("--set '" + set + "': ", 0), 0u) << set << " -> " << e;
+        EXPECT_NE(e.find(reason), std::string::npos) << set << " -> " << e;
+    }
+}
+
+TEST_F(SceneFile, UnknownKeyNamesLineAndSuggests) {
+    const auto [path, line] = minimal_with("size", "sise = 0.2");
+    expect_error(path, line, "unit.0.sise", "unknown key (did you mean 'size'?)");
+    const auto [p2, l2] = minimal_with("", "[runn]");
+    expect_error(p2, l2, "runn", "did you mean 'run'?");
+}
+
+TEST_F(SceneFile, KeyOfAnotherShapeIsRejected) {
+    const auto [path, line] = minimal_with("size", "height = 0.2");
+    expect_error(path, line, "unit.0.height", "not used by shape \"cube\"");
+}
+
+TEST_F(SceneFile, MissingRequiredKeys) {
+    // At the enclosing table's header line.
+    const auto [p1, l1] = minimal_with("size", "");
+    expect_error(p1, 6, "unit.0.size", "missing required key");
+    const auto [p2, l2] = minimal_with("name = \"minimal\"", "");
+    expect_error(p2, 1, "name", "missing required key");
+    const auto [p3, l3] = minimal_with("", "[[wall]]\ntype = \"plane\"\nnormal = [0, 0, 1]");
+    expect_error(p3, l3, "wall.0.point", "missing required key");
+    const std::string p4 = write("name = \"x\"\n[[unit]]\nname = \"u\"\nshape = \"cube\"\nsize = 1\n");
+    expect_error(p4, 1, "material", "at least one [[material]]");
+}
+
+TEST_F(SceneFile, WrongTypes) {
+    const auto [p1, l1] = minimal_with("size", "size = \"0.2\"");
+    expect_error(p1, l1, "unit.0.size", "must be a number in m (got string \"0.2\")");
+    const auto [p3, l3] = minimal_with("size", "size = 0.2\nspheres = 20.0");
+    expect_error(p3, l3 + 1, "unit.0.spheres", "must be an integer (got float 20)");
+    const auto [p4, l4] = minimal_with("position", "position = [0, 0]");
+    expect_error(p4, l4, "body.0.position", "array of 3 numbers");
+    const auto [p5, l5] = minimal_with("position", "position = [0, \"a\", 1]");
+    expect_error(p5, l5, "body.0.position", "entry 1 is string");
+    const auto [p6, l6] = minimal_with("", "fixed_rotation = [1, 0, 0]");
+    expect_error(p6, l6, "body.0.fixed_rotation", "3 booleans");
+    const std::string p7 = write("name = \"x\"\nunit = 3\n[[material]]\nname = \"m\"\n");
+    expect_error(p7, 2, "unit", "must be an array of tables, written [[unit]]");
+}
+
+TEST_F(SceneFile, OutOfRangeValues) {
+    const auto [p1, l1] = minimal_with("size", "size = -1");
+    expect_error(p1, l1, "unit.0.size", "must be > 0 m (got -1)");
+    const auto [p2, l2] = minimal_with("", "orientation = [0, 0, 0, 0]");
+    expect_error(p2, l2, "body.0.orientation", "non-zero quaternion");
+    const auto [p3, l3] = minimal_with("position", "position = [0, 0, 9]");
+    expect_error(p3, l3, "body.0.position", "inside run.domain");
+    const std::string p4 = write(std::string(kMinimal) + "[run]\nduration = 1\noutput_interval = 2\n");
+    expect_error(p4, 16, "run.output_interval", "must be <= run.duration");
+    const std::string p5 =
+        write(std::string(kMinimal) + "[analysis]\nkind = \"tilt\"\ntilt_rate = 1\ntilt_max = 95\n");
+    expect_error(p5, 17, "analysis.tilt_max", "(0, 90]");
+    const std::string p6 = write(std::string(kMinimal) + "[analysis]\nkind = \"tilt\"\n");
+    expect_error(p6, 14, "analysis.tilt_rate", "missing required key for kind \"tilt\"");
+    const std::string p7 = write(std::string(kMinimal) + "[run]\ndomain_max = [5, 5, -2]\n");
+    expect_error(p7, 15, "run.domain_max", "must exceed run.domain_min");
+    const auto [p8, l8] = minimal_with("name = \"m\"", "name = \"m\"\npoisson_ratio = 0.5");
+    expect_error(p8, l8 + 1, "material.0.poisson_ratio", "(-1, 0.5)");
+    const auto [p10, l10] = minimal_with("shape", "shape = \"dolo\"");
+    expect_error(p10, l10, "unit.0.shape", "did you mean \"dolos\"?");
+    const auto [p9, l9] = minimal_with("shape", "shape = \"sphere\"");
+    expect_error(p9, l9, "unit.0.shape", "must be one of \"cube\", \"dolos\", \"stl\" (got \"sphere\")");
+}
+
+TEST_F(SceneFile, UnknownReferences) {
+    const auto [p1, l1] = minimal_with("unit = \"u\"", "unit = \"v\"");
+    expect_error(p1, l1, "body.0.unit", "no [[unit]] named \"v\" (known: \"u\")");
+    const auto [p2, l2] = minimal_with("size", "size = 0.2\nmaterial = \"rock\"");
+    expect_error(p2, l2 + 1, "unit.0.material", "no [[material]] named \"rock\"");
+    const std::string full(kFull);
+    const int last_line = static_cast<int>(std::count(full.begin(), full.end(), '\n'));
+    const std::string p3 = write(full + "\n[[pattern]]\nunit = \"cube\"\nwall = \"floor\"\n");
+    expect_error(p3, last_line + 4, "pattern.1.wall",
+                 "is of type \"plane\"; a pattern needs a \"slope\" wall");
+    const std::string p4 =
+        write(full + "\n[[drop]]\nunit = \"tetrapod\"\ncount = 1\nmin = [0, 0, 0]\nmax = [1, 1, 1]\n");
+    expect_error(p4, last_line + 3, "drop.1.unit", "no [[unit]] named \"tetrapod\"");
+}
+
+TEST_F(SceneFile, DuplicateUnitName) {
+    const std::string p =
+        write(std::string(kMinimal) + "\n[[unit]]\nname = \"u\"\nshape = \"cube\"\nsize = 1\n");
+    expect_error(p, 16, "unit.1.name", "duplicate unit name \"u\"");
+}
+
+TEST_F(SceneFile, MaterialRequiredWhenSeveralExist) {
+    const auto [p, l] = minimal_with("name = \"m\"", "name = \"m\"\n[[material]]\nname = \"n\"");
+    expect_error(p, 8, "unit.0.material", "name one of \"m\", \"n\"");
+}
+
+TEST_F(SceneFile, MalformedToml) {
+    const std::string p = write("name = \"x\"\n\n[run]\nduration = \n");
+    const std::string e = error_of(p);
+    EXPECT_EQ(e.rfind(p + ":4: invalid TOML: ", 0), 0u) << e;
+    EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+}
+
+TEST_F(SceneFile, UnreadableFile) {
+    const std::string missing = (dir_ / "nope.toml").string();
+    EXPECT_EQ(error_of(missing).rfind(missing + ": cannot read: ", 0), 0u) << error_of(missing);
+    EXPECT_EQ(error_of(dir_.string()), dir_.string() + ": cannot read: is a directory");
+}
+
+TEST_F(SceneFile, ResolvedSceneRoundTrips) {
+    for (const char *text : {kFull, kMinimal}) {
+        const Scene a =
+            load_scene(write(text), {"unit.0.chamfer=0.0123456789012345", "run.gravity=[0.1, 0.2, -9.3]"});
+        const std::string resolved = armour::resolved_scene_toml(a);
+        // Another folder: absolute STL paths must still resolve.
+        fs::create_directories(dir_ / "elsewhere");
+        const Scene b = load_scene(write(resolved, "elsewhere/resolved.toml"));
+        expect_same(a, b);
+        // Identical apart from the first line, which names the file it came from.
+        const std::string again = armour::resolved_scene_toml(b);
+        EXPECT_EQ(again.substr(again.find('\n')), resolved.substr(resolved.find('\n')));
+    }
+}
+
+// The shipped examples load and say what their comments say.
+TEST(ExampleScenes, LoadAsDescribed) {
+    const fs::path dir = fs::path(__FILE__).parent_path().parent_path() / "scenes";
+    const Scene drop = load_scene((dir / "drop_bounce.toml").string());
+    EXPECT_EQ(drop.analysis, "bounce");
+    ASSERT_EQ(drop.bodies.size(), 1u);
+    ASSERT_EQ(drop.units.size(), 1u);
+    // 0.5 m of free fall below the cube's bottom face.
+    EXPECT_NEAR(drop.bodies[0].position.z() - 0.5 * drop.units[0].size, 0.5, 1e-12);
+    EXPECT_DOUBLE_EQ(drop.materials[0].restitution, 0.5);
+
+    const Scene tilt = load_scene((dir / "tilt_cube.toml").string());
+    EXPECT_EQ(tilt.analysis, "tilt");
+    EXPECT_DOUBLE_EQ(tilt.duration, tilt.tilt_max / tilt.tilt_rate);
+    EXPECT_DOUBLE_EQ(tilt.materials[0].friction, 0.5);
+
+    for (const auto &[file, unit, count] :
+         {std::tuple<const char *, const char *, int>{"slope_cubes.toml", "cube", 30},
+          {"slope_dolosse.toml", "dolos", 20}}) {
+        const Scene s = load_scene((dir / file).string());
+        EXPECT_EQ(s.analysis, "slope") << file;
+        ASSERT_EQ(s.drops.size(), 1u) << file;
+        EXPECT_EQ(s.drops[0].count, count) << file;
+        EXPECT_EQ(s.units[0].shape, unit) << file;
+        const auto slope = std::find_if(s.walls.begin(), s.walls.end(),
+                                        [](const armour::SceneWall &w) { return w.type == "slope"; });
+        ASSERT_NE(slope, s.walls.end()) << file;
+        EXPECT_DOUBLE_EQ(slope->cot, 1.5);
+        EXPECT_DOUBLE_EQ(slope->toe_height, 0.1);
+    }
+}
