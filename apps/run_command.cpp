@@ -222,6 +222,9 @@ int run_scene(const RunRequest &r) {
     std::vector<int> body_unit;
     for (const auto &b : setup.bodies)
         body_unit.push_back(b.unit);
+    // Start the engine before opening the trajectory file: MPI's start-up may
+    // fork a helper that would inherit (and keep locked) any file open then.
+    engine->state(0);
     BodyRecorder recorder(
         (out / "bodies.h5").string(), (out / "bodies.xdmf").string(), recorder_units, body_unit,
         {{"scene", scene.name}, {"engine", engine->name()}, {"dt", std::to_string(dt.used)}});

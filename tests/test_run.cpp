@@ -1,0 +1,140 @@
+// `armour run`: a scene runs end to end, and every bad scene stops with one
+// error line before anything is written (or, mid-run, keeps what was written).
+#include "cli.h"
+
+#include <gtest/gtest.h>
+#include <hdf5.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// One 0.2 m cube falling onto a floor; `extra` is appended (more tables).
+std::string scene_text(const std::string &body_position, const std::string &extra = "",
+                       const std::string &run_extra = "") {
+    return "name = \"test\"\n"
+           "[run]\nduration = 0.05\noutput_interval = 0.01\ndomain_min = [-1, -1, -0.5]\n"
+           "domain_max = [1, 1, 1.5]\n" +
+           run_extra +
+           "[[material]]\nname = \"concrete\"\n"
+           "[[unit]]\nname = \"cube\"\nshape = \"cube\"\nsize = 0.2\nspheres = 8\n"
+           "[[wall]]\nname = \"floor\"\ntype = \"plane\"\npoint = [0, 0, 0]\nnormal = [0, 0, 1]\nsize = 2\n"
+           "[[body]]\nunit = \"cube\"\nposition = " +
+           body_position + "\n" + extra;
+}
+
+class Run : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() /
+               ("armour_run_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+        cache_ = (dir_ / "cache").string();
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    int run(const std::string &scene, std::vector<std::string> extra = {}) {
+        const fs::path file = dir_ / "scene.toml";
+        std::ofstream(file) << scene;
+        std::vector<std::string> args = {"armour",       "run",     file.string(), "--out",
+                                         out().string(), "--cache", cache_};
+        args.insert(args.end(), extra.begin(), extra.end());
+        std::vector<const char *> argv;
+        for (const auto &a : args)
+            argv.push_back(a.c_str());
+        ::testing::internal::CaptureStderr();
+        const int code = armour::armour_main(static_cast<int>(argv.size()), argv.data());
+        err_ = ::testing::internal::GetCapturedStderr();
+        return code;
+    }
+    fs::path out() const { return dir_ / "out"; }
+    std::string error_line() const {
+        const std::size_t at = err_.find("armour: error: ");
+        return at == std::string::npos ? "" : err_.substr(at, err_.find('\n', at) - at);
+    }
+
+    fs::path dir_;
+    std::string cache_, err_;
+};
+
+} // namespace
+
+TEST_F(Run, WritesSummaryTrajectoriesAndResolvedScene) {
+    ASSERT_EQ(run(scene_text("[0, 0, 0.3]")), 0) << err_;
+    for (const char *name : {"summary.json", "bodies.h5", "bodies.xdmf", "scene.resolved.toml",
+                             "units/cube/clump.spheres", "units/cube/shape.stl", "liggghts/input.liggghts"})
+        EXPECT_TRUE(fs::exists(out() / name)) << name;
+    std::ifstream in(out() / "summary.json");
+    const auto s = nlohmann::json::parse(in);
+    for (const char *key : {"engine", "spheres_per_unit", "dt", "steps", "wall_seconds"})
+        EXPECT_TRUE(s.contains(key)) << key;
+    EXPECT_EQ(s["engine"], "liggghts");
+    EXPECT_EQ(s["spheres_per_unit"]["cube"], 8);
+    // Steps times the step is the simulated time (to one step).
+    EXPECT_NEAR(s["steps"].get<double>() * s["dt"].get<double>(), 0.05, s["dt"].get<double>());
+    // Six records (t = 0 .. 0.05 s) of a cube in free fall: z(t) = 0.3 - g t^2 / 2.
+    const hid_t file = H5Fopen((out() / "bodies.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    ASSERT_GE(file, 0);
+    const hid_t set = H5Dopen2(file, "/bodies/position", H5P_DEFAULT);
+    std::vector<double> position(6 * 3);
+    ASSERT_GE(H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, position.data()), 0);
+    H5Dclose(set);
+    H5Fclose(file);
+    EXPECT_NEAR(position[5 * 3 + 2], 0.3 - 0.5 * 9.81 * 0.05 * 0.05, 2e-4);
+}
+
+TEST_F(Run, SetOverridesAScalar) {
+    ASSERT_EQ(run(scene_text("[0, 0, 0.3]"), {"--set", "run.duration=0.02"}), 0) << err_;
+    std::ifstream in(out() / "summary.json");
+    EXPECT_NEAR(nlohmann::json::parse(in)["simulated_seconds"].get<double>(), 0.02, 1e-3);
+}
+
+TEST_F(Run, RefusesOverlappingBodiesNamingThePair) {
+    EXPECT_EQ(run(scene_text("[0, 0, 0.3]", "[[body]]\nunit = \"cube\"\nposition = [0.05, 0, 0.3]\n")), 2);
+    EXPECT_NE(error_line().find("bodies overlap (pairs 0-1)"), std::string::npos) << err_;
+    EXPECT_FALSE(fs::exists(out()));
+}
+
+TEST_F(Run, RefusesABodyCuttingIntoAWall) {
+    EXPECT_EQ(run(scene_text("[0, 0, 0.05]")), 2);
+    EXPECT_NE(error_line().find("cuts into wall 'floor'"), std::string::npos) << err_;
+    EXPECT_FALSE(fs::exists(out()));
+}
+
+TEST_F(Run, RefusesAnUnstableTimeStepUnlessForced) {
+    EXPECT_EQ(run(scene_text("[0, 0, 0.3]", "", "time_step = 0.005\n")), 2);
+    EXPECT_NE(error_line().find("exceeds the stability limit"), std::string::npos) << err_;
+    EXPECT_FALSE(fs::exists(out()));
+    ASSERT_EQ(run(scene_text("[0, 0, 0.3]", "", "time_step = 0.005\nforce_time_step = true\n")), 0) << err_;
+    std::ifstream in(out() / "summary.json");
+    EXPECT_TRUE(nlohmann::json::parse(in)["dt_forced"].get<bool>());
+}
+
+TEST_F(Run, RefusesAnUnknownUnitAndNamesTheKey) {
+    EXPECT_EQ(run(scene_text("[0, 0, 0.3]", "[[body]]\nunit = \"dolos\"\nposition = [0.5, 0, 0.3]\n")), 2);
+    EXPECT_NE(error_line().find("body.1.unit"), std::string::npos) << err_;
+}
+
+TEST_F(Run, ABodyLeavingTheDomainStopsTheRunAndKeepsItsRecord) {
+    // Thrown upwards at 30 m/s: it leaves the 1.5 m high domain within 0.05 s.
+    EXPECT_EQ(run(scene_text("[0, 0, 0.3]", "velocity = [0, 0, 30]\n")), 2);
+    EXPECT_NE(error_line().find("left the domain"), std::string::npos) << err_;
+    EXPECT_FALSE(fs::exists(out() / "summary.json"));
+    const hid_t file = H5Fopen((out() / "bodies.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    ASSERT_GE(file, 0) << "the trajectory file must be closed cleanly";
+    const hid_t set = H5Dopen2(file, "/time", H5P_DEFAULT);
+    const hid_t space = H5Dget_space(set);
+    hsize_t steps = 0;
+    H5Sget_simple_extent_dims(space, &steps, nullptr);
+    EXPECT_GE(steps, 1u);
+    H5Sclose(space);
+    H5Dclose(set);
+    H5Fclose(file);
+}
