@@ -1,6 +1,7 @@
 #include "cli.h"
 
 #include "clump_command.h"
+#include "compare_command.h"
 #include "mesh.h"
 #include "run_command.h"
 
@@ -76,6 +77,32 @@ int armour_main(int argc, const char *const *argv) {
     run_cmd->add_option("--cache", run.cache,
                         "Clump cache folder (default $ARMOUR_CACHE or ~/.cache/armour-fsi)");
 
+    CompareRequest compare;
+    CLI::App *compare_cmd = app.add_subcommand(
+        "compare",
+        "Run a scene with sphere clumps of several sizes and with exact convex hulls (Bullet), sweep "
+        "the time step past the stability limit, and write summary.json, pareto.png, stability_dt.png, "
+        "bumpiness.png and report.md to --out.");
+    compare_cmd->add_option("scene", compare.scene, "Scene file (.toml)")->required();
+    compare_cmd->add_option("--out", compare.out, "Output directory (written atomically)")->required();
+    compare_cmd->add_option("--spheres", compare.spheres, "Sphere counts per unit, e.g. 5,10,20,50,100")
+        ->delimiter(',')
+        ->capture_default_str();
+    compare_cmd
+        ->add_option("--seeds", compare.seeds,
+                     "Seeds of the random placement (default 1,2,3 for scenes with [[drop]], else 1)")
+        ->delimiter(',');
+    compare_cmd
+        ->add_option("--dt-factors", compare.dt_factors,
+                     "Time steps to sweep, as multiples of each engine's stability limit [-]")
+        ->delimiter(',')
+        ->capture_default_str();
+    compare_cmd
+        ->add_option("--dt-sweep-spheres", compare.dt_sweep_spheres, "Spheres per unit in the dt sweep")
+        ->capture_default_str();
+    compare_cmd->add_option("--set", compare.overrides, "Override a scene key for every run (TOML syntax)");
+    compare_cmd->add_option("--cache", compare.cache, "Clump cache folder");
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError &e) {
@@ -90,6 +117,8 @@ int armour_main(int argc, const char *const *argv) {
             return run_demo(demo);
         if (run_cmd->parsed())
             return run_scene(run);
+        if (compare_cmd->parsed())
+            return run_compare(compare);
     } catch (const InputError &e) {
         std::cerr << "armour: error: " << e.what() << '\n';
         return 2;

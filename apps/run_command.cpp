@@ -3,7 +3,7 @@
 
 #include "body_recorder.h"
 #include "clump_io.h"
-#include "liggghts_engine.h"
+#include "engine_factory.h"
 #include "scene_setup.h"
 #include "staged_output.h"
 #include "stl_io.h"
@@ -186,16 +186,13 @@ int run_scene(const RunRequest &r) {
     const bool terminal = ::isatty(STDERR_FILENO) != 0;
     const Scene scene = load_scene(r.scene, r.overrides);
     SceneSetup setup = build_scene(scene, r.cache.empty() ? default_cache_dir() : r.cache, true);
-    if (scene.engine != "liggghts")
-        throw InputError(scene.file + ": key 'run.engine': '" + scene.engine +
-                         "' is not available in this build (available: liggghts)");
     if (r.out.empty())
         throw InputError("--out: an output directory is required");
 
     // Everything is checked before the output folder is touched.
     const fs::path out = fs::absolute(r.out);
-    setup.settings.work_dir = (out / "liggghts").string();
-    std::unique_ptr<RigidBodyEngine> engine = make_liggghts_engine(setup.settings);
+    setup.settings.work_dir = (out / scene.engine).string();
+    std::unique_ptr<RigidBodyEngine> engine = make_engine(scene.engine, setup.settings);
     for (const auto &u : setup.units)
         engine->add_template(u);
     for (const auto &w : setup.walls)
@@ -230,9 +227,29 @@ int run_scene(const RunRequest &r) {
         {{"scene", scene.name}, {"engine", engine->name()}, {"dt", std::to_string(dt.used)}});
 
     std::vector<BodyState> states(setup.bodies.size());
+    // Mechanical energy of all bodies (kinetic + potential in the scene's
+    // gravity), at output times: stability studies compare its maximum with
+    // its initial value (a stable, dissipative run never gains energy).
+    std::optional<double> energy_initial;
+    double energy_scale = 0.0; // sum of m |g| Dn: the energy of lifting every unit by its size
+    for (const auto &b : setup.bodies)
+        energy_scale += setup.units[b.unit].props.mass * scene.gravity.norm() * setup.unit_Dn[b.unit];
+    double energy_max = -HUGE_VAL, energy_final = 0.0;
     auto record = [&] {
-        for (int i = 0; i < engine->body_count(); ++i)
+        double energy = 0.0;
+        for (int i = 0; i < engine->body_count(); ++i) {
             states[i] = engine->state(i);
+            const MassProperties &p = setup.units[setup.bodies[i].unit].props;
+            const Eigen::Matrix3d R = states[i].pose.orientation.toRotationMatrix();
+            const Eigen::Vector3d &w = states[i].angular_velocity;
+            energy += 0.5 * p.mass * states[i].velocity.squaredNorm() +
+                      0.5 * w.dot(R * p.inertia * R.transpose() * w) -
+                      p.mass * scene.gravity.dot(states[i].pose.position);
+        }
+        if (!energy_initial)
+            energy_initial = energy;
+        energy_max = std::max(energy_max, energy);
+        energy_final = energy;
         recorder.append(engine->time(), states);
     };
 
@@ -310,8 +327,15 @@ int run_scene(const RunRequest &r) {
         {"simulated_seconds", engine->time()},
         {"wall_seconds", wall_seconds},
         {"wall_seconds_per_simulated_second", wall_seconds / std::max(engine->time(), 1e-300)},
+        {"seconds_per_unit_step", wall_seconds / (static_cast<double>(std::max(1L, engine->steps())) *
+                                                  static_cast<double>(setup.bodies.size()))},
+        {"energy_initial", energy_initial.value_or(0.0)},
+        {"energy_max", energy_max},
+        {"energy_final", energy_final},
+        {"energy_scale", energy_scale},
         {"files", {{"bodies", "bodies.h5"}, {"paraview", "bodies.xdmf"}, {"scene", "scene.resolved.toml"}}},
-        {"si_units", {{"dt", "s"}, {"wall_seconds", "s"}, {"angles", "deg"}, {"lengths", "m"}}}};
+        {"si_units",
+         {{"dt", "s"}, {"wall_seconds", "s"}, {"angles", "deg"}, {"lengths", "m"}, {"energy", "J"}}}};
     if (scene.analysis == "tilt") {
         const int wall_material = setup.walls.empty() ? 0 : setup.walls[0].material;
         const double mu =

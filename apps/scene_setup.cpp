@@ -253,10 +253,14 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
         t.props = shape.props;
         t.material = material_index(scene, u.material, "unit." + std::to_string(k) + ".material");
         t.clump = cached_clump(u, shape, cache_dir, progress);
-        if (u.shape == "dolos")
+        if (u.shape == "dolos") {
+            // The parts are built in the construction frame; the unit frame is
+            // that frame moved so the union's centroid is the origin.
+            const Eigen::Vector3d centroid =
+                mass_properties(make_dolos_mesh(u.height, u.waist), 1.0).centroid;
             for (const auto &part : make_dolos_parts(u.height, u.waist))
-                t.convex_parts.push_back(translated(part, -mass_properties(shape.mesh, 1.0).centroid));
-        else if (u.shape == "cube")
+                t.convex_parts.push_back(translated(part, -centroid));
+        } else if (u.shape == "cube")
             t.convex_parts = {shape.mesh};
         setup.unit_Dn.push_back(shape.Dn());
         setup.unit_spheres.push_back(static_cast<int>(t.clump.size()));

@@ -1,0 +1,239 @@
+// Runs one scene with sphere clumps of several sizes and with exact convex
+// hulls, measures each against the exact run (and an analytic value where
+// one exists) next to its cost, sweeps the time step past the stability
+// limit for both engines, and writes summary.json, charts and a report.
+#include "compare_command.h"
+
+#include "engine_factory.h"
+#include "run_command.h"
+#include "scene.h"
+#include "staged_output.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <utility>
+
+namespace armour {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+// The scene's headline figures (summary keys) and, where the physics gives
+// one, the analytic value of the first.
+std::vector<std::string> headline_keys(const std::string &analysis) {
+    if (analysis == "tilt")
+        return {"slide_angle_deg", "topple_angle_deg"};
+    if (analysis == "slope")
+        return {"packing_density", "porosity"};
+    if (analysis == "bounce")
+        return {"bounce_height_ratio"};
+    return {};
+}
+
+struct Run {
+    Run(std::string label_, std::string engine_, int spheres_, std::uint64_t seed_, double dt_factor_ = 0.0)
+        : label(std::move(label_)), engine(std::move(engine_)), spheres(spheres_), seed(seed_),
+          dt_factor(dt_factor_) {}
+    std::string label, engine;
+    int spheres; // 0 for exact hulls
+    std::uint64_t seed;
+    double dt_factor; // 0: the default step
+    json summary;     // null if the run failed
+    std::string failure;
+};
+
+Run execute(const CompareRequest &r, const fs::path &runs, Run run, std::vector<std::string> overrides) {
+    overrides.insert(overrides.begin(), r.overrides.begin(), r.overrides.end());
+    std::fprintf(stderr, "compare: %s\n", run.label.c_str());
+    try {
+        const fs::path dir = runs / run.label;
+        run_scene({r.scene, dir.string(), overrides, r.cache});
+        std::ifstream in(dir / "summary.json");
+        run.summary = json::parse(in);
+    } catch (const InputError &e) {
+        // A run that fails (e.g. a unit leaves the domain at an unstable step)
+        // is a result of the comparison, not an error of it.
+        run.failure = e.what();
+        std::fprintf(stderr, "compare: %s failed: %s\n", run.label.c_str(), e.what());
+    }
+    return run;
+}
+
+double number_or_nan(const json &summary, const std::string &key) {
+    return summary.is_object() && summary.contains(key) && summary[key].is_number()
+               ? summary[key].get<double>()
+               : std::nan("");
+}
+
+} // namespace
+
+int run_compare(const CompareRequest &r) {
+    const Scene scene = load_scene(r.scene, r.overrides); // checks everything before any run
+    if (r.spheres.empty())
+        throw InputError("--spheres: give at least one sphere count, e.g. 5,10,20");
+    for (int n : r.spheres)
+        if (n < 2)
+            throw InputError("--spheres: every count must be >= 2 (LIGGGHTS multisphere), got " +
+                             std::to_string(n));
+    for (double f : r.dt_factors)
+        if (!(f > 0.0))
+            throw InputError("--dt-factors: every factor must be > 0");
+    std::vector<std::uint64_t> seeds = r.seeds;
+    if (seeds.empty())
+        seeds = scene.drops.empty() ? std::vector<std::uint64_t>{1} : std::vector<std::uint64_t>{1, 2, 3};
+    const std::vector<std::string> engines = available_engines();
+    const bool have_exact = std::find(engines.begin(), engines.end(), "bullet") != engines.end();
+
+    StagedOutput out(r.out);
+    const fs::path runs = out.dir() / "runs";
+    fs::create_directories(runs);
+    auto seed_overrides = [&](std::uint64_t seed) {
+        std::vector<std::string> o;
+        for (std::size_t j = 0; j < scene.drops.size(); ++j)
+            o.push_back("drop." + std::to_string(j) + ".seed=" + std::to_string(seed));
+        return o;
+    };
+    auto spheres_overrides = [&](int n) {
+        std::vector<std::string> o;
+        for (std::size_t k = 0; k < scene.units.size(); ++k)
+            o.push_back("unit." + std::to_string(k) + ".spheres=" + std::to_string(n));
+        return o;
+    };
+
+    std::vector<Run> results;
+    for (std::uint64_t seed : seeds) {
+        if (have_exact) {
+            auto o = seed_overrides(seed);
+            o.push_back("run.engine=\"bullet\"");
+            results.push_back(
+                execute(r, runs, Run("exact_seed" + std::to_string(seed), "bullet", 0, seed), o));
+        }
+        for (int n : r.spheres) {
+            auto o = seed_overrides(seed);
+            const auto s = spheres_overrides(n);
+            o.insert(o.end(), s.begin(), s.end());
+            o.push_back("run.engine=\"liggghts\"");
+            results.push_back(execute(
+                r, runs,
+                Run("clump" + std::to_string(n) + "_seed" + std::to_string(seed), "liggghts", n, seed), o));
+        }
+    }
+
+    // Time step past the limit, for both engines (first seed, one clump size).
+    // Its measure is the energy gain, which needs fixed gravity: a tilt scene
+    // turns gravity, so it gets no sweep (the report says so).
+    std::vector<Run> sweep;
+    const std::vector<std::string> sweep_engines =
+        scene.analysis == "tilt" ? std::vector<std::string>{} : engines;
+    for (const std::string &engine : sweep_engines) {
+        double limit = 0.0;
+        for (const Run &run : results)
+            if (run.engine == engine && run.summary.is_object())
+                limit = run.summary["dt_limit"].get<double>();
+        if (limit <= 0.0)
+            continue;
+        for (double f : r.dt_factors) {
+            auto o = seed_overrides(seeds.front());
+            if (engine == "liggghts") {
+                const auto s = spheres_overrides(r.dt_sweep_spheres);
+                o.insert(o.end(), s.begin(), s.end());
+            }
+            char step[64];
+            std::snprintf(step, sizeof step, "run.time_step=%.17g", f * limit);
+            char interval[64];
+            std::snprintf(interval, sizeof interval, "run.output_interval=%.17g",
+                          std::max(scene.output_interval, f * limit));
+            o.insert(o.end(), {"run.engine=\"" + engine + "\"", step, interval, "run.force_time_step=true"});
+            char label[64];
+            std::snprintf(label, sizeof label, "dt_%s_x%g", engine.c_str(), f);
+            Run run(label, engine, engine == "liggghts" ? r.dt_sweep_spheres : 0, seeds.front(), f);
+            sweep.push_back(execute(r, runs, run, o));
+        }
+    }
+
+    // Errors against the exact runs (mean over seeds) and against analytic values.
+    const std::vector<std::string> keys = headline_keys(scene.analysis);
+    json exact_mean = json::object();
+    for (const auto &key : keys) {
+        double sum = 0.0;
+        int n = 0;
+        for (const Run &run : results)
+            if (run.engine == "bullet" && std::isfinite(number_or_nan(run.summary, key))) {
+                sum += number_or_nan(run.summary, key);
+                ++n;
+            }
+        exact_mean[key] = n > 0 ? json(sum / n) : json(nullptr);
+    }
+    auto entry = [&](const Run &run) {
+        json e = {{"label", run.label},
+                  {"engine", run.engine},
+                  {"spheres", run.spheres},
+                  {"seed", run.seed},
+                  {"status", run.summary.is_object() ? "ok" : "failed"}};
+        if (run.dt_factor > 0.0)
+            e["dt_factor"] = run.dt_factor;
+        if (!run.summary.is_object()) {
+            e["failure"] = run.failure;
+            return e;
+        }
+        const json &s = run.summary;
+        for (const char *k : {"wall_seconds", "wall_seconds_per_simulated_second", "seconds_per_unit_step",
+                              "dt", "dt_limit", "steps", "energy_initial", "energy_max", "energy_final"})
+            e[k] = s.value(k, json(nullptr));
+        json figures = json::object(), vs_exact = json::object(), vs_analytic = json::object();
+        for (const auto &key : keys) {
+            const double v = number_or_nan(s, key);
+            figures[key] = std::isfinite(v) ? json(v) : json(nullptr);
+            const double x = exact_mean[key].is_number() ? exact_mean[key].get<double>() : std::nan("");
+            vs_exact[key] = std::isfinite(v) && std::isfinite(x) ? json(v - x) : json(nullptr);
+        }
+        if (scene.analysis == "tilt" && s.contains("slide_angle_analytic_deg")) {
+            const double v = number_or_nan(s, "slide_angle_deg");
+            vs_analytic["slide_angle_deg"] =
+                std::isfinite(v) ? json(v - s["slide_angle_analytic_deg"].get<double>()) : json(nullptr);
+        }
+        e["figures"] = figures;
+        e["error_vs_exact"] = vs_exact;
+        e["error_vs_analytic"] = vs_analytic;
+        return e;
+    };
+    json entries = json::array(), sweep_entries = json::array();
+    for (const Run &run : results)
+        entries.push_back(entry(run));
+    for (const Run &run : sweep)
+        sweep_entries.push_back(entry(run));
+    const json summary = {
+        {"command", "compare"},
+        {"scene", scene.name},
+        {"analysis", scene.analysis},
+        {"headline_keys", keys},
+        {"exact_engine", have_exact ? json("bullet") : json(nullptr)},
+        {"exact_mean", exact_mean},
+        {"seeds", seeds},
+        {"runs", entries},
+        {"dt_sweep", sweep_entries},
+        {"units",
+         {{"wall_seconds", "s"},
+          {"seconds_per_unit_step", "s"},
+          {"dt", "s"},
+          {"energy", "J"},
+          {"errors", "in the figure's own unit (deg, -), run minus exact mean / minus analytic"}}}};
+    write_text_file(out.file("summary.json"), summary.dump(2) + "\n");
+    const std::string plot = std::string("/usr/bin/python3 '") + ARMOUR_SOURCE_DIR +
+                             "/comparison/compare_report.py' '" + out.dir().string() + "'";
+    if (std::system(plot.c_str()) != 0)
+        throw InputError("compare: the report script failed (needs python3-matplotlib): " + plot);
+    out.commit();
+    std::printf("compare: %zu runs, %zu dt-sweep runs -> %s (summary.json, pareto.png, report.md)\n",
+                results.size(), sweep.size(), out.target().c_str());
+    return 0;
+}
+
+} // namespace armour

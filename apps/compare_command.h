@@ -1,0 +1,24 @@
+// `armour compare SCENE --spheres 5,10,20 --out DIR`: clumps against exact shapes.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace armour {
+
+struct CompareRequest {
+    std::string scene;
+    std::string out;
+    std::vector<int> spheres{5, 10, 20, 50, 100};
+    std::vector<std::uint64_t> seeds; // empty: {1, 2, 3} when the scene drops units at random, else {1}
+    std::vector<double> dt_factors{0.5, 1.0, 2.0,
+                                   4.0, 8.0, 16.0}; // x the stability limit; empty = no dt sweep
+    int dt_sweep_spheres = 20;
+    std::vector<std::string> overrides; // --set, applied to every run
+    std::string cache;
+};
+
+int run_compare(const CompareRequest &request);
+
+} // namespace armour

@@ -1,0 +1,722 @@
+// Bullet adapter: the only translation unit that includes Bullet (double precision).
+#include "bullet_engine.h"
+
+#include "time_step.h"
+
+// Bullet's headers come in as SYSTEM (PkgConfig::BULLET), so they raise no warnings.
+#include <LinearMath/btConvexHullComputer.h>
+#include <btBulletDynamicsCommon.h>
+
+#ifndef BT_USE_DOUBLE_PRECISION
+#error "armour_bullet must be built against bullet-float64 (BT_USE_DOUBLE_PRECISION)"
+#endif
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace armour {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+std::string num(double v) {
+    std::ostringstream s;
+    s.precision(10);
+    s << v;
+    return s.str();
+}
+
+btVector3 bt(const Eigen::Vector3d &v) {
+    return btVector3(v.x(), v.y(), v.z());
+}
+Eigen::Vector3d eig(const btVector3 &v) {
+    return Eigen::Vector3d(v.x(), v.y(), v.z());
+}
+btQuaternion bt(const Eigen::Quaterniond &q) {
+    return btQuaternion(q.x(), q.y(), q.z(), q.w());
+}
+Eigen::Quaterniond eig(const btQuaternion &q) {
+    return Eigen::Quaterniond(q.w(), q.x(), q.y(), q.z());
+}
+
+// Pair values (row-major, materials x materials), the rule of the LIGGGHTS
+// adapter: a pair override, else the smaller of the two materials' values.
+struct PairTable {
+    int n = 0;
+    std::vector<double> friction, restitution, rolling;
+};
+
+// Hung on every Bullet collision object (user pointer).
+struct ObjectInfo {
+    const PairTable *table = nullptr;
+    int material = 0;
+    double radius = 0.0; // m, volume-equivalent sphere radius; 0 for walls
+};
+
+// Replaces Bullet's combine rule (product of the two objects' values) for
+// every contact point Bullet adds or replaces. Bullet's rolling friction
+// coefficient is a length (angular impulse limit / normal impulse): it is
+// mu_r x R*, R* = R1 R2 / (R1 + R2) between bodies, R of the body at a wall.
+bool contact_added(btManifoldPoint &cp, const btCollisionObjectWrapper *w0, int, int,
+                   const btCollisionObjectWrapper *w1, int, int) {
+    const auto *a = static_cast<const ObjectInfo *>(w0->getCollisionObject()->getUserPointer());
+    const auto *b = static_cast<const ObjectInfo *>(w1->getCollisionObject()->getUserPointer());
+    if (!a || !b || !a->table)
+        return false;
+    const PairTable &t = *a->table;
+    const std::size_t k = static_cast<std::size_t>(a->material * t.n + b->material);
+    cp.m_combinedFriction = t.friction[k];
+    cp.m_combinedRestitution = t.restitution[k];
+    cp.m_combinedSpinningFriction = 0.0;
+    double r = std::max(a->radius, b->radius);
+    if (a->radius > 0.0 && b->radius > 0.0)
+        r = a->radius * b->radius / (a->radius + b->radius);
+    cp.m_combinedRollingFriction = t.rolling[k] * r;
+    return true;
+}
+
+struct Plane {
+    Eigen::Vector3d n; // outward unit normal
+    double d;          // n . x <= d inside
+};
+
+// Hull faces as loops of vertex indices (into computer.vertices).
+std::vector<std::vector<int>> hull_faces(const btConvexHullComputer &hull) {
+    std::vector<std::vector<int>> faces;
+    for (int f = 0; f < hull.faces.size(); ++f) {
+        std::vector<int> loop;
+        const btConvexHullComputer::Edge *first = &hull.edges[hull.faces[f]];
+        const btConvexHullComputer::Edge *e = first;
+        do {
+            loop.push_back(e->getSourceVertex());
+            e = e->getNextEdgeOfFace();
+        } while (e != first && loop.size() <= static_cast<std::size_t>(hull.vertices.size()));
+        faces.push_back(std::move(loop));
+    }
+    return faces;
+}
+
+btConvexHullComputer compute_hull(const std::vector<Eigen::Vector3d> &points) {
+    std::vector<double> coords;
+    coords.reserve(3 * points.size());
+    for (const auto &p : points)
+        coords.insert(coords.end(), {p.x(), p.y(), p.z()});
+    btConvexHullComputer hull;
+    hull.compute(coords.data(), 3 * static_cast<int>(sizeof(double)), static_cast<int>(points.size()), 0.0,
+                 0.0);
+    return hull;
+}
+
+} // namespace
+
+// Bullet's hull computer works on integer coordinates (about 1e-4 of the
+// extent), so it is used for topology only: the face planes are recomputed
+// from the original double coordinates, moved inward by the margin, and the
+// new vertices are the intersections of the moved planes, found through the
+// polar dual (its faces are the primal vertices) and solved in double.
+std::vector<Eigen::Vector3d> shrunk_hull(const std::vector<Eigen::Vector3d> &points, double margin,
+                                         const std::string &what) {
+    if (points.size() < 4)
+        throw InputError(what + ": fewer than 4 points, no volume");
+    const btConvexHullComputer hull = compute_hull(points);
+    if (hull.faces.size() < 4)
+        throw InputError(what + ": the points are flat, no volume");
+    auto original = [&](int v) {
+        const int k = hull.original_vertex_index[v];
+        return k >= 0 ? points[static_cast<std::size_t>(k)] : eig(hull.vertices[v]);
+    };
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    for (int v = 0; v < hull.vertices.size(); ++v)
+        centre += original(v);
+    centre /= static_cast<double>(hull.vertices.size());
+
+    std::vector<Plane> planes;
+    double size = 0.0;
+    for (const auto &p : points)
+        size = std::max(size, (p - centre).norm());
+    for (const auto &loop : hull_faces(hull)) {
+        Eigen::Vector3d n = Eigen::Vector3d::Zero(); // Newell's normal
+        for (std::size_t i = 0; i < loop.size(); ++i)
+            n += original(loop[i]).cross(original(loop[(i + 1) % loop.size()]));
+        if (n.norm() <= 1e-14 * size * size)
+            continue;
+        n.normalize();
+        double d = -HUGE_VAL;
+        for (const auto &p : points)
+            d = std::max(d, n.dot(p));
+        planes.push_back({n, d});
+    }
+    // Polar dual about `centre` of {x : n.(x - c) <= s}, s = d - margin - n.c.
+    std::vector<Eigen::Vector3d> dual;
+    std::vector<double> offsets;
+    for (const auto &p : planes) {
+        const double s = p.d - margin - p.n.dot(centre);
+        if (!(s > 1e-9 * size))
+            throw InputError(what + ": thinner than twice the collision margin (" + num(margin) +
+                             " m); use a smaller margin");
+        dual.push_back(p.n / s);
+        offsets.push_back(s);
+    }
+    const btConvexHullComputer polar = compute_hull(dual);
+    std::vector<Eigen::Vector3d> vertices;
+    for (const auto &loop : hull_faces(polar)) {
+        // The primal vertex lies on every plane of this dual face: least squares.
+        Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+        Eigen::Vector3d b = Eigen::Vector3d::Zero();
+        for (int v : loop) {
+            const int k = polar.original_vertex_index[v];
+            if (k < 0)
+                continue;
+            A += planes[static_cast<std::size_t>(k)].n * planes[static_cast<std::size_t>(k)].n.transpose();
+            b += planes[static_cast<std::size_t>(k)].n * offsets[static_cast<std::size_t>(k)];
+        }
+        const Eigen::Vector3d y = A.ldlt().solve(b);
+        if (y.allFinite())
+            vertices.push_back(centre + y);
+    }
+    if (vertices.size() < 4)
+        throw InputError(what + ": shrinking by the collision margin (" + num(margin) + " m) left no volume");
+    return vertices;
+}
+
+namespace {
+
+// Bullet's contacts are speculative: a contact point found at a gap g acts
+// with the target normal velocity e v_in - g / dt, so a body that closes the
+// gap within this step rebounds with up to v_in less than e v_in (measured:
+// rebound height 0.05 to 1 x e^2 depending on where the last step before the
+// impact ends). Counting such points as touching (g = 0) restores the
+// rebound e v_in; the bounce then starts up to one step early, at a height
+// below v_in dt, which loses no energy. Points farther away keep Bullet's
+// speculative rule, so nothing penetrates, and no penetration has to be
+// pushed out (pushing out at the rebound speed would add m g depth per bounce).
+class World final : public btDiscreteDynamicsWorld {
+  public:
+    using btDiscreteDynamicsWorld::btDiscreteDynamicsWorld;
+
+  protected:
+    void solveConstraints(btContactSolverInfo &info) override {
+        const double dt = info.m_timeStep;
+        for (int i = 0; i < m_dispatcher1->getNumManifolds(); ++i) {
+            btPersistentManifold *m = m_dispatcher1->getManifoldByIndexInternal(i);
+            const btRigidBody *a = btRigidBody::upcast(m->getBody0());
+            const btRigidBody *b = btRigidBody::upcast(m->getBody1());
+            for (int j = 0; j < m->getNumContacts(); ++j) {
+                btManifoldPoint &p = m->getContactPoint(j);
+                if (p.m_distance1 <= 0.0)
+                    continue;
+                // Relative velocity at the point, with what gravity and the
+                // applied loads add during this step.
+                btVector3 v(0, 0, 0);
+                if (a)
+                    v += a->getVelocityInLocalPoint(p.getPositionWorldOnA() - a->getCenterOfMassPosition()) +
+                         a->getTotalForce() * a->getInvMass() * dt;
+                if (b)
+                    v -= b->getVelocityInLocalPoint(p.getPositionWorldOnB() - b->getCenterOfMassPosition()) +
+                         b->getTotalForce() * b->getInvMass() * dt;
+                const double approach = -p.m_normalWorldOnB.dot(v); // > 0: closing
+                if (p.m_distance1 < approach * dt)
+                    p.m_distance1 = 0.0;
+            }
+        }
+        btDiscreteDynamicsWorld::solveConstraints(info);
+    }
+};
+
+class BulletEngine final : public RigidBodyEngine {
+  public:
+    BulletEngine(const EngineSettings &settings, const BulletOptions &options)
+        : settings_(settings), options_(options) {
+        if (settings_.materials.empty())
+            throw InputError("material: at least one material is needed");
+        for (const auto &m : settings_.materials)
+            check_material(m);
+        for (const auto &p : settings_.pairs)
+            check_pair(p);
+        if (!(settings_.domain_max.array() > settings_.domain_min.array()).all())
+            throw InputError("run.domain: domain_max must exceed domain_min in x, y and z");
+        if (!settings_.gravity.allFinite())
+            throw InputError("run.gravity: must be finite");
+        if (!(options_.collision_margin >= 0.0) || !std::isfinite(options_.collision_margin))
+            throw InputError("bullet.collision_margin: must be >= 0 m (0 = automatic)");
+        if (options_.solver_iterations < 1)
+            throw InputError("bullet.solver_iterations: must be >= 1");
+        build_pair_table();
+
+        config_ = std::make_unique<btDefaultCollisionConfiguration>();
+        // Several contact points from the first touch (perturbed GJK), rather
+        // than one new point per step.
+        config_->setConvexConvexMultipointIterations(3, 3);
+        dispatcher_ = std::make_unique<btCollisionDispatcher>(config_.get());
+        broadphase_ = std::make_unique<btDbvtBroadphase>();
+        solver_ = std::make_unique<btSequentialImpulseConstraintSolver>();
+        world_ = std::make_unique<World>(dispatcher_.get(), broadphase_.get(), solver_.get(), config_.get());
+        world_->setGravity(bt(settings_.gravity));
+        btContactSolverInfo &info = world_->getSolverInfo();
+        info.m_numIterations = options_.solver_iterations;
+        // Penetration is always removed by split impulses (position only), so
+        // that resolving overlap never adds kinetic energy.
+        info.m_splitImpulse = 1;
+        info.m_splitImpulsePenetrationThreshold = std::numeric_limits<double>::max();
+        gContactAddedCallback = contact_added;
+    }
+
+    ~BulletEngine() override {
+        for (auto &b : bodies_)
+            world_->removeRigidBody(b->rb.get());
+        for (auto &w : walls_)
+            world_->removeRigidBody(w->rb.get());
+    }
+
+    std::string name() const override { return "bullet"; }
+
+    int add_template(const UnitTemplate &unit) override {
+        const std::string what = "unit '" + unit.name + "'";
+        if (unit.material < 0 || unit.material >= static_cast<int>(settings_.materials.size()))
+            throw InputError(what + ": unknown material index");
+        if (!(unit.props.mass > 0.0) || !(unit.props.principal_moments.array() > 0.0).all())
+            throw InputError(what + ": mass and principal moments of inertia must be > 0");
+        if (unit.convex_parts.empty() && unit.mesh.vertices.empty())
+            throw InputError(what + ": Bullet needs the exact shape (convex_parts or mesh)");
+        auto u = std::make_unique<Unit>();
+        u->name = unit.name;
+        u->material = unit.material;
+        u->mass = unit.props.mass;
+        u->moments = unit.props.principal_moments;
+        u->centroid = unit.props.centroid;
+        u->radius = std::cbrt(3.0 * unit.props.volume / (4.0 * kPi));
+        Eigen::Matrix3d axes = unit.props.principal_axes;
+        if (axes.determinant() < 0.0)
+            axes.col(2) = -axes.col(2);
+        u->principal_to_unit = Eigen::Quaterniond(axes).normalized();
+        u->margin = options_.collision_margin > 0.0
+                        ? options_.collision_margin
+                        : std::min(0.04, kBulletMarginFraction * std::cbrt(unit.props.volume));
+        // Without convex parts the convex hull of the exact mesh stands in:
+        // exact for convex units, a filled-in shape for concave ones.
+        std::vector<const TriangleMesh *> parts;
+        for (const auto &p : unit.convex_parts)
+            parts.push_back(&p);
+        if (parts.empty()) {
+            parts.push_back(&unit.mesh);
+            u->hull_of_mesh = true;
+        }
+        u->compound = std::make_unique<btCompoundShape>(true, static_cast<int>(parts.size()));
+        const Eigen::Matrix3d to_principal = u->principal_to_unit.toRotationMatrix().transpose();
+        for (std::size_t k = 0; k < parts.size(); ++k) {
+            const std::string part =
+                what + (u->hull_of_mesh ? " hull of mesh" : " part " + std::to_string(k));
+            for (const auto &v : parts[k]->vertices)
+                u->extent.push_back(v);
+            const auto core = shrunk_hull(parts[k]->vertices, u->margin, part);
+            auto hull = std::make_unique<btConvexHullShape>();
+            for (const auto &v : core)
+                hull->addPoint(bt(to_principal * (v - u->centroid)), false);
+            hull->setMargin(u->margin);
+            hull->recalcLocalAabb();
+            btTransform identity;
+            identity.setIdentity();
+            u->compound->addChildShape(identity, hull.get());
+            u->hulls.push_back(std::move(hull));
+        }
+        units_.push_back(std::move(u));
+        UnitTemplate dem; // what compute_time_step reads
+        dem.name = unit.name;
+        dem.clump = unit.clump;
+        dem.props = unit.props;
+        dem.material = unit.material;
+        dem_templates_.push_back(std::move(dem));
+        return static_cast<int>(units_.size()) - 1;
+    }
+
+    int add_body(const BodyInit &init) override {
+        const int index = static_cast<int>(bodies_.size());
+        if (init.unit < 0 || init.unit >= static_cast<int>(units_.size()))
+            throw InputError("body " + std::to_string(index) + ": unknown unit template");
+        if (!init.pose.position.allFinite() || !init.pose.orientation.coeffs().allFinite() ||
+            init.pose.orientation.norm() < 1e-12 || !init.velocity.allFinite() ||
+            !init.angular_velocity.allFinite())
+            throw InputError("body " + std::to_string(index) + ": pose and velocities must be finite");
+        const Unit &u = *units_[init.unit];
+        const Eigen::Quaterniond q = init.pose.orientation.normalized();
+        for (const auto &v : u.extent) {
+            const Eigen::Vector3d x = init.pose.position + q * (v - u.centroid);
+            if ((x.array() < settings_.domain_min.array()).any() ||
+                (x.array() > settings_.domain_max.array()).any())
+                throw InputError("body " + std::to_string(index) + " (unit '" + u.name +
+                                 "') reaches outside the domain at (" + num(x.x()) + ", " + num(x.y()) +
+                                 ", " + num(x.z()) + ") m");
+        }
+        auto b = std::make_unique<Body>();
+        b->unit = init.unit;
+        b->info = {&table_, u.material, u.radius};
+        btRigidBody::btRigidBodyConstructionInfo ci(u.mass, nullptr, u.compound.get(), bt(u.moments));
+        const Material &m = settings_.materials[static_cast<std::size_t>(u.material)];
+        ci.m_friction = m.friction;
+        ci.m_restitution = m.restitution;
+        ci.m_rollingFriction = 0.0; // the callback sets the pair value
+        ci.m_linearDamping = 0.0;
+        ci.m_angularDamping = 0.0;
+        ci.m_startWorldTransform =
+            btTransform(bt((q * u.principal_to_unit).normalized()), bt(init.pose.position));
+        b->rb = std::make_unique<btRigidBody>(ci);
+        btRigidBody &rb = *b->rb;
+        rb.setUserPointer(&b->info);
+        rb.setCollisionFlags(rb.getCollisionFlags() | btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
+        rb.setActivationState(DISABLE_DEACTIVATION);
+        rb.setFlags(rb.getFlags() | BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY);
+        Eigen::Vector3d linear, angular, velocity = init.velocity, omega = init.angular_velocity;
+        for (int a = 0; a < 3; ++a) {
+            linear[a] = init.fixed_translation[static_cast<std::size_t>(a)] ? 0.0 : 1.0;
+            angular[a] = init.fixed_rotation[static_cast<std::size_t>(a)] ? 0.0 : 1.0;
+        }
+        rb.setLinearFactor(bt(linear));
+        rb.setAngularFactor(bt(angular));
+        rb.setLinearVelocity(bt(velocity.cwiseProduct(linear)));
+        rb.setAngularVelocity(bt(omega.cwiseProduct(angular)));
+        world_->addRigidBody(&rb);
+        bodies_.push_back(std::move(b));
+        return index;
+    }
+
+    void add_wall(const Wall &wall) override {
+        const std::string what = "wall '" + wall.name + "'";
+        if (wall.surface.triangles.empty())
+            throw InputError(what + ": no triangles");
+        if (wall.material < 0 || wall.material >= static_cast<int>(settings_.materials.size()))
+            throw InputError(what + ": unknown material index");
+        auto w = std::make_unique<WallObject>();
+        w->mesh = std::make_unique<btTriangleMesh>(true, false);
+        const int nv = static_cast<int>(wall.surface.vertices.size());
+        for (const auto &t : wall.surface.triangles) {
+            for (int i : t)
+                if (i < 0 || i >= nv)
+                    throw InputError(what + ": triangle vertex index " + std::to_string(i) + " out of range");
+            w->mesh->addTriangle(bt(wall.surface.vertices[static_cast<std::size_t>(t[0])]),
+                                 bt(wall.surface.vertices[static_cast<std::size_t>(t[1])]),
+                                 bt(wall.surface.vertices[static_cast<std::size_t>(t[2])]), false);
+        }
+        w->shape = std::make_unique<btBvhTriangleMeshShape>(w->mesh.get(), true, true);
+        w->shape->setMargin(0.0);
+        w->info = {&table_, wall.material, 0.0};
+        btRigidBody::btRigidBodyConstructionInfo ci(0.0, nullptr, w->shape.get());
+        const Material &m = settings_.materials[static_cast<std::size_t>(wall.material)];
+        ci.m_friction = m.friction;
+        ci.m_restitution = m.restitution;
+        w->rb = std::make_unique<btRigidBody>(ci);
+        w->rb->setUserPointer(&w->info);
+        w->rb->setCollisionFlags(w->rb->getCollisionFlags() | btCollisionObject::CF_STATIC_OBJECT |
+                                 btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
+        world_->addRigidBody(w->rb.get());
+        walls_.push_back(std::move(w));
+        wall_materials_.push_back(wall.material);
+    }
+
+    void set_external_load(int body, const Eigen::Vector3d &force, const Eigen::Vector3d &torque) override {
+        Body &b = checked(body);
+        if (!force.allFinite() || !torque.allFinite())
+            throw InputError("body " + std::to_string(body) + ": external load must be finite");
+        b.force = force;
+        b.torque = torque;
+    }
+
+    void set_gravity(const Eigen::Vector3d &gravity) override {
+        if (!gravity.allFinite())
+            throw InputError("run.gravity: must be finite");
+        settings_.gravity = gravity;
+        world_->setGravity(bt(gravity)); // every dynamic body's gravity too
+    }
+
+    void advance(double span) override {
+        if (!frozen_) {
+            report_ = make_report();
+            frozen_ = true;
+        }
+        const double dt = report_.used;
+        const long n = std::max(1L, std::lround(span / dt));
+        for (long i = 0; i < n; ++i) {
+            // Bullet clears applied forces after every stepSimulation call.
+            for (auto &b : bodies_) {
+                b->rb->applyCentralForce(bt(b->force));
+                b->rb->applyTorque(bt(b->torque));
+            }
+            world_->stepSimulation(dt, 0, dt); // maxSubSteps = 0: exactly one step of dt
+            ++steps_;
+        }
+        collect_contact_forces(dt);
+        for (std::size_t i = 0; i < bodies_.size(); ++i) {
+            const Eigen::Vector3d x = eig(bodies_[i]->rb->getCenterOfMassPosition());
+            if ((x.array() < settings_.domain_min.array()).any() ||
+                (x.array() > settings_.domain_max.array()).any() || !x.allFinite())
+                throw InputError("body " + std::to_string(i) + " left the domain at t = " + num(time()) +
+                                 " s; enlarge run.domain_min/domain_max (results so far are kept)");
+        }
+    }
+
+    int body_count() const override { return static_cast<int>(bodies_.size()); }
+
+    BodyState state(int body) const override {
+        const Body &b = checked(body);
+        const Unit &u = *units_[b.unit];
+        const btRigidBody &rb = *b.rb;
+        BodyState s;
+        s.pose.position = eig(rb.getCenterOfMassPosition());
+        const Eigen::Quaterniond principal_to_world = eig(rb.getOrientation());
+        s.pose.orientation = (principal_to_world * u.principal_to_unit.conjugate()).normalized();
+        s.velocity = eig(rb.getLinearVelocity());
+        s.angular_velocity = eig(rb.getAngularVelocity());
+        s.contact_force = b.contact;
+        s.external_force = b.force;
+        s.external_torque = b.torque;
+        return s;
+    }
+
+    double time() const override { return static_cast<double>(steps_) * report().used; }
+    double time_step() const override { return report().used; }
+    TimeStepReport time_step_report() const override { return report(); }
+    long steps() const override { return steps_; }
+
+    BulletBodyInfo info(int body) const {
+        const Body &b = checked(body);
+        BulletBodyInfo i;
+        i.mass = 1.0 / b.rb->getInvMass();
+        i.local_inertia = eig(b.rb->getLocalInertia());
+        i.center_of_mass = eig(b.rb->getCenterOfMassPosition());
+        i.principal_to_world = eig(b.rb->getOrientation());
+        i.margin = units_[b.unit]->margin;
+        i.hulls = units_[b.unit]->compound->getNumChildShapes();
+        return i;
+    }
+
+    Eigen::Vector3d support(int body, const Eigen::Vector3d &direction) const {
+        const Body &b = checked(body);
+        const btTransform &T = b.rb->getCenterOfMassTransform();
+        const btVector3 local = T.getBasis().transpose() * bt(direction);
+        btVector3 best(0, 0, 0);
+        double best_dot = -HUGE_VAL;
+        for (const auto &hull : units_[b.unit]->hulls) {
+            const btVector3 p = hull->localGetSupportingVertex(local);
+            if (p.dot(local) > best_dot) {
+                best_dot = p.dot(local);
+                best = p;
+            }
+        }
+        return eig(T * best);
+    }
+
+  private:
+    struct Unit {
+        std::string name;
+        int material = 0;
+        double mass = 0.0, radius = 0.0, margin = 0.0;
+        Eigen::Vector3d moments, centroid;
+        Eigen::Quaterniond principal_to_unit;
+        std::vector<Eigen::Vector3d> extent; // every part vertex, unit frame
+        bool hull_of_mesh = false;
+        std::vector<std::unique_ptr<btConvexHullShape>> hulls;
+        std::unique_ptr<btCompoundShape> compound;
+    };
+    struct Body {
+        int unit = 0;
+        ObjectInfo info;
+        std::unique_ptr<btRigidBody> rb;
+        Eigen::Vector3d force = Eigen::Vector3d::Zero(), torque = Eigen::Vector3d::Zero();
+        Eigen::Vector3d contact = Eigen::Vector3d::Zero();
+    };
+    struct WallObject {
+        ObjectInfo info;
+        std::unique_ptr<btTriangleMesh> mesh;
+        std::unique_ptr<btBvhTriangleMeshShape> shape;
+        std::unique_ptr<btRigidBody> rb;
+    };
+
+    static void check_material(const Material &m) {
+        auto bad = [&](const std::string &key, const std::string &rule) {
+            throw InputError("material '" + m.name + "': " + key + " " + rule);
+        };
+        if (!(m.youngs_modulus > 0.0))
+            bad("youngs_modulus", "must be > 0 Pa");
+        if (!(m.poisson_ratio > -1.0 && m.poisson_ratio < 0.5))
+            bad("poisson_ratio", "must be in (-1, 0.5)");
+        if (!(m.restitution > 0.0 && m.restitution <= 1.0))
+            bad("restitution", "must be in (0, 1]");
+        if (!(m.friction >= 0.0) || !std::isfinite(m.friction))
+            bad("friction", "must be >= 0");
+        if (!(m.rolling_friction >= 0.0) || !std::isfinite(m.rolling_friction))
+            bad("rolling_friction", "must be >= 0");
+    }
+
+    void check_pair(const MaterialPair &p) const {
+        const std::string what = "material pair '" + p.a + "'/'" + p.b + "'";
+        auto known = [&](const std::string &name) {
+            for (const auto &m : settings_.materials)
+                if (m.name == name)
+                    return true;
+            return false;
+        };
+        if (!known(p.a) || !known(p.b))
+            throw InputError(what + ": unknown material name");
+        if (p.restitution >= 0.0 && !(p.restitution > 0.0 && p.restitution <= 1.0))
+            throw InputError(what + ": restitution must be in (0, 1]");
+        if (!std::isfinite(p.friction) || !std::isfinite(p.rolling_friction) || !std::isfinite(p.restitution))
+            throw InputError(what + ": values must be finite");
+    }
+
+    void build_pair_table() {
+        const auto &mats = settings_.materials;
+        table_.n = static_cast<int>(mats.size());
+        auto value = [&](const Material &a, const Material &b, double Material::*field,
+                         double MaterialPair::*override_field) {
+            double v = std::min(a.*field, b.*field);
+            for (const auto &p : settings_.pairs)
+                if (p.*override_field >= 0.0 &&
+                    ((p.a == a.name && p.b == b.name) || (p.a == b.name && p.b == a.name)))
+                    v = p.*override_field;
+            return v;
+        };
+        for (const auto &a : mats)
+            for (const auto &b : mats) {
+                table_.friction.push_back(value(a, b, &Material::friction, &MaterialPair::friction));
+                table_.restitution.push_back(value(a, b, &Material::restitution, &MaterialPair::restitution));
+                table_.rolling.push_back(
+                    value(a, b, &Material::rolling_friction, &MaterialPair::rolling_friction));
+            }
+    }
+
+    const Body &checked(int body) const {
+        if (body < 0 || body >= static_cast<int>(bodies_.size()))
+            throw InputError("body " + std::to_string(body) + ": no such body (" +
+                             std::to_string(bodies_.size()) + " bodies)");
+        return *bodies_[static_cast<std::size_t>(body)];
+    }
+    Body &checked(int body) {
+        return const_cast<Body &>(static_cast<const BulletEngine *>(this)->checked(body));
+    }
+
+    // Until the first advance() the report follows the settings and templates;
+    // then the step is fixed.
+    TimeStepReport report() const { return frozen_ ? report_ : make_report(); }
+
+    TimeStepReport make_report() const {
+        TimeStepReport r;
+        std::ostringstream rule;
+        rule << "Bullet: sequential-impulse solver, rigid contacts (no contact spring), so no "
+                "spring-dashpot limit applies; limit = 1/60 s (Bullet's own step; above it contacts tunnel "
+                "and "
+                "resting contacts jitter); default = "
+             << kBulletDefaultStep << " s; " << options_.solver_iterations
+             << " solver iterations; contact stiffness: rigid (Bullet's own)";
+        bool spheres = false;
+        for (const auto &u : dem_templates_)
+            spheres = spheres || !u.clump.empty();
+        if (spheres) {
+            EngineSettings dem = settings_;
+            dem.time_step = 0.0;
+            const TimeStepReport d = compute_time_step(dem, dem_templates_, wall_materials_);
+            r.rayleigh = d.rayleigh;
+            r.contact_duration = d.contact_duration;
+            rule << "; for comparison the sphere-clump DEM of the same materials: " << d.rule << " = "
+                 << d.limit << " s";
+        }
+        for (const auto &u : units_)
+            if (u->hull_of_mesh)
+                rule << "; unit '" << u->name << "': convex hull of its mesh (no convex_parts)";
+        r.rule = rule.str();
+        r.limit = kBulletMaxStep;
+        if (settings_.time_step <= 0.0) {
+            r.used = kBulletDefaultStep;
+        } else {
+            r.used = settings_.time_step;
+            if (settings_.time_step > r.limit) {
+                if (!settings_.force_time_step) {
+                    std::ostringstream msg;
+                    msg << "run.time_step: " << settings_.time_step << " s exceeds Bullet's limit " << r.limit
+                        << " s (impulse solver; above it contacts tunnel); use a smaller step or set "
+                        << "run.force_time_step = true for a stability study";
+                    throw InputError(msg.str());
+                }
+                r.forced = true;
+            }
+        }
+        return r;
+    }
+
+    void collect_contact_forces(double dt) {
+        for (auto &b : bodies_)
+            b->contact.setZero();
+        const int manifolds = dispatcher_->getNumManifolds();
+        for (int i = 0; i < manifolds; ++i) {
+            const btPersistentManifold *m = dispatcher_->getManifoldByIndexInternal(i);
+            btVector3 impulse(0, 0, 0); // on body 0; body 1 gets the opposite
+            for (int j = 0; j < m->getNumContacts(); ++j) {
+                const btManifoldPoint &p = m->getContactPoint(j);
+                if (p.getDistance() > m->getContactProcessingThreshold())
+                    continue; // not solved this step: its impulses are stale
+                impulse += p.m_normalWorldOnB * p.getAppliedImpulse() +
+                           p.m_lateralFrictionDir1 * p.m_appliedImpulseLateral1 +
+                           p.m_lateralFrictionDir2 * p.m_appliedImpulseLateral2;
+            }
+            const Eigen::Vector3d f = eig(impulse) / dt;
+            add_contact(m->getBody0(), f);
+            add_contact(m->getBody1(), -f);
+        }
+    }
+
+    void add_contact(const btCollisionObject *object, const Eigen::Vector3d &force) {
+        for (auto &b : bodies_)
+            if (b->rb.get() == object) {
+                b->contact += force;
+                return;
+            }
+    }
+
+    // Members that Bullet's world refers to come first: the world is destroyed first.
+    EngineSettings settings_;
+    BulletOptions options_;
+    PairTable table_;
+    std::vector<std::unique_ptr<Unit>> units_;
+    std::vector<UnitTemplate> dem_templates_;
+    std::vector<std::unique_ptr<Body>> bodies_;
+    std::vector<std::unique_ptr<WallObject>> walls_;
+    std::vector<int> wall_materials_;
+    std::unique_ptr<btDefaultCollisionConfiguration> config_;
+    std::unique_ptr<btCollisionDispatcher> dispatcher_;
+    std::unique_ptr<btDbvtBroadphase> broadphase_;
+    std::unique_ptr<btSequentialImpulseConstraintSolver> solver_;
+    std::unique_ptr<World> world_;
+    TimeStepReport report_;
+    bool frozen_ = false;
+    long steps_ = 0;
+};
+
+const BulletEngine &as_bullet(const RigidBodyEngine &engine) {
+    const auto *b = dynamic_cast<const BulletEngine *>(&engine);
+    if (!b)
+        throw std::invalid_argument("not a Bullet engine: " + engine.name());
+    return *b;
+}
+
+} // namespace
+
+std::unique_ptr<RigidBodyEngine> make_bullet_engine(const EngineSettings &settings) {
+    return std::make_unique<BulletEngine>(settings, BulletOptions{});
+}
+
+std::unique_ptr<RigidBodyEngine> make_bullet_engine(const EngineSettings &settings,
+                                                    const BulletOptions &options) {
+    return std::make_unique<BulletEngine>(settings, options);
+}
+
+BulletBodyInfo bullet_body_info(const RigidBodyEngine &engine, int body) {
+    return as_bullet(engine).info(body);
+}
+
+Eigen::Vector3d bullet_support_point(const RigidBodyEngine &engine, int body,
+                                     const Eigen::Vector3d &direction) {
+    return as_bullet(engine).support(body, direction);
+}
+
+} // namespace armour

@@ -1,0 +1,86 @@
+// The fluid-structure coupler core: knows no engine by name and no OpenFOAM type.
+//
+// Description
+//     Called once per fluid time step by a thin CFD plugin (coupling/openfoam/):
+//       1. poses and velocities from the engine (any RigidBodyEngine),
+//       2. solid volume fraction chi per fluid cell from each unit's exact
+//          shape (signed distance in the unit frame) or its clump spheres,
+//          smoothed over about one cell, and the rigid-body velocity there,
+//       3. the penalisation (Brinkman) coefficients the plugin puts into the
+//          momentum equation: source = -rho K chi (U - U_body),
+//       4. the fluid load on each unit from this rank's cells,
+//              F = sum_i chi_i V_i f_i,   M = sum_i chi_i V_i (x_i - x_c) x f_i,
+//          with f = -grad p + div(tau) the fluid force density (N/m^3; it
+//          contains buoyancy through the hydrostatic part of grad p),
+//       5. loads summed over MPI ranks by the plugin, handed to the engine,
+//          engine advanced by the fluid step in its own stable sub-steps.
+//     Light units make plain explicit coupling unstable (added mass); with
+//     added_mass_coefficient C_a > 0 the applied load is corrected with the
+//     added mass m_a = C_a rho_f V (see docs/coupling.md).
+//
+// Usage
+//     Coupler coupler(*engine, units, body_unit, settings);
+//     const CellMask &mask = coupler.update_mask(cells);      // start of a fluid step
+//     BodyLoads local = coupler.integrate_loads(cells, force_density, rho);
+//     // ... sum local over ranks ...
+//     coupler.advance(total, dt_fluid);
+#pragma once
+
+#include "rigid_body_engine.h"
+
+#include <Eigen/Core>
+#include <memory>
+#include <vector>
+
+namespace armour {
+
+// This rank's fluid cells, plain arrays in SI units.
+struct CellSet {
+    std::vector<Eigen::Vector3d> centres; // m
+    std::vector<double> volumes;          // m^3
+};
+
+enum class MaskSource { exact_shape, clump_spheres };
+
+struct CouplerSettings {
+    MaskSource mask = MaskSource::exact_shape;
+    double smoothing_cells = 1.0;        // width of the chi ramp, in cell sizes (V^(1/3))
+    double fluid_density = 1000.0;       // kg/m^3, for the added mass
+    double added_mass_coefficient = 0.0; // C_a >= 0; 0 = plain explicit coupling
+    // m/s^2: the gravity the ENGINE applies. The added-mass correction must
+    // take the engine's own gravity load back out of the applied force, and
+    // RigidBodyEngine does not expose its settings; keep equal to
+    // EngineSettings::gravity.
+    Eigen::Vector3d gravity = Eigen::Vector3d(0.0, 0.0, -9.81);
+};
+
+struct CellMask {
+    std::vector<double> chi;               // solid fraction in [0, 1]
+    std::vector<int> body;                 // owning body, -1 where chi = 0
+    std::vector<Eigen::Vector3d> velocity; // m/s, rigid-body velocity at the cell centre
+};
+
+struct BodyLoads {
+    std::vector<Eigen::Vector3d> force;  // N, per body, world frame
+    std::vector<Eigen::Vector3d> torque; // N m, about each body's centre of mass
+};
+
+class Coupler {
+  public:
+    // body_unit[i] = index in `units` of engine body i.
+    Coupler(RigidBodyEngine &engine, std::vector<UnitTemplate> units, std::vector<int> body_unit,
+            CouplerSettings settings);
+    ~Coupler();
+    Coupler(const Coupler &) = delete;
+    Coupler &operator=(const Coupler &) = delete;
+
+    const CellMask &update_mask(const CellSet &cells);
+    BodyLoads integrate_loads(const CellSet &cells, const std::vector<Eigen::Vector3d> &force_density) const;
+    void advance(const BodyLoads &total, double dt_fluid);
+
+  private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+} // namespace armour

@@ -1,0 +1,572 @@
+/*---------------------------------------------------------------------------*\
+    armour-fsi: two-way coupling of armour units with interFoam
+\*---------------------------------------------------------------------------*/
+
+#include "armourCoupling.H"
+
+#include "addToRunTimeSelectionTable.H"
+#include "fvMatrices.H"
+#include "fvMesh.H"
+#include "fvcGrad.H"
+#include "fvcLaplacian.H"
+#include "fvmSup.H"
+#include "uniformDimensionedFields.H"
+
+// The armour side: plain C++ and Eigen, no OpenFOAM type crosses these.
+#include "clump.h"
+#include "coupler.h"
+#include "free_body_engine.h"
+#include "liggghts_engine.h"
+#include "shapes.h"
+
+#include <array>
+#include <exception>
+#include <fstream>
+#include <iomanip>
+#include <string>
+#include <vector>
+
+// * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * * * //
+
+namespace Foam
+{
+namespace fv
+{
+    defineTypeNameAndDebug(armourCoupling, 0);
+    addToRunTimeSelectionTable(option, armourCoupling, dictionary);
+}
+}
+
+
+// * * * * * * * * * * * * * * * * armour side  * * * * * * * * * * * * * * //
+
+struct Foam::fv::armourCoupling::armourSide
+{
+    std::unique_ptr<armour::RigidBodyEngine> engine;
+    std::unique_ptr<armour::Coupler> coupler;
+    armour::CellSet cells;
+    std::vector<std::string> names;
+
+    //- Owning body per cell at the last mask update, -1 outside all bodies
+    std::vector<int> body;
+
+    //- Master only
+    std::ofstream csv;
+};
+
+
+// * * * * * * * * * * * * * * * Local Functions * * * * * * * * * * * * * * //
+
+namespace
+{
+
+Eigen::Vector3d toEigen(const Foam::vector& v)
+{
+    return Eigen::Vector3d(v.x(), v.y(), v.z());
+}
+
+Foam::vector toFoam(const Eigen::Vector3d& v)
+{
+    return Foam::vector(v.x(), v.y(), v.z());
+}
+
+// Axis words (x y z) -> held flags; anything else is a user error worth
+// stopping for, because a silently free axis changes the experiment.
+std::array<bool, 3> readAxes
+(
+    const Foam::dictionary& dict,
+    const Foam::word& key
+)
+{
+    std::array<bool, 3> held{{false, false, false}};
+    if (!dict.found(key))
+    {
+        return held;
+    }
+    const Foam::wordList axes(dict.lookup(key));
+    for (const Foam::word& a : axes)
+    {
+        if (a == "x") held[0] = true;
+        else if (a == "y") held[1] = true;
+        else if (a == "z") held[2] = true;
+        else
+        {
+            FatalIOErrorInFunction(dict)
+                << key << ": unknown axis '" << a << "' (use x, y, z)"
+                << Foam::exit(Foam::FatalIOError);
+        }
+    }
+    return held;
+}
+
+armour::UnitTemplate readUnit
+(
+    const Foam::word& name,
+    const Foam::dictionary& dict,
+    bool needClump
+)
+{
+    const Foam::word shapeName(dict.lookup("shape"));
+    const Foam::scalar size = dict.get<Foam::scalar>("size");
+    const Foam::scalar density = dict.get<Foam::scalar>("density");
+
+    armour::Shape shape;
+    if (shapeName == "cube")
+    {
+        shape = armour::make_cube_shape
+        (
+            size,
+            dict.lookupOrDefault<Foam::scalar>("chamfer", 0),
+            density
+        );
+    }
+    else if (shapeName == "dolos")
+    {
+        shape = armour::make_dolos_shape
+        (
+            size,
+            dict.lookupOrDefault<Foam::scalar>
+            (
+                "waist",
+                armour::kDolosWaistDefault
+            ),
+            density
+        );
+    }
+    else
+    {
+        FatalIOErrorInFunction(dict)
+            << "body " << name << ": unknown shape '" << shapeName
+            << "' (use cube or dolos)" << Foam::exit(Foam::FatalIOError);
+    }
+
+    armour::UnitTemplate unit;
+    unit.name = name;
+    unit.mesh = shape.mesh;
+    unit.props = shape.props;
+    if (needClump)
+    {
+        const Foam::label n = dict.get<Foam::label>("spheres");
+        unit.clump =
+            armour::build_clump(shape, armour::ClumpMethod::optimised, n);
+    }
+    return unit;
+}
+
+} // End anonymous namespace
+
+
+// * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
+
+Foam::fv::armourCoupling::armourCoupling
+(
+    const word& name,
+    const word& modelType,
+    const dictionary& dict,
+    const fvMesh& mesh
+)
+:
+    option(name, modelType, dict, mesh),
+    armour_(new armourSide),
+    penalty_(coeffs_.get<scalar>("penalty")),
+    chi_
+    (
+        IOobject
+        (
+            "armourChi",
+            mesh.time().timeName(),
+            mesh,
+            IOobject::NO_READ,
+            IOobject::AUTO_WRITE
+        ),
+        mesh,
+        dimensionedScalar(dimless, Zero)
+    ),
+    UBody_
+    (
+        IOobject
+        (
+            "armourUBody",
+            mesh.time().timeName(),
+            mesh,
+            IOobject::NO_READ,
+            IOobject::AUTO_WRITE
+        ),
+        mesh,
+        dimensionedVector(dimVelocity, Zero)
+    ),
+    lastTimeIndex_(mesh.time().timeIndex())
+{
+    fieldNames_ = wordList(1, "U");
+    applied_.setSize(fieldNames_.size(), false);
+
+    if (penalty_ <= 0)
+    {
+        FatalIOErrorInFunction(coeffs_)
+            << "penalty must be > 0 (1/s), got " << penalty_
+            << exit(FatalIOError);
+    }
+
+    const word engineName(coeffs_.lookup("engine"));
+    const word maskName(coeffs_.lookupOrDefault<word>("mask", "exact"));
+    if (engineName != "free_body" && engineName != "liggghts")
+    {
+        FatalIOErrorInFunction(coeffs_)
+            << "unknown engine '" << engineName
+            << "' (use free_body or liggghts)" << exit(FatalIOError);
+    }
+    if (maskName != "exact" && maskName != "spheres")
+    {
+        FatalIOErrorInFunction(coeffs_)
+            << "unknown mask '" << maskName << "' (use exact or spheres)"
+            << exit(FatalIOError);
+    }
+    // The LIGGGHTS adapter opens LIGGGHTS on MPI_COMM_WORLD with one
+    // processor grid cell: in a parallel run it would stop every rank.
+    // Every rank needs its own serial replica (as free_body does) first.
+    if (engineName == "liggghts" && Pstream::parRun())
+    {
+        FatalIOErrorInFunction(coeffs_)
+            << "engine liggghts runs with serial interFoam only for now;"
+            << " use free_body for parallel runs" << exit(FatalIOError);
+    }
+    const bool needClump = engineName == "liggghts" || maskName == "spheres";
+
+    // The solver's gravity, so the engine and the fluid agree on it.
+    Eigen::Vector3d gravity(0, 0, -9.81);
+    if (mesh.time().foundObject<uniformDimensionedVectorField>("g"))
+    {
+        gravity = toEigen
+        (
+            mesh.time().lookupObject<uniformDimensionedVectorField>("g")
+           .value()
+        );
+    }
+    else if (coeffs_.found("gravity"))
+    {
+        gravity = toEigen(coeffs_.get<vector>("gravity"));
+    }
+
+    try
+    {
+        armour::EngineSettings settings;
+        settings.gravity = gravity;
+        settings.time_step =
+            coeffs_.lookupOrDefault<scalar>("engineTimeStep", 0);
+        settings.materials = {armour::Material{}};
+        settings.materials[0].name = "armour";
+        // The engine's domain is the fluid domain, padded so bodies touching
+        // the walls stay inside it.
+        const boundBox& bb = mesh.bounds();
+        const Eigen::Vector3d pad = Eigen::Vector3d::Constant(0.1*bb.mag());
+        settings.domain_min = toEigen(bb.min()) - pad;
+        settings.domain_max = toEigen(bb.max()) + pad;
+        settings.work_dir = mesh.time().globalPath()/"armourEngine";
+
+        armour_->engine =
+            engineName == "liggghts"
+          ? armour::make_liggghts_engine(settings)
+          : armour::make_free_body_engine(settings);
+
+        std::vector<armour::UnitTemplate> units;
+        std::vector<int> bodyUnit;
+        const dictionary& bodies = coeffs_.subDict("bodies");
+        for (const entry& e : bodies)
+        {
+            if (!e.isDict())
+            {
+                continue;
+            }
+            const dictionary& bd = e.dict();
+            units.push_back(readUnit(e.keyword(), bd, needClump));
+            const int unit = armour_->engine->add_template(units.back());
+
+            armour::BodyInit init;
+            init.unit = unit;
+            init.pose.position = toEigen(bd.get<vector>("position"));
+            if (bd.found("orientation"))
+            {
+                const scalarList q(bd.lookup("orientation"));
+                if (q.size() != 4)
+                {
+                    FatalIOErrorInFunction(bd)
+                        << "orientation: 4 numbers (w x y z) expected"
+                        << exit(FatalIOError);
+                }
+                init.pose.orientation =
+                    Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized();
+            }
+            init.velocity =
+                toEigen(bd.lookupOrDefault<vector>("velocity", Zero));
+            init.angular_velocity =
+                toEigen(bd.lookupOrDefault<vector>("angularVelocity", Zero));
+            init.fixed_translation = readAxes(bd, "fixedTranslation");
+            init.fixed_rotation = readAxes(bd, "fixedRotation");
+
+            bodyUnit.push_back(armour_->engine->add_body(init));
+            // One template per body: body k uses unit k.
+            bodyUnit.back() = unit;
+            armour_->names.push_back(e.keyword());
+        }
+        if (units.empty())
+        {
+            FatalIOErrorInFunction(bodies)
+                << "no bodies" << exit(FatalIOError);
+        }
+
+        armour::CouplerSettings cs;
+        cs.mask =
+            maskName == "spheres"
+          ? armour::MaskSource::clump_spheres
+          : armour::MaskSource::exact_shape;
+        cs.smoothing_cells =
+            coeffs_.lookupOrDefault<scalar>("smoothingCells", 1);
+        cs.fluid_density =
+            coeffs_.lookupOrDefault<scalar>("fluidDensity", 1000);
+        cs.added_mass_coefficient =
+            coeffs_.lookupOrDefault<scalar>("addedMass", 0);
+        cs.gravity = gravity;
+
+        armour_->coupler.reset
+        (
+            new armour::Coupler
+            (
+                *armour_->engine,
+                std::move(units),
+                std::move(bodyUnit),
+                cs
+            )
+        );
+
+        // Static mesh: the cells never change.
+        const vectorField& C = mesh.C();
+        const scalarField& V = mesh.V();
+        armour_->cells.centres.resize(C.size());
+        armour_->cells.volumes.resize(C.size());
+        forAll(C, i)
+        {
+            armour_->cells.centres[i] = toEigen(C[i]);
+            armour_->cells.volumes[i] = V[i];
+        }
+        updateFields();
+    }
+    catch (const std::exception& err)
+    {
+        FatalErrorInFunction
+            << "armour: " << err.what() << exit(FatalError);
+    }
+
+    if (Pstream::master())
+    {
+        const fileName csvName =
+            mesh.time().globalPath()
+           /coeffs_.lookupOrDefault<fileName>("csv", "armourBodies.csv");
+        armour_->csv.open(csvName);
+        if (!armour_->csv)
+        {
+            FatalErrorInFunction
+                << "cannot write " << csvName << exit(FatalError);
+        }
+        armour_->csv
+            << "time,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,"
+               "Fx,Fy,Fz,Mx,My,Mz,Sx,Sy,Sz,chiVolume,engineTime\n";
+        armour_->csv << std::setprecision(10);
+    }
+
+    Info<< "    armourCoupling: " << armour_->names.size() << " bodies, engine "
+        << engineName << ", mask " << maskName << ", K = " << penalty_
+        << " 1/s, g = " << toFoam(gravity) << endl;
+}
+
+
+Foam::fv::armourCoupling::~armourCoupling()
+{}
+
+
+// * * * * * * * * * * * * * * * Private Functions * * * * * * * * * * * * * //
+
+void Foam::fv::armourCoupling::updateFields()
+{
+    const armour::CellMask& mask = armour_->coupler->update_mask(armour_->cells);
+    scalarField& chi = chi_.primitiveFieldRef();
+    vectorField& Ub = UBody_.primitiveFieldRef();
+    forAll(chi, i)
+    {
+        chi[i] = mask.chi[i];
+        Ub[i] = toFoam(mask.velocity[i]);
+    }
+    armour_->body = mask.body;
+    chi_.correctBoundaryConditions();
+    UBody_.correctBoundaryConditions();
+}
+
+
+void Foam::fv::armourCoupling::couple
+(
+    const volScalarField& rho,
+    const volVectorField& U
+)
+{
+    const Time& runTime = mesh_.time();
+    const volScalarField& p = mesh_.lookupObject<volScalarField>("p");
+
+    // mu_eff = rho (nu + nut); nut only where a turbulence model made one.
+    volScalarField muEff
+    (
+        "armourMuEff",
+        rho*mesh_.lookupObject<volScalarField>("nu")
+    );
+    if (mesh_.foundObject<volScalarField>("nut"))
+    {
+        muEff += rho*mesh_.lookupObject<volScalarField>("nut");
+    }
+    const volVectorField f
+    (
+        "armourForceDensity",
+        -fvc::grad(p) + fvc::laplacian(muEff, U)
+    );
+
+    const label nb = armour_->names.size();
+    std::vector<Eigen::Vector3d> fd(f.size());
+    forAll(f, i)
+    {
+        fd[i] = toEigen(f[i]);
+    }
+
+    armour::BodyLoads loads;
+    try
+    {
+        loads = armour_->coupler->integrate_loads(armour_->cells, fd);
+    }
+    catch (const std::exception& err)
+    {
+        FatalErrorInFunction << "armour: " << err.what() << exit(FatalError);
+    }
+
+    // The momentum source each body puts into the fluid, at the same fields:
+    // with the loads, it checks the coupling's force balance.
+    List<scalar> buf(10*nb, Zero);
+    forAll(U, i)
+    {
+        const label k = armour_->body[i];
+        if (k < 0)
+        {
+            continue;
+        }
+        const vector S =
+            -rho[i]*penalty_*chi_[i]*(U[i] - UBody_[i])*mesh_.V()[i];
+        for (direction c = 0; c < 3; ++c)
+        {
+            buf[10*k + 6 + c] += S[c];
+        }
+        buf[10*k + 9] += chi_[i]*mesh_.V()[i];
+    }
+    for (label k = 0; k < nb; ++k)
+    {
+        for (direction c = 0; c < 3; ++c)
+        {
+            buf[10*k + c] = loads.force[k][c];
+            buf[10*k + 3 + c] = loads.torque[k][c];
+        }
+    }
+    // Every rank gets the same totals, so every rank's engine (free_body
+    // replicas) takes the same step.
+    Pstream::listCombineGather(buf, plusEqOp<scalar>());
+    Pstream::listCombineScatter(buf);
+    for (label k = 0; k < nb; ++k)
+    {
+        for (direction c = 0; c < 3; ++c)
+        {
+            loads.force[k][c] = buf[10*k + c];
+            loads.torque[k][c] = buf[10*k + 3 + c];
+        }
+    }
+
+    try
+    {
+        armour_->coupler->advance(loads, runTime.deltaTValue());
+        updateFields();
+    }
+    catch (const std::exception& err)
+    {
+        FatalErrorInFunction << "armour: " << err.what() << exit(FatalError);
+    }
+
+    if (Pstream::master())
+    {
+        std::ofstream& out = armour_->csv;
+        for (label k = 0; k < nb; ++k)
+        {
+            const armour::BodyState s = armour_->engine->state(k);
+            const Eigen::Quaterniond& q = s.pose.orientation;
+            out << runTime.value() << ',' << armour_->names[k] << ','
+                << s.pose.position.x() << ',' << s.pose.position.y() << ','
+                << s.pose.position.z() << ','
+                << q.w() << ',' << q.x() << ',' << q.y() << ',' << q.z() << ','
+                << s.velocity.x() << ',' << s.velocity.y() << ','
+                << s.velocity.z() << ','
+                << s.angular_velocity.x() << ',' << s.angular_velocity.y()
+                << ',' << s.angular_velocity.z();
+            for (label c = 0; c < 10; ++c)
+            {
+                out << ',' << buf[10*k + c];
+            }
+            out << ',' << armour_->engine->time() << '\n';
+        }
+        out.flush();
+    }
+
+    if (log)
+    {
+        for (label k = 0; k < nb; ++k)
+        {
+            Info<< "    armour " << armour_->names[k] << ": F = ("
+                << buf[10*k] << ' ' << buf[10*k + 1] << ' ' << buf[10*k + 2]
+                << ") N, S = (" << buf[10*k + 6] << ' ' << buf[10*k + 7]
+                << ' ' << buf[10*k + 8] << ") N" << endl;
+        }
+    }
+}
+
+
+// * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
+
+void Foam::fv::armourCoupling::addSup
+(
+    const volScalarField& rho,
+    fvMatrix<vector>& eqn,
+    const label fieldi
+)
+{
+    const volVectorField& U = eqn.psi();
+
+    // Once per time step, not per PIMPLE outer corrector: the engine must
+    // take exactly one step of deltaT.
+    if (mesh_.time().timeIndex() != lastTimeIndex_)
+    {
+        lastTimeIndex_ = mesh_.time().timeIndex();
+        couple(rho, U);
+    }
+
+    const volScalarField rhoKchi
+    (
+        "armourRhoKchi",
+        rho*dimensionedScalar("K", inv(dimTime), penalty_)*chi_
+    );
+    eqn -= fvm::Sp(rhoKchi, U);
+    eqn += rhoKchi*UBody_;
+}
+
+
+bool Foam::fv::armourCoupling::read(const dictionary& dict)
+{
+    if (option::read(dict))
+    {
+        coeffs_.readIfPresent("penalty", penalty_);
+        return true;
+    }
+    return false;
+}
+
+
+// ************************************************************************* //

@@ -1,0 +1,80 @@
+#!/usr/bin/env bash
+# run_case.sh [--np N] [--plugin LIB] CASE_TEMPLATE OUTDIR
+#
+# Copies an interFoam case template to OUTDIR, fills its placeholders
+# (@ARMOUR_PLUGIN@: the plugin's absolute path; @NP@: ranks), then runs
+# blockMesh, setFields and interFoam (serial, or decomposePar + mpirun with
+# --np N). Each tool logs to OUTDIR/log.<tool>. Any failure stops the script
+# with the tool's FOAM FATAL line on stderr and exit status 1.
+#
+# The plugin is --plugin LIB, else $ARMOUR_FOAM_PLUGIN, else the first
+# build*/coupling/openfoam/libarmourFoamCoupling.so of this checkout.
+set -euo pipefail
+
+die() { echo "run_case: $*" >&2; exit 1; }
+
+np=1
+plugin="${ARMOUR_FOAM_PLUGIN:-}"
+while [ $# -gt 0 ]; do
+    case "$1" in
+        --np) [ $# -ge 2 ] || die "--np needs a number"; np="$2"; shift 2 ;;
+        --plugin) [ $# -ge 2 ] || die "--plugin needs a path"; plugin="$2"; shift 2 ;;
+        -h|--help) sed -n '2,12p' "$0"; exit 0 ;;
+        -*) die "unknown option $1" ;;
+        *) break ;;
+    esac
+done
+[ $# -eq 2 ] || die "usage: run_case.sh [--np N] [--plugin LIB] CASE_TEMPLATE OUTDIR"
+template="$1"
+out="$2"
+[[ "$np" =~ ^[1-9][0-9]*$ ]] || die "--np must be a positive integer, got '$np'"
+[ -f "$template/system/controlDict" ] || die "$template is not a case (no system/controlDict)"
+
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+if [ -z "$plugin" ]; then
+    plugin="$(compgen -G "$root/build*/coupling/openfoam/libarmourFoamCoupling.so" | head -n1 || true)"
+fi
+{ [ -n "$plugin" ] && [ -f "$plugin" ]; } || die "plugin libarmourFoamCoupling.so not found (build it, or pass --plugin)"
+plugin="$(cd "$(dirname "$plugin")" && pwd)/$(basename "$plugin")"
+
+if [ -e "$out" ] && [ -n "$(ls -A "$out" 2>/dev/null)" ]; then
+    die "$out exists and is not empty"
+fi
+mkdir -p "$out"
+cp -r "$template"/. "$out"/
+out="$(cd "$out" && pwd)"
+sed -i "s|@ARMOUR_PLUGIN@|$plugin|g" "$out/system/controlDict"
+[ -f "$out/system/decomposeParDict" ] && sed -i "s|@NP@|$np|g" "$out/system/decomposeParDict"
+for f in "$out"/0/*.orig; do
+    [ -e "$f" ] && cp "$f" "${f%.orig}"
+done
+
+# Debian's OpenFOAM finds its etc/ files only through this.
+export WM_PROJECT_DIR=/usr/share/openfoam
+
+# run NAME CMD...: runs in the case, logs to log.NAME, and on failure
+# surfaces the fatal line.
+run() {
+    local tool="$1" log="$out/log.$1"
+    shift
+    if ! (cd "$out" && "$@" > "$log" 2>&1); then
+        local fatal
+        fatal="$(grep -m1 -A4 'FOAM FATAL' "$log" | grep -v '^\s*$' | head -n5 | tr '\n' ' ' || true)"
+        [ -n "$fatal" ] || fatal="$(tail -n 3 "$log" | tr '\n' ' ')"
+        die "$tool failed (see $log): $fatal"
+    fi
+    # Some FOAM FATAL errors in parallel runs still exit 0 from mpirun.
+    if grep -q 'FOAM FATAL' "$log"; then
+        die "$tool reported: $(grep -m1 -A4 'FOAM FATAL' "$log" | tr '\n' ' ')"
+    fi
+}
+
+run blockMesh blockMesh
+run setFields setFields
+if [ "$np" -eq 1 ]; then
+    run interFoam interFoam
+else
+    run decomposePar decomposePar -force
+    run interFoam mpirun --allow-run-as-root -np "$np" -x WM_PROJECT_DIR -x LD_LIBRARY_PATH interFoam -parallel
+fi
+echo "run_case: $out done"

@@ -1,0 +1,453 @@
+// The Bullet engine against the analytic solutions of test_liggghts.cpp, plus
+// the exact-shape facts: mass properties, frames, margin.
+#include "bullet_engine.h"
+#include "shapes.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+using namespace armour;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+double deg(double radians) {
+    return radians * 180.0 / kPi;
+}
+double rad(double degrees) {
+    return degrees * kPi / 180.0;
+}
+
+// The exact cube: one convex part, the cube mesh itself.
+UnitTemplate cube_unit(double a, double density) {
+    const Shape shape = make_cube_shape(a, 0.0, density);
+    UnitTemplate unit;
+    unit.name = "cube";
+    unit.mesh = shape.mesh;
+    unit.props = shape.props;
+    unit.convex_parts = {shape.mesh};
+    return unit;
+}
+
+UnitTemplate dolos_unit(double height, double waist, double density) {
+    const Shape shape = make_dolos_shape(height, waist, density);
+    const Eigen::Vector3d raw_centroid = mass_properties(make_dolos_mesh(height, waist), density).centroid;
+    UnitTemplate unit;
+    unit.name = "dolos";
+    unit.mesh = shape.mesh;
+    unit.props = shape.props;
+    for (const auto &part : make_dolos_parts(height, waist))
+        unit.convex_parts.push_back(translated(part, -raw_centroid));
+    return unit;
+}
+
+Wall floor_plane(double half, int material = 0) {
+    Wall w;
+    w.name = "floor";
+    w.surface.vertices = {{-half, -half, 0}, {half, -half, 0}, {half, half, 0}, {-half, half, 0}};
+    w.surface.triangles = {{0, 1, 2}, {0, 2, 3}};
+    w.material = material;
+    return w;
+}
+
+Material concrete(double restitution, double friction, const std::string &name = "concrete") {
+    Material m;
+    m.name = name;
+    m.youngs_modulus = 5e9;
+    m.poisson_ratio = 0.25;
+    m.restitution = restitution;
+    m.friction = friction;
+    return m;
+}
+
+EngineSettings settings_for(std::vector<Material> materials) {
+    EngineSettings s;
+    s.materials = std::move(materials);
+    s.domain_min = Eigen::Vector3d(-3, -3, -1);
+    s.domain_max = Eigen::Vector3d(3, 3, 8);
+    return s;
+}
+
+// As in test_liggghts: rest the unit-edge cube on the floor, turn gravity
+// about +y to `angle` over 0.2 s (a slowly inclined floor), hold `seconds`.
+// Returns (slide distance along x, rotation angle in degrees) over the hold.
+std::pair<double, double> tilt_cube(const EngineSettings &settings, int cube_material, int floor_material,
+                                    double angle_deg, double seconds) {
+    auto engine = make_bullet_engine(settings);
+    UnitTemplate unit = cube_unit(1.0, 2400.0);
+    unit.material = cube_material;
+    BodyInit body;
+    body.unit = engine->add_template(unit);
+    body.pose.position = Eigen::Vector3d(0, 0, 0.5 + 1e-4);
+    engine->add_body(body);
+    engine->add_wall(floor_plane(3.0, floor_material));
+    engine->advance(0.3);
+    const double g = 9.81;
+    for (int k = 1; k <= 20; ++k) {
+        const double t = rad(angle_deg) * k / 20.0;
+        engine->set_gravity(Eigen::Vector3d(g * std::sin(t), 0.0, -g * std::cos(t)));
+        engine->advance(0.01);
+    }
+    const BodyState rest = engine->state(0);
+    engine->advance(seconds);
+    const BodyState end = engine->state(0);
+    const double turned =
+        2.0 * std::acos(std::min(1.0, std::abs(end.pose.orientation.dot(rest.pose.orientation))));
+    return {end.pose.position.x() - rest.pose.position.x(), deg(turned)};
+}
+
+std::pair<double, double> tilt_cube(double mu, double angle_deg, double seconds) {
+    return tilt_cube(settings_for({concrete(0.3, mu)}), 0, 0, angle_deg, seconds);
+}
+
+} // namespace
+
+TEST(BulletEngine, FreeFallMatchesAnalytic) {
+    auto engine = make_bullet_engine(settings_for({concrete(0.5, 0.5)}));
+    EXPECT_EQ(engine->name(), "bullet");
+    engine->add_template(cube_unit(0.5, 2400.0));
+    BodyInit body;
+    body.pose.position = Eigen::Vector3d(0.1, -0.2, 6.0);
+    body.velocity = Eigen::Vector3d(0.3, 0.0, 1.0);
+    engine->add_body(body);
+    engine->advance(0.8);
+    const double t = engine->time();
+    EXPECT_NEAR(t, 0.8, engine->time_step());
+    const BodyState s = engine->state(0);
+    const double z = 6.0 + 1.0 * t - 0.5 * 9.81 * t * t;
+    EXPECT_NEAR(s.pose.position.z(), z, 0.005 * (6.0 - z));
+    EXPECT_NEAR(s.pose.position.x(), 0.1 + 0.3 * t, 1e-6);
+    EXPECT_NEAR(s.velocity.z(), 1.0 - 9.81 * t, 0.005 * 9.81 * t);
+    EXPECT_NEAR(s.contact_force.norm(), 0.0, 1e-9);
+}
+
+TEST(BulletEngine, ExternalForceAndTorqueGiveFOverMAndTOverI) {
+    EngineSettings settings = settings_for({concrete(0.5, 0.5)});
+    settings.gravity = Eigen::Vector3d::Zero();
+    auto engine = make_bullet_engine(settings);
+    const UnitTemplate unit = cube_unit(0.5, 2400.0);
+    engine->add_template(unit);
+    BodyInit body;
+    body.pose.position = Eigen::Vector3d(0, 0, 3);
+    body.pose.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()));
+    engine->add_body(body);
+    const Eigen::Vector3d force(100.0, -200.0, 50.0), torque(3.0, -2.0, 1.0);
+    engine->set_external_load(0, force, torque);
+    engine->advance(0.2);
+    const double t = engine->time();
+    const BodyState s = engine->state(0);
+    const double m = unit.props.mass, I = unit.props.principal_moments[0]; // a cube: isotropic
+    EXPECT_LT((s.velocity - force / m * t).norm(), 0.005 * (force / m * t).norm());
+    EXPECT_LT((s.angular_velocity - torque / I * t).norm(), 0.005 * (torque / I * t).norm());
+    EXPECT_EQ(s.external_force, force);
+    EXPECT_EQ(s.external_torque, torque);
+}
+
+TEST(BulletEngine, LockedAxesHoldTheirComponents) {
+    EngineSettings settings = settings_for({concrete(0.5, 0.5)});
+    auto engine = make_bullet_engine(settings);
+    engine->add_template(cube_unit(0.5, 2400.0));
+    BodyInit body;
+    body.pose.position = Eigen::Vector3d(0, 0, 3);
+    body.fixed_translation = {{false, false, true}}; // gravity cannot move it
+    body.fixed_rotation = {{true, true, false}};     // only spin about z
+    engine->add_body(body);
+    engine->set_external_load(0, Eigen::Vector3d(10, 0, 0), Eigen::Vector3d(5, 5, 5));
+    engine->advance(0.1);
+    const BodyState s = engine->state(0);
+    EXPECT_EQ(s.pose.position.z(), 3.0);
+    EXPECT_GT(s.pose.position.x(), 0.0);
+    EXPECT_EQ(s.angular_velocity.x(), 0.0);
+    EXPECT_EQ(s.angular_velocity.y(), 0.0);
+    EXPECT_GT(s.angular_velocity.z(), 0.0);
+}
+
+TEST(BulletEngine, SlidesAtTanThetaEqualsMu) {
+    // One material: Bullet's own product rule would make the pair mu^2 = 0.25.
+    const double mu = 0.5, onset = deg(std::atan(mu)); // 26.57 deg
+    const auto below = tilt_cube(mu, onset - 0.5, 0.6);
+    const auto above = tilt_cube(mu, onset + 0.5, 0.6);
+    EXPECT_LT(std::abs(below.first), 1e-3) << "slid below tan(theta) = mu";
+    const double t = rad(onset + 0.5), accel = 9.81 * (std::sin(t) - mu * std::cos(t));
+    EXPECT_GT(above.first, 0.5 * 0.5 * accel * 0.36) << "did not slide above tan(theta) = mu";
+    EXPECT_LT(above.second, 1.0); // it slides, it does not tip
+}
+
+TEST(BulletEngine, PairFrictionIsTheOverrideElseTheSmaller) {
+    // Cube 0.7 on floor 0.9: the smaller, 0.7 (product: 0.63).
+    EngineSettings s = settings_for({concrete(0.3, 0.7, "unit"), concrete(0.3, 0.9, "floor")});
+    const double onset_min = deg(std::atan(0.7));
+    EXPECT_LT(std::abs(tilt_cube(s, 0, 1, onset_min - 0.5, 0.6).first), 1e-3);
+    EXPECT_GT(tilt_cube(s, 0, 1, onset_min + 0.5, 0.6).first, 0.01);
+    // With an override of 0.5 for the pair.
+    s.pairs.push_back({"floor", "unit", -1.0, 0.5, -1.0});
+    const double onset = deg(std::atan(0.5));
+    EXPECT_LT(std::abs(tilt_cube(s, 0, 1, onset - 0.5, 0.6).first), 1e-3);
+    EXPECT_GT(tilt_cube(s, 0, 1, onset + 0.5, 0.6).first, 0.01);
+}
+
+TEST(BulletEngine, CubeTopplesAtFortyFiveDegreesWhenFrictionHolds) {
+    // The exact cube tips about its edge at 45 deg. With the edges rounded by
+    // the margin m the onset is atan((a/2 - m) / (a/2)): check it is inside
+    // the bracket before testing the bracket.
+    const double a = 1.0, margin = kBulletMarginFraction * a;
+    ASSERT_NEAR(deg(std::atan((0.5 * a - margin) / (0.5 * a))), 45.0, 0.5);
+    const auto below = tilt_cube(2.0, 44.0, 1.0);
+    const auto above = tilt_cube(2.0, 46.0, 1.5);
+    EXPECT_LT(below.second, 1.0) << "toppled below 45 deg";
+    EXPECT_GT(above.second, 10.0) << "did not topple above 45 deg";
+    EXPECT_LT(std::abs(below.first), 2e-3);
+}
+
+TEST(BulletEngine, BounceHeightRatioIsRestitutionSquared) {
+    // A cube landing flat: all four corner contacts at once, symmetric. Several
+    // drop heights, so that the last step before the impact ends at different
+    // gaps (Bullet's own speculative contacts make the rebound depend on it).
+    const double e = 0.6, a = 0.2;
+    for (double drop : {0.13, 0.21, 0.37, 0.5}) {
+        auto engine = make_bullet_engine(settings_for({concrete(e, 0.5)}));
+        engine->add_template(cube_unit(a, 2400.0));
+        BodyInit body;
+        body.pose.position = Eigen::Vector3d(0, 0, 0.5 * a + drop);
+        engine->add_body(body);
+        engine->add_wall(floor_plane(2.0));
+        double apex = -HUGE_VAL;
+        bool bounced = false;
+        for (int k = 0; k < 3000 && !(bounced && engine->state(0).velocity.z() < 0.0); ++k) {
+            engine->advance(0.001);
+            const BodyState s = engine->state(0);
+            if (s.velocity.z() > 0.0 && s.contact_force.norm() == 0.0)
+                bounced = true;
+            if (bounced)
+                apex = std::max(apex, s.pose.position.z());
+        }
+        ASSERT_TRUE(bounced);
+        EXPECT_NEAR((apex - 0.5 * a) / drop, e * e, 0.05 * e * e) << "drop " << drop << " m";
+    }
+}
+
+// Bullet integrates semi-implicitly (v += g dt, then x += v dt). In free
+// flight that scheme conserves E_d = 1/2 m v^2 - m g.x + 1/2 m dt g.v exactly
+// (the plain energy oscillates by m g v dt / 2, 0.35 % here), so E_d isolates
+// what the contacts do.
+double elastic_drop_energy_gain(double tilt, long steps) {
+    auto engine = make_bullet_engine(settings_for({concrete(1.0, 0.0)}));
+    const UnitTemplate unit = cube_unit(0.2, 2400.0);
+    engine->add_template(unit);
+    BodyInit body;
+    body.pose.position = Eigen::Vector3d(0, 0, 0.1 + 0.1);
+    body.pose.orientation =
+        Eigen::Quaterniond(Eigen::AngleAxisd(tilt, Eigen::Vector3d(1, 1, 0).normalized()));
+    engine->add_body(body);
+    engine->add_wall(floor_plane(2.0));
+    const double m = unit.props.mass, dt = engine->time_step();
+    const Eigen::Vector3d g(0, 0, -9.81);
+    auto energy = [&](const BodyState &s) {
+        return 0.5 * m * s.velocity.squaredNorm() - m * g.dot(s.pose.position) +
+               0.5 * m * dt * g.dot(s.velocity) +
+               0.5 * unit.props.principal_moments[0] * s.angular_velocity.squaredNorm();
+    };
+    const double start = energy(engine->state(0));
+    double highest = start;
+    while (engine->steps() < steps) {
+        engine->advance(dt);
+        const BodyState s = engine->state(0);
+        if (s.contact_force.norm() == 0.0) // between contacts
+            highest = std::max(highest, energy(s));
+    }
+    EXPECT_GE(engine->steps(), steps);
+    return highest / start - 1.0;
+}
+
+TEST(BulletEngine, NoEnergyGainOverManyStepsWithElasticContacts) {
+    // Flat landings, as in test_liggghts: 1e5 steps (100 s of bouncing).
+    const double flat = elastic_drop_energy_gain(0.0, 100000);
+    EXPECT_LT(flat, 1e-3) << "energy grew by " << flat;
+    // Landing on an edge, then rocking (it comes to rest: see docs/bullet.md).
+    const double tilted = elastic_drop_energy_gain(0.3, 20000);
+    EXPECT_LT(tilted, 1e-3) << "energy grew by " << tilted;
+}
+
+TEST(BulletEngine, RefusesATooLargeStepUnlessForced) {
+    EngineSettings settings = settings_for({concrete(0.5, 0.5)});
+    {
+        auto engine = make_bullet_engine(settings);
+        engine->add_template(cube_unit(0.5, 2400.0));
+        const TimeStepReport r = engine->time_step_report();
+        EXPECT_EQ(r.used, kBulletDefaultStep);
+        EXPECT_EQ(r.limit, kBulletMaxStep);
+        EXPECT_NE(r.rule.find("impulse"), std::string::npos) << r.rule;
+    }
+    settings.time_step = 1.5 * kBulletMaxStep;
+    auto engine = make_bullet_engine(settings);
+    engine->add_template(cube_unit(0.5, 2400.0));
+    EXPECT_THROW(engine->time_step_report(), InputError);
+    EXPECT_THROW(engine->advance(0.1), InputError);
+    settings.force_time_step = true;
+    auto forced = make_bullet_engine(settings);
+    forced->add_template(cube_unit(0.5, 2400.0));
+    EXPECT_TRUE(forced->time_step_report().forced);
+    EXPECT_EQ(forced->time_step(), 1.5 * kBulletMaxStep);
+}
+
+TEST(BulletEngine, ValidatesInputWithOneLineErrors) {
+    Material bad = concrete(0.5, 0.5);
+    bad.restitution = 1.5;
+    EXPECT_THROW(make_bullet_engine(settings_for({bad})), InputError);
+    EngineSettings pair = settings_for({concrete(0.5, 0.5)});
+    pair.pairs.push_back({"concrete", "steel", 0.5, 0.5, -1.0});
+    EXPECT_THROW(make_bullet_engine(pair), InputError);
+    auto engine = make_bullet_engine(settings_for({concrete(0.5, 0.5)}));
+    UnitTemplate unit = cube_unit(0.5, 2400.0);
+    unit.material = 3;
+    EXPECT_THROW(engine->add_template(unit), InputError);
+    unit.material = 0;
+    engine->add_template(unit);
+    BodyInit body;
+    body.unit = 2;
+    EXPECT_THROW(engine->add_body(body), InputError);
+    body.unit = 0;
+    body.pose.position = Eigen::Vector3d(0, 0, 7.9); // the cube reaches z = 8.15 > 8
+    EXPECT_THROW(engine->add_body(body), InputError);
+    EXPECT_THROW(engine->state(0), InputError);
+    EXPECT_THROW(engine->set_external_load(1, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()), InputError);
+    Wall wall = floor_plane(1.0);
+    wall.material = 1;
+    EXPECT_THROW(engine->add_wall(wall), InputError);
+    BulletOptions thick;
+    thick.collision_margin = 0.3; // more than half the 0.5 m cube
+    auto thick_engine = make_bullet_engine(settings_for({concrete(0.5, 0.5)}), thick);
+    EXPECT_THROW(thick_engine->add_template(cube_unit(0.5, 2400.0)), InputError);
+}
+
+TEST(BulletEngine, ShrunkHullMovesEveryFaceInwardByTheMargin) {
+    const double a = 1.0, m = 0.04;
+    const std::vector<Eigen::Vector3d> core =
+        shrunk_hull(make_cube_shape(a, 0.0, 1.0).mesh.vertices, m, "cube");
+    ASSERT_EQ(core.size(), 8u);
+    for (const auto &v : core)
+        for (int k = 0; k < 3; ++k)
+            EXPECT_NEAR(std::abs(v[k]), 0.5 * a - m, 1e-12);
+}
+
+TEST(BulletEngine, CubeRestsWithItsCentreAtHalfTheEdge) {
+    // Hull + margin = the true cube: the centre rests at a/2 (an unshrunk hull
+    // would rest at a/2 + margin). Checked with a large margin and the default.
+    const double a = 1.0;
+    for (double margin : {0.04, 0.0}) {
+        BulletOptions options;
+        options.collision_margin = margin;
+        auto engine = make_bullet_engine(settings_for({concrete(0.3, 0.6)}), options);
+        const UnitTemplate unit = cube_unit(a, 2400.0);
+        engine->add_template(unit);
+        BodyInit body;
+        body.pose.position = Eigen::Vector3d(0.2, 0.1, 0.5 * a + 0.01);
+        engine->add_body(body);
+        engine->add_wall(floor_plane(3.0));
+        engine->advance(1.0);
+        const BodyState s = engine->state(0);
+        const double used = bullet_body_info(*engine, 0).margin;
+        EXPECT_NEAR(s.pose.position.z(), 0.5 * a, 0.01 * 0.5 * a) << "margin " << used;
+        EXPECT_NEAR(s.pose.position.z(), 0.5 * a, 0.1 * used) << "margin " << used;
+        // At rest the floor carries the weight.
+        EXPECT_NEAR(s.contact_force.z(), unit.props.mass * 9.81, 0.005 * unit.props.mass * 9.81);
+        EXPECT_LT(s.velocity.norm(), 1e-3);
+    }
+}
+
+TEST(BulletEngine, DolosMassPropertiesAreTheExactOnes) {
+    const UnitTemplate unit = dolos_unit(2.0, 0.33, 2400.0);
+    EngineSettings settings = settings_for({concrete(0.5, 0.5)});
+    settings.gravity = Eigen::Vector3d::Zero();
+    auto engine = make_bullet_engine(settings);
+    engine->add_template(unit);
+    BodyInit body;
+    body.pose.position = Eigen::Vector3d(0.3, -0.2, 3.0);
+    body.pose.orientation =
+        Eigen::Quaterniond(Eigen::AngleAxisd(0.9, Eigen::Vector3d(-1, 2, 0.5).normalized()));
+    engine->add_body(body);
+    const BulletBodyInfo info = bullet_body_info(*engine, 0);
+    EXPECT_EQ(info.hulls, 3);
+    EXPECT_NEAR(info.mass, unit.props.mass, 1e-9 * unit.props.mass);
+    for (int k = 0; k < 3; ++k)
+        EXPECT_NEAR(info.local_inertia[k], unit.props.principal_moments[k],
+                    1e-9 * unit.props.principal_moments[k]);
+    EXPECT_LT((info.center_of_mass - body.pose.position).norm(), 1e-12);
+    // Bullet's body frame is the principal frame: R_body = R_unit A.
+    const Eigen::Matrix3d expected = body.pose.orientation.toRotationMatrix() * unit.props.principal_axes;
+    EXPECT_LT((info.principal_to_world.toRotationMatrix() - expected).cwiseAbs().maxCoeff(), 1e-12);
+
+    // Spin it, then the exact mesh placed at the reported pose has its
+    // centroid at the reported position, and Bullet's shape (hulls + margin)
+    // lies inside it, touching it to within a few margins in every direction.
+    engine->set_external_load(0, Eigen::Vector3d(50, 0, 0), Eigen::Vector3d(400, -300, 200));
+    engine->advance(0.3);
+    const BodyState s = engine->state(0);
+    TriangleMesh placed = unit.mesh;
+    for (auto &v : placed.vertices)
+        v = s.pose.position + s.pose.orientation * v;
+    const MassProperties world = mass_properties(placed, 2400.0);
+    EXPECT_LT((world.centroid - s.pose.position).norm(), 1e-9 * 2.0);
+    std::mt19937 rng(7);
+    std::normal_distribution<double> normal;
+    for (int k = 0; k < 200; ++k) {
+        const Eigen::Vector3d d = Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
+        double exact = -HUGE_VAL;
+        for (const auto &v : placed.vertices)
+            exact = std::max(exact, d.dot(v));
+        const double bullet = d.dot(bullet_support_point(*engine, 0, d));
+        EXPECT_LT(bullet - exact, 1e-9) << "outside the exact shape along " << d.transpose();
+        EXPECT_GT(bullet - exact, -3.0 * info.margin) << "short of the exact shape along " << d.transpose();
+    }
+}
+
+TEST(BulletEngine, OrientationRoundTripsThroughThePrincipalFrame) {
+    // A 1 x 2 x 3 m box turned inside its unit frame: its principal axes are
+    // nowhere near the unit axes and its three moments differ. No convex
+    // parts: the hull of the mesh is used (here exact: the box is convex).
+    const Eigen::Matrix3d turn =
+        Eigen::AngleAxisd(0.6, Eigen::Vector3d(1.0, -0.4, 0.7).normalized()).toRotationMatrix();
+    UnitTemplate unit;
+    unit.name = "box123";
+    unit.mesh = make_cube_mesh(1.0);
+    for (auto &v : unit.mesh.vertices)
+        v = turn * Eigen::Vector3d(v.x(), 2.0 * v.y(), 3.0 * v.z());
+    unit.props = mass_properties(unit.mesh, 2400.0);
+    ASSERT_GT(std::abs(unit.props.inertia(0, 1)), 1e-2 * unit.props.inertia(0, 0));
+    ASSERT_GT(unit.props.principal_moments[1] - unit.props.principal_moments[0],
+              0.1 * unit.props.principal_moments[0]);
+
+    EngineSettings settings = settings_for({concrete(0.5, 0.5)});
+    settings.gravity = Eigen::Vector3d::Zero();
+    settings.domain_min = Eigen::Vector3d(-6, -6, -6);
+    settings.domain_max = Eigen::Vector3d(6, 6, 10);
+    auto engine = make_bullet_engine(settings);
+    engine->add_template(unit);
+    EXPECT_NE(engine->time_step_report().rule.find("convex hull of its mesh"), std::string::npos);
+    const Eigen::Quaterniond q0(Eigen::AngleAxisd(1.1, Eigen::Vector3d(0.3, -0.5, 0.8).normalized()));
+    const Eigen::Quaterniond q1(Eigen::AngleAxisd(-2.0, Eigen::Vector3d(-0.7, 0.1, 0.2).normalized()));
+    for (int k = 0; k < 2; ++k) {
+        BodyInit body;
+        body.pose.orientation = k == 0 ? q0 : q1;
+        body.pose.position = Eigen::Vector3d(k == 0 ? -3.0 : 3.0, 0, 4);
+        engine->add_body(body);
+    }
+    EXPECT_GT(std::abs(engine->state(0).pose.orientation.dot(q0)), 1.0 - 1e-12);
+    EXPECT_GT(std::abs(engine->state(1).pose.orientation.dot(q1)), 1.0 - 1e-12);
+    // A torque about world z from rest: omega(t) = I_world^-1 T t, with
+    // I_world = R I_unit R^T built from the orientation the engine reports.
+    const Eigen::Vector3d torque(0.0, 0.0, 2000.0);
+    engine->set_external_load(1, Eigen::Vector3d::Zero(), torque);
+    engine->advance(engine->time_step());
+    EXPECT_GT(std::abs(engine->state(0).pose.orientation.dot(q0)), 1.0 - 1e-12);
+    EXPECT_GT(std::abs(engine->state(1).pose.orientation.dot(q1)), 1.0 - 1e-9);
+    engine->advance(0.01);
+    const BodyState s = engine->state(1);
+    const Eigen::Matrix3d R = s.pose.orientation.toRotationMatrix();
+    const Eigen::Vector3d expected =
+        (R * unit.props.inertia * R.transpose()).inverse() * torque * engine->time();
+    EXPECT_LT((s.angular_velocity - expected).norm(), 0.01 * expected.norm())
+        << s.angular_velocity.transpose() << " vs " << expected.transpose();
+}

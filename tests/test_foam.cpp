@@ -1,0 +1,162 @@
+// The interFoam plugin end to end: foam_cases/buoyancy_cube through
+// foam_cases/run_case.sh, checked against Archimedes and the plugin's own
+// force balance. Needs Debian's openfoam (the target exists only then).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <sys/wait.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The template's cube: constant/fvOptions and constant/g of buoyancy_cube.
+constexpr double kEdge = 0.3;        // m
+constexpr double kRhoWater = 1000.0; // kg/m^3
+constexpr double kG = 9.81;          // m/s^2
+const double kPosition[3] = {0.512, 0.493, 0.415};
+
+struct CaseRun {
+    int status = -1;
+    std::string output; // run_case.sh's stdout and stderr
+    fs::path dir;
+};
+
+std::string slurp(const fs::path &path) {
+    std::ifstream in(path);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+CaseRun run_case(const std::string &name, int np) {
+    CaseRun r;
+    std::string tmpl = (fs::temp_directory_path() / ("armour_test_foam_" + name + "_XXXXXX")).string();
+    if (!mkdtemp(tmpl.data()))
+        return r;
+    r.dir = tmpl;
+    const fs::path log = r.dir / "run_case.log";
+    const std::string cmd = std::string("bash '") + ARMOUR_SOURCE_DIR + "/foam_cases/run_case.sh' --np " +
+                            std::to_string(np) + " --plugin '" + ARMOUR_FOAM_PLUGIN + "' '" +
+                            ARMOUR_SOURCE_DIR + "/foam_cases/buoyancy_cube' '" + (r.dir / "case").string() +
+                            "' > '" + log.string() + "' 2>&1";
+    const int rc = std::system(cmd.c_str());
+    r.status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+    r.output = slurp(log);
+    return r;
+}
+
+// The last CSV row of `body`, by column name.
+std::map<std::string, std::string> last_row(const fs::path &csv, const std::string &body) {
+    std::ifstream in(csv);
+    std::string line;
+    std::vector<std::string> header;
+    std::map<std::string, std::string> row;
+    auto split = [](const std::string &s) {
+        std::vector<std::string> out;
+        std::stringstream ss(s);
+        std::string cell;
+        while (std::getline(ss, cell, ','))
+            out.push_back(cell);
+        return out;
+    };
+    if (std::getline(in, line))
+        header = split(line);
+    while (std::getline(in, line)) {
+        const auto cells = split(line);
+        if (cells.size() != header.size() || cells[1] != body)
+            continue;
+        row.clear();
+        for (std::size_t i = 0; i < cells.size(); ++i)
+            row[header[i]] = cells[i];
+    }
+    return row;
+}
+
+double num(const std::map<std::string, std::string> &row, const std::string &key) {
+    const auto it = row.find(key);
+    if (it == row.end())
+        ADD_FAILURE() << "CSV has no column " << key;
+    return it == row.end() ? NAN : std::stod(it->second);
+}
+
+class FoamBuoyancy : public ::testing::Test {
+  protected:
+    static void SetUpTestSuite() { serial_ = new CaseRun(run_case("serial", 1)); }
+    static void TearDownTestSuite() {
+        // Kept on failure for the logs and fields.
+        if (serial_ && !::testing::UnitTest::GetInstance()->Failed())
+            fs::remove_all(serial_->dir);
+        delete serial_;
+        serial_ = nullptr;
+    }
+    static CaseRun *serial_;
+};
+CaseRun *FoamBuoyancy::serial_ = nullptr;
+
+TEST_F(FoamBuoyancy, CaseRuns) {
+    ASSERT_EQ(serial_->status, 0) << serial_->output;
+    EXPECT_TRUE(fs::exists(serial_->dir / "case/0.2/armourChi"));
+    EXPECT_TRUE(fs::exists(serial_->dir / "case/0.2/armourUBody"));
+}
+
+// A fixed, fully submerged cube in still water: the fluid load is the weight
+// of the displaced water, upwards, and nothing sideways.
+TEST_F(FoamBuoyancy, Archimedes) {
+    ASSERT_EQ(serial_->status, 0) << serial_->output;
+    const auto row = last_row(serial_->dir / "case/armourBodies.csv", "cube");
+    ASSERT_FALSE(row.empty());
+    EXPECT_NEAR(num(row, "time"), 0.2, 1e-9);
+
+    const double buoyancy = kRhoWater * kG * kEdge * kEdge * kEdge; // 264.87 N
+    const double fz = num(row, "Fz");
+    EXPECT_NEAR(fz / buoyancy, 1.0, 0.02) << "Fz = " << fz << " N, rho g V = " << buoyancy << " N";
+    EXPECT_LT(std::hypot(num(row, "Fx"), num(row, "Fy")), 1e-3 * buoyancy);
+
+    // Held: the engine kept it where it was put.
+    EXPECT_DOUBLE_EQ(num(row, "x"), kPosition[0]);
+    EXPECT_DOUBLE_EQ(num(row, "y"), kPosition[1]);
+    EXPECT_DOUBLE_EQ(num(row, "z"), kPosition[2]);
+    EXPECT_EQ(num(row, "vz"), 0.0);
+}
+
+// The load is -grad p + div tau over the mask, the source is the penalty
+// force on the fluid. Momentum of the masked fluid, at rest here, gives
+//     F + S = -sum(chi V rho g) = rho_w |g| chiVolume (upwards):
+// the load is not minus the source alone, because the masked fluid's weight
+// is carried by the pressure, not by the penalty.
+TEST_F(FoamBuoyancy, LoadBalancesSourceAndMaskedWeight) {
+    ASSERT_EQ(serial_->status, 0) << serial_->output;
+    const auto row = last_row(serial_->dir / "case/armourBodies.csv", "cube");
+    ASSERT_FALSE(row.empty());
+    const double weight = kRhoWater * kG * num(row, "chiVolume");
+    EXPECT_NEAR(num(row, "Fz") + num(row, "Sz"), weight, 1e-3 * weight);
+    EXPECT_NEAR(num(row, "Fx") + num(row, "Sx"), 0.0, 1e-3 * weight);
+    EXPECT_NEAR(num(row, "Fy") + num(row, "Sy"), 0.0, 1e-3 * weight);
+    // Fluid and body at rest: the penalty hardly acts.
+    EXPECT_LT(std::abs(num(row, "Sz")), 1e-4 * weight);
+}
+
+// Loads are summed over MPI ranks: two ranks must give the serial answer.
+TEST_F(FoamBuoyancy, TwoRanksMatchSerial) {
+    ASSERT_EQ(serial_->status, 0) << serial_->output;
+    const CaseRun parallel = run_case("np2", 2);
+    ASSERT_EQ(parallel.status, 0) << parallel.output;
+    const auto s = last_row(serial_->dir / "case/armourBodies.csv", "cube");
+    const auto p = last_row(parallel.dir / "case/armourBodies.csv", "cube");
+    ASSERT_FALSE(p.empty());
+    EXPECT_NEAR(num(p, "Fz"), num(s, "Fz"), 1e-5 * num(s, "Fz"));
+    EXPECT_NEAR(num(p, "chiVolume"), num(s, "chiVolume"), 1e-12);
+    if (!HasFailure())
+        fs::remove_all(parallel.dir);
+}
+
+} // namespace
