@@ -67,8 +67,10 @@ int armour_main(int argc, const char *const *argv) {
     RunRequest run;
     CLI::App *run_cmd = app.add_subcommand(
         "run",
-        "Run a scene file (TOML, SI units; see docs/scenes.md) with the DEM engine: writes summary.json, "
-        "bodies.h5 (+ bodies.xdmf for ParaView) and the resolved scene to --out.");
+        "Run a scene file (TOML, SI units; see docs/scenes.md) with the DEM engine, or coupled with "
+        "interFoam "
+        "when it has [fluid]: writes summary.json, bodies.h5 (+ bodies.xdmf for ParaView) and the resolved "
+        "scene to --out (and the OpenFOAM case to --out/case).");
     run_cmd->add_option("scene", run.scene, "Scene file (.toml)")->required();
     run_cmd->add_option("--out", run.out, "Output directory (replaced if it holds an earlier run)")
         ->required();
@@ -76,6 +78,14 @@ int armour_main(int argc, const char *const *argv) {
                         "Override a scene key, TOML syntax: --set run.duration=0.5 --set unit.0.spheres=20");
     run_cmd->add_option("--cache", run.cache,
                         "Clump cache folder (default $ARMOUR_CACHE or ~/.cache/armour-fsi)");
+    run_cmd
+        ->add_option("--np", run.np,
+                     "Scenes with [fluid]: MPI ranks of interFoam (overrides fluid.np; engine free_body or "
+                     "bullet when > 1)")
+        ->check(CLI::PositiveNumber);
+    std::string run_engine;
+    run_cmd->add_option("--engine", run_engine,
+                        "Engine, same as --set run.engine=\"NAME\": liggghts or bullet");
 
     CompareRequest compare;
     CLI::App *compare_cmd = app.add_subcommand(
@@ -115,8 +125,11 @@ int armour_main(int argc, const char *const *argv) {
         }
         if (demo_cmd->parsed())
             return run_demo(demo);
-        if (run_cmd->parsed())
+        if (run_cmd->parsed()) {
+            if (!run_engine.empty())
+                run.overrides.push_back("run.engine=\"" + run_engine + "\"");
             return run_scene(run);
+        }
         if (compare_cmd->parsed())
             return run_compare(compare);
     } catch (const InputError &e) {

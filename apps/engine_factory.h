@@ -9,6 +9,8 @@
 
 namespace armour {
 
+// The contact engines of this build (what `armour compare` sweeps). make_engine
+// also knows "free_body": no contacts, for coupled runs and tests of the fluid load.
 std::vector<std::string> available_engines();
 
 // Throws InputError naming run.engine for an engine this build does not have.

@@ -3,6 +3,7 @@
 
 #include "body_recorder.h"
 #include "clump_io.h"
+#include "coupled_run.h"
 #include "engine_factory.h"
 #include "scene_setup.h"
 #include "staged_output.h"
@@ -188,6 +189,10 @@ int run_scene(const RunRequest &r) {
     SceneSetup setup = build_scene(scene, r.cache.empty() ? default_cache_dir() : r.cache, true);
     if (r.out.empty())
         throw InputError("--out: an output directory is required");
+    if (scene.fluid)
+        return run_coupled(r, scene, setup);
+    if (r.np != 0)
+        throw InputError("--np: only for scenes with a [fluid] table (MPI ranks of interFoam)");
 
     // Everything is checked before the output folder is touched.
     const fs::path out = fs::absolute(r.out);

@@ -1,4 +1,4 @@
-// `armour run SCENE --out DIR [--set key=value ...]`.
+// `armour run SCENE --out DIR [--set key=value ...] [--np N]`.
 #pragma once
 
 #include <string>
@@ -11,6 +11,7 @@ struct RunRequest {
     std::string out;
     std::vector<std::string> overrides; // --set key=value
     std::string cache;                  // clump cache folder; empty = default
+    int np = 0;                         // MPI ranks of a coupled run; 0 = the scene's fluid.np
 };
 
 // Returns the exit status (0 on success); throws InputError before anything

@@ -33,9 +33,11 @@ constexpr std::string_view kSetSource = "--set";
 
 const std::vector<std::string> kRootKeys = {"name",     "run",           "contact", "analysis",
                                             "material", "material_pair", "unit",    "wall",
-                                            "body",     "drop",          "pattern"};
+                                            "body",     "drop",          "pattern", "fluid"};
 // Sections that are one table ([run]) rather than an array of tables ([[unit]]).
-const std::set<std::string> kSingleSections = {"run", "contact", "analysis"};
+const std::set<std::string> kSingleSections = {"run", "contact", "analysis", "fluid"};
+// Analyses that measure the fluid's load or its effect: they need a [fluid].
+const std::set<std::string> kFluidAnalyses = {"buoyancy", "float", "still"};
 
 const std::vector<std::string> kUnitCommonKeys = {"name",       "shape",       "density", "spheres",
                                                   "tol_volume", "tol_surface", "method",  "material"};
@@ -74,6 +76,10 @@ const std::map<std::string, std::vector<std::string>> &section_keys() {
           "fixed_rotation"}},
         {"drop", {"unit", "count", "min", "max", "seed"}},
         {"pattern", {"unit", "wall", "rows", "columns", "spacing", "gap"}},
+        {"fluid",
+         {"case", "water_level", "cells", "cell_size", "penalty", "mask", "smoothing_cells", "added_mass",
+          "np", "fluid_density", "air_density", "viscosity", "air_viscosity", "max_courant", "max_time_step",
+          "write_interval"}},
     };
     return keys;
 }
@@ -470,7 +476,7 @@ std::string vec_text(const Eigen::Ref<const Eigen::VectorXd> &v) {
 void read_run(const Table &root, Scene &s) {
     const Table run = root.section("run");
     run.only(section_keys().at("run"));
-    s.engine = run.choice("engine", s.engine, {"liggghts", "bullet"});
+    s.engine = run.choice("engine", s.engine, {"liggghts", "bullet", "free_body"});
     s.duration = run.num("duration", s.duration, "s");
     run.check(s.duration > 0, "duration", "must be > 0 s", s.duration);
     s.output_interval = run.num("output_interval", s.output_interval, "s");
@@ -500,7 +506,11 @@ void read_contact_and_analysis(const Table &root, Scene &s) {
 
     const Table analysis = root.section("analysis");
     analysis.only(section_keys().at("analysis"));
-    s.analysis = analysis.choice("kind", s.analysis, {"none", "tilt", "slope", "bounce"});
+    s.analysis = analysis.choice("kind", s.analysis,
+                                 {"none", "tilt", "slope", "bounce", "buoyancy", "float", "still"});
+    if (kFluidAnalyses.count(s.analysis) && !root.has("fluid"))
+        analysis.fail("kind",
+                      "kind " + quote(s.analysis) + " measures the fluid: the scene needs a [fluid] table");
     if (s.analysis == "tilt")
         analysis.require("tilt_rate", " for kind \"tilt\"");
     s.tilt_rate = analysis.num("tilt_rate", s.tilt_rate, "deg/s");
@@ -673,6 +683,78 @@ void read_walls(const Table &root, Scene &s) {
         w.material = material_of(t, s.materials);
         s.walls.push_back(w);
     }
+}
+
+void read_fluid(const Table &root, Scene &s) {
+    if (!root.has("fluid"))
+        return;
+    const Table t = root.section("fluid");
+    t.only(section_keys().at("fluid"));
+    SceneFluid f;
+    f.case_name = t.str("case", f.case_name);
+    if (f.case_name.empty() || f.case_name.find('/') != std::string::npos || f.case_name[0] == '.')
+        t.fail("case",
+               "must name a template folder in foam_cases/, e.g. \"tank\" (got " + quote(f.case_name) + ")");
+    t.require("water_level", " (z of the still-water surface, m)");
+    f.water_level = t.num("water_level", 0.0, "m");
+    t.check(f.water_level > s.domain_min.z() && f.water_level < s.domain_max.z(), "water_level",
+            "must lie inside run.domain_min.z .. run.domain_max.z = (" + number(s.domain_min.z()) + ", " +
+                number(s.domain_max.z()) + ") m",
+            f.water_level);
+    if (t.has("cells") == t.has("cell_size"))
+        t.fail(t.has("cells") ? "cell_size" : "cells",
+               t.has("cells") ? "give either cells or cell_size, not both"
+                              : "missing required key: give cells = [nx, ny, nz] or cell_size (m)");
+    const Eigen::Vector3d extent = s.domain_max - s.domain_min;
+    if (t.has("cells")) {
+        const toml::node &n = *t.node("cells");
+        const toml::array *a = n.as_array();
+        const std::string rule = "must be an array of 3 integers [nx, ny, nz], each >= 1";
+        if (!a || a->size() != 3)
+            t.fail("cells",
+                   rule + " (got " + (a ? std::to_string(a->size()) + " entries" : type_name(n)) + ")");
+        for (std::size_t i = 0; i < 3; ++i) {
+            const toml::node &e = *a->get(i);
+            if (!e.is_integer() || e.as_integer()->get() < 1 || e.as_integer()->get() > 100000)
+                t.fail("cells", rule + " (entry " + std::to_string(i) + " is " + type_name(e) + ")");
+            f.cells[i] = static_cast<int>(e.as_integer()->get());
+        }
+    } else {
+        f.cell_size = t.num("cell_size", 0.0, "m");
+        t.check(f.cell_size > 0 && f.cell_size <= extent.minCoeff(), "cell_size",
+                "must be in (0, " + number(extent.minCoeff()) + "] m (the run domain's smallest extent)",
+                f.cell_size);
+        for (int i = 0; i < 3; ++i)
+            f.cells[i] = std::max(1, static_cast<int>(std::lround(extent[i] / f.cell_size)));
+    }
+    f.penalty = t.num("penalty", f.penalty, "1/s");
+    t.check(f.penalty > 0, "penalty", "must be > 0 1/s", f.penalty);
+    f.mask = t.choice("mask", f.mask, {"exact", "spheres"});
+    f.smoothing_cells = t.num("smoothing_cells", f.smoothing_cells);
+    t.check(f.smoothing_cells > 0 && f.smoothing_cells <= 4, "smoothing_cells", "must be in (0, 4] cells",
+            f.smoothing_cells);
+    f.added_mass = t.num("added_mass", f.added_mass);
+    t.check(f.added_mass >= 0, "added_mass", "must be >= 0", f.added_mass);
+    f.np = t.count("np", f.np, 1);
+    f.fluid_density = t.num("fluid_density", f.fluid_density, "kg/m^3");
+    t.check(f.fluid_density > 0, "fluid_density", "must be > 0 kg/m^3", f.fluid_density);
+    f.air_density = t.num("air_density", f.air_density, "kg/m^3");
+    t.check(f.air_density > 0 && f.air_density < f.fluid_density, "air_density",
+            "must be in (0, fluid_density = " + number(f.fluid_density) + ") kg/m^3", f.air_density);
+    f.viscosity = t.num("viscosity", f.viscosity, "m^2/s");
+    t.check(f.viscosity > 0, "viscosity", "must be > 0 m^2/s (kinematic)", f.viscosity);
+    f.air_viscosity = t.num("air_viscosity", f.air_viscosity, "m^2/s");
+    t.check(f.air_viscosity > 0, "air_viscosity", "must be > 0 m^2/s (kinematic)", f.air_viscosity);
+    // interFoam's interface capturing (MULES) is explicit: it needs Co <= 1.
+    f.max_courant = t.num("max_courant", f.max_courant);
+    t.check(f.max_courant > 0 && f.max_courant <= 1, "max_courant", "must be in (0, 1]", f.max_courant);
+    f.max_time_step = t.num("max_time_step", std::min(f.max_time_step, s.output_interval), "s");
+    t.check(f.max_time_step > 0 && f.max_time_step <= s.output_interval, "max_time_step",
+            "must be in (0, run.output_interval = " + number(s.output_interval) + "] s", f.max_time_step);
+    f.write_interval = t.num("write_interval", s.duration, "s");
+    t.check(f.write_interval > 0 && f.write_interval <= s.duration, "write_interval",
+            "must be in (0, run.duration = " + number(s.duration) + "] s", f.write_interval);
+    s.fluid = f;
 }
 
 std::string unit_of(const Table &t, const Scene &s) {
@@ -908,6 +990,7 @@ Scene load_scene(const std::string &path, const std::vector<std::string> &overri
     s.name = root.name("name");
     read_run(root, s);
     read_contact_and_analysis(root, s);
+    read_fluid(root, s);
     read_materials(root, s);
     read_units(root, s);
     read_walls(root, s);
@@ -941,6 +1024,29 @@ std::string resolved_scene_toml(const Scene &s) {
       << "kind = " << quote(s.analysis) << "\n"
       << "tilt_rate = " << f(s.tilt_rate) << " # deg/s\n"
       << "tilt_max = " << f(s.tilt_max) << " # deg\n";
+    if (s.fluid) {
+        const SceneFluid &fl = *s.fluid;
+        o << "\n[fluid]\n"
+          << "case = " << quote(fl.case_name) << "\n"
+          << "water_level = " << f(fl.water_level) << " # m\n";
+        if (fl.cell_size > 0)
+            o << "cell_size = " << f(fl.cell_size) << " # m, giving cells " << fl.cells[0] << " x "
+              << fl.cells[1] << " x " << fl.cells[2] << "\n";
+        else
+            o << "cells = [" << fl.cells[0] << ", " << fl.cells[1] << ", " << fl.cells[2] << "]\n";
+        o << "penalty = " << f(fl.penalty) << " # 1/s\n"
+          << "mask = " << quote(fl.mask) << "\n"
+          << "smoothing_cells = " << f(fl.smoothing_cells) << "\n"
+          << "added_mass = " << f(fl.added_mass) << "\n"
+          << "np = " << fl.np << "\n"
+          << "fluid_density = " << f(fl.fluid_density) << " # kg/m^3\n"
+          << "air_density = " << f(fl.air_density) << " # kg/m^3\n"
+          << "viscosity = " << f(fl.viscosity) << " # m^2/s\n"
+          << "air_viscosity = " << f(fl.air_viscosity) << " # m^2/s\n"
+          << "max_courant = " << f(fl.max_courant) << "\n"
+          << "max_time_step = " << f(fl.max_time_step) << " # s\n"
+          << "write_interval = " << f(fl.write_interval) << " # s\n";
+    }
     for (const auto &m : s.materials)
         o << "\n[[material]]\n"
           << "name = " << quote(m.name) << "\n"

@@ -101,14 +101,35 @@ struct ScenePattern {
     double gap = 0.01;    // m
 };
 
+// A coupled fluid run (interFoam through the armourCoupling plugin): the
+// mesh box is run.domain_min/max, water below water_level at the start.
+struct SceneFluid {
+    std::string case_name = "tank";      // template folder in foam_cases/ (key `case`)
+    double water_level = 0.0;            // m, z of the still-water surface
+    std::array<int, 3> cells{{0, 0, 0}}; // blockMesh cells along x, y, z (from cell_size when given)
+    double cell_size = 0.0;              // m; 0 = `cells` was given
+    double penalty = 1e5;                // K [1/s] of -rho K chi (U - U_body)
+    std::string mask = "exact";          // exact | spheres
+    double smoothing_cells = 1.0;        // width of the chi ramp [cells]
+    double added_mass = 0.0;             // C_a [-]
+    int np = 1;                          // MPI ranks of interFoam
+    double fluid_density = 1000.0;       // kg/m^3, water
+    double air_density = 1.0;            // kg/m^3
+    double viscosity = 1e-6;             // m^2/s, water, kinematic
+    double air_viscosity = 1.48e-5;      // m^2/s, air, kinematic
+    double max_courant = 0.5;            // interFoam maxCo and maxAlphaCo
+    double max_time_step = 0.005;        // s, largest fluid step (at most run.output_interval)
+    double write_interval = 0.0;         // s between field writes (the parser's default: run.duration)
+};
+
 struct Scene {
     std::string file; // path as given
     std::string name;
     // [run]
-    std::string engine = "liggghts";
-    double duration = 1.0;         // s
-    double output_interval = 0.01; // s
-    double time_step = 0.0;        // s; 0 = automatic
+    std::string engine = "liggghts"; // liggghts | bullet | free_body
+    double duration = 1.0;           // s
+    double output_interval = 0.01;   // s
+    double time_step = 0.0;          // s; 0 = automatic
     bool force_time_step = false;
     Eigen::Vector3d gravity = Eigen::Vector3d(0, 0, -9.81);                                          // m/s^2
     Eigen::Vector3d domain_min = Eigen::Vector3d(-5, -5, -1), domain_max = Eigen::Vector3d(5, 5, 5); // m
@@ -116,7 +137,7 @@ struct Scene {
     std::string contact_model = "hertz";  // hertz | hooke
     double characteristic_velocity = 1.0; // m/s
     // [analysis]: what the summary reports
-    std::string analysis = "none"; // none | tilt | slope | bounce
+    std::string analysis = "none"; // none | tilt | slope | bounce | buoyancy | float | still
     double tilt_rate = 0.0;        // deg/s, tilt: gravity turns about +y at this rate
     double tilt_max = 60.0;        // deg, tilt: stop here
     std::vector<SceneMaterial> materials;
@@ -126,6 +147,7 @@ struct Scene {
     std::vector<SceneBody> bodies;
     std::vector<SceneDrop> drops;
     std::vector<ScenePattern> patterns;
+    std::optional<SceneFluid> fluid; // [fluid]: a coupled interFoam run
 };
 
 // `overrides` are "dotted.key=toml_value" strings (from --set).

@@ -1,6 +1,8 @@
 // Bullet adapter: the only translation unit that includes Bullet (double precision).
 #include "bullet_engine.h"
 
+#include "materials.h"
+
 #include "time_step.h"
 
 // Bullet's headers come in as SYSTEM (PkgConfig::BULLET), so they raise no warnings.
@@ -230,12 +232,7 @@ class BulletEngine final : public RigidBodyEngine {
   public:
     BulletEngine(const EngineSettings &settings, const BulletOptions &options)
         : settings_(settings), options_(options) {
-        if (settings_.materials.empty())
-            throw InputError("material: at least one material is needed");
-        for (const auto &m : settings_.materials)
-            check_material(m);
-        for (const auto &p : settings_.pairs)
-            check_pair(p);
+        check_materials(settings_);
         if (!(settings_.domain_max.array() > settings_.domain_min.array()).all())
             throw InputError("run.domain: domain_max must exceed domain_min in x, y and z");
         if (!settings_.gravity.allFinite())
@@ -533,56 +530,16 @@ class BulletEngine final : public RigidBodyEngine {
         std::unique_ptr<btRigidBody> rb;
     };
 
-    static void check_material(const Material &m) {
-        auto bad = [&](const std::string &key, const std::string &rule) {
-            throw InputError("material '" + m.name + "': " + key + " " + rule);
-        };
-        if (!(m.youngs_modulus > 0.0))
-            bad("youngs_modulus", "must be > 0 Pa");
-        if (!(m.poisson_ratio > -1.0 && m.poisson_ratio < 0.5))
-            bad("poisson_ratio", "must be in (-1, 0.5)");
-        if (!(m.restitution > 0.0 && m.restitution <= 1.0))
-            bad("restitution", "must be in (0, 1]");
-        if (!(m.friction >= 0.0) || !std::isfinite(m.friction))
-            bad("friction", "must be >= 0");
-        if (!(m.rolling_friction >= 0.0) || !std::isfinite(m.rolling_friction))
-            bad("rolling_friction", "must be >= 0");
-    }
-
-    void check_pair(const MaterialPair &p) const {
-        const std::string what = "material pair '" + p.a + "'/'" + p.b + "'";
-        auto known = [&](const std::string &name) {
-            for (const auto &m : settings_.materials)
-                if (m.name == name)
-                    return true;
-            return false;
-        };
-        if (!known(p.a) || !known(p.b))
-            throw InputError(what + ": unknown material name");
-        if (p.restitution >= 0.0 && !(p.restitution > 0.0 && p.restitution <= 1.0))
-            throw InputError(what + ": restitution must be in (0, 1]");
-        if (!std::isfinite(p.friction) || !std::isfinite(p.rolling_friction) || !std::isfinite(p.restitution))
-            throw InputError(what + ": values must be finite");
-    }
-
     void build_pair_table() {
-        const auto &mats = settings_.materials;
-        table_.n = static_cast<int>(mats.size());
-        auto value = [&](const Material &a, const Material &b, double Material::*field,
-                         double MaterialPair::*override_field) {
-            double v = std::min(a.*field, b.*field);
-            for (const auto &p : settings_.pairs)
-                if (p.*override_field >= 0.0 &&
-                    ((p.a == a.name && p.b == b.name) || (p.a == b.name && p.b == a.name)))
-                    v = p.*override_field;
-            return v;
-        };
-        for (const auto &a : mats)
-            for (const auto &b : mats) {
-                table_.friction.push_back(value(a, b, &Material::friction, &MaterialPair::friction));
-                table_.restitution.push_back(value(a, b, &Material::restitution, &MaterialPair::restitution));
-                table_.rolling.push_back(
-                    value(a, b, &Material::rolling_friction, &MaterialPair::rolling_friction));
+        table_.n = static_cast<int>(settings_.materials.size());
+        for (int a = 0; a < table_.n; ++a)
+            for (int b = 0; b < table_.n; ++b) {
+                table_.friction.push_back(
+                    pair_value(settings_, a, b, &Material::friction, &MaterialPair::friction));
+                table_.restitution.push_back(
+                    pair_value(settings_, a, b, &Material::restitution, &MaterialPair::restitution));
+                table_.rolling.push_back(pair_value(settings_, a, b, &Material::rolling_friction,
+                                                    &MaterialPair::rolling_friction));
             }
     }
 

@@ -1,6 +1,7 @@
 // LIGGGHTS adapter: the only translation unit that includes LIGGGHTS.
 #include "liggghts_engine.h"
 
+#include "materials.h"
 #include "stl_io.h"
 #include "time_step.h"
 
@@ -54,10 +55,7 @@ void report_liggghts_exit() {
 class LiggghtsEngine final : public RigidBodyEngine {
   public:
     explicit LiggghtsEngine(const EngineSettings &settings) : settings_(settings) {
-        if (settings_.materials.empty())
-            throw InputError("material: at least one material is needed");
-        for (const auto &m : settings_.materials)
-            check_material(m);
+        check_materials(settings_);
         if (!(settings_.domain_max.array() > settings_.domain_min.array()).all())
             throw InputError("run.domain: domain_max must exceed domain_min in x, y and z");
         work_dir_ = settings_.work_dir.empty() ? fs::temp_directory_path() / "armour-liggghts"
@@ -146,22 +144,6 @@ class LiggghtsEngine final : public RigidBodyEngine {
         int tag = -1;
     };
 
-    static void check_material(const Material &m) {
-        auto bad = [&](const std::string &key, const std::string &rule) {
-            throw InputError("material '" + m.name + "': " + key + " " + rule);
-        };
-        if (!(m.youngs_modulus > 0.0))
-            bad("youngs_modulus", "must be > 0 Pa");
-        if (!(m.poisson_ratio > -1.0 && m.poisson_ratio < 0.5))
-            bad("poisson_ratio", "must be in (-1, 0.5)");
-        if (!(m.restitution > 0.0 && m.restitution <= 1.0))
-            bad("restitution", "must be in (0, 1]");
-        if (!(m.friction >= 0.0))
-            bad("friction", "must be >= 0");
-        if (!(m.rolling_friction >= 0.0))
-            bad("rolling_friction", "must be >= 0");
-    }
-
     void require_setup_phase(const char *what) const {
         if (lmp_)
             throw std::logic_error(std::string("LiggghtsEngine::") + what + " after the first advance()");
@@ -199,17 +181,10 @@ class LiggghtsEngine final : public RigidBodyEngine {
     std::string pair_matrix(double Material::*field, double MaterialPair::*override_field) const {
         std::ostringstream s;
         s.precision(17);
-        for (const auto &a : settings_.materials)
-            for (const auto &b : settings_.materials) {
-                // Without an override the pair takes the smaller value, so a
-                // slippery or dead material dominates, as a coastal engineer expects.
-                double value = std::min(a.*field, b.*field);
-                for (const auto &p : settings_.pairs)
-                    if (p.*override_field >= 0.0 &&
-                        ((p.a == a.name && p.b == b.name) || (p.a == b.name && p.b == a.name)))
-                        value = p.*override_field;
-                s << value << ' ';
-            }
+        const int n = static_cast<int>(settings_.materials.size());
+        for (int a = 0; a < n; ++a)
+            for (int b = 0; b < n; ++b)
+                s << pair_value(settings_, a, b, field, override_field) << ' ';
         return s.str();
     }
 

@@ -1,5 +1,7 @@
 #include "time_step.h"
 
+#include "materials.h"
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -13,14 +15,6 @@ constexpr double kPi = 3.14159265358979323846;
 double effective_modulus(const Material &a, const Material &b) {
     return 1.0 / ((1.0 - a.poisson_ratio * a.poisson_ratio) / a.youngs_modulus +
                   (1.0 - b.poisson_ratio * b.poisson_ratio) / b.youngs_modulus);
-}
-
-double pair_restitution(const EngineSettings &s, int a, int b) {
-    for (const auto &p : s.pairs)
-        if (p.restitution >= 0.0 && ((p.a == s.materials[a].name && p.b == s.materials[b].name) ||
-                                     (p.b == s.materials[a].name && p.a == s.materials[b].name)))
-            return p.restitution;
-    return std::min(s.materials[a].restitution, s.materials[b].restitution);
 }
 
 struct Contact {
@@ -67,13 +61,15 @@ TimeStepReport compute_time_step(const EngineSettings &settings, const std::vect
         for (const auto &other : units) {
             const Material &mo = settings.materials.at(other.material);
             const Contact c = contact(settings.contact, v, effective_modulus(mat, mo), 0.5 * r, 0.5 * m,
-                                      pair_restitution(settings, unit.material, other.material));
+                                      pair_value(settings, unit.material, other.material,
+                                                 &Material::restitution, &MaterialPair::restitution));
             critical = std::min(critical, c.critical);
             duration = std::min(duration, c.duration);
         }
         for (int w : wall_materials) {
-            const Contact c = contact(settings.contact, v, effective_modulus(mat, settings.materials.at(w)),
-                                      r, m, pair_restitution(settings, unit.material, w));
+            const Contact c = contact(
+                settings.contact, v, effective_modulus(mat, settings.materials.at(w)), r, m,
+                pair_value(settings, unit.material, w, &Material::restitution, &MaterialPair::restitution));
             critical = std::min(critical, c.critical);
             duration = std::min(duration, c.duration);
         }

@@ -1,41 +1,56 @@
 #!/usr/bin/env bash
-# run_case.sh [--np N] [--plugin LIB] CASE_TEMPLATE OUTDIR
+# run_case.sh [--np N] [--plugin LIB] [--waves LIB] CASE_TEMPLATE OUTDIR
 #
 # Copies an interFoam case template to OUTDIR, fills its placeholders
-# (@ARMOUR_PLUGIN@: the plugin's absolute path; @NP@: ranks), then runs
+# (@ARMOUR_PLUGIN@: the plugin's absolute path; @ARMOUR_WAVES@: the wave
+# library's; @NP@: ranks), then runs
 # blockMesh, setFields and interFoam (serial, or decomposePar + mpirun with
 # --np N). Each tool logs to OUTDIR/log.<tool>. Any failure stops the script
 # with the tool's FOAM FATAL line on stderr and exit status 1.
 #
 # The plugin is --plugin LIB, else $ARMOUR_FOAM_PLUGIN, else the first
-# build*/coupling/openfoam/libarmourFoamCoupling.so of this checkout.
+# build*/coupling/openfoam/libarmourFoamCoupling.so of this checkout. It is
+# needed only when the controlDict names @ARMOUR_PLUGIN@; likewise the wave
+# library (--waves LIB, else $ARMOUR_WAVES_LIB, else the first
+# build*/coupling/openfoam/waves/libarmourWaves.so) only for @ARMOUR_WAVES@.
 set -euo pipefail
 
 die() { echo "run_case: $*" >&2; exit 1; }
 
 np=1
 plugin="${ARMOUR_FOAM_PLUGIN:-}"
+waves="${ARMOUR_WAVES_LIB:-}"
 while [ $# -gt 0 ]; do
     case "$1" in
         --np) [ $# -ge 2 ] || die "--np needs a number"; np="$2"; shift 2 ;;
         --plugin) [ $# -ge 2 ] || die "--plugin needs a path"; plugin="$2"; shift 2 ;;
-        -h|--help) sed -n '2,12p' "$0"; exit 0 ;;
+        --waves) [ $# -ge 2 ] || die "--waves needs a path"; waves="$2"; shift 2 ;;
+        -h|--help) sed -n '2,15p' "$0"; exit 0 ;;
         -*) die "unknown option $1" ;;
         *) break ;;
     esac
 done
-[ $# -eq 2 ] || die "usage: run_case.sh [--np N] [--plugin LIB] CASE_TEMPLATE OUTDIR"
+[ $# -eq 2 ] || die "usage: run_case.sh [--np N] [--plugin LIB] [--waves LIB] CASE_TEMPLATE OUTDIR"
 template="$1"
 out="$2"
 [[ "$np" =~ ^[1-9][0-9]*$ ]] || die "--np must be a positive integer, got '$np'"
 [ -f "$template/system/controlDict" ] || die "$template is not a case (no system/controlDict)"
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-if [ -z "$plugin" ]; then
-    plugin="$(compgen -G "$root/build*/coupling/openfoam/libarmourFoamCoupling.so" | head -n1 || true)"
+if grep -q '@ARMOUR_PLUGIN@' "$template/system/controlDict"; then
+    if [ -z "$plugin" ]; then
+        plugin="$(compgen -G "$root/build*/coupling/openfoam/libarmourFoamCoupling.so" | head -n1 || true)"
+    fi
+    { [ -n "$plugin" ] && [ -f "$plugin" ]; } || die "plugin libarmourFoamCoupling.so not found (build it, or pass --plugin)"
+    plugin="$(cd "$(dirname "$plugin")" && pwd)/$(basename "$plugin")"
 fi
-{ [ -n "$plugin" ] && [ -f "$plugin" ]; } || die "plugin libarmourFoamCoupling.so not found (build it, or pass --plugin)"
-plugin="$(cd "$(dirname "$plugin")" && pwd)/$(basename "$plugin")"
+if grep -q '@ARMOUR_WAVES@' "$template/system/controlDict"; then
+    if [ -z "$waves" ]; then
+        waves="$(compgen -G "$root/build*/coupling/openfoam/waves/libarmourWaves.so" | head -n1 || true)"
+    fi
+    { [ -n "$waves" ] && [ -f "$waves" ]; } || die "libarmourWaves.so not found (build it, or pass --waves)"
+    waves="$(cd "$(dirname "$waves")" && pwd)/$(basename "$waves")"
+fi
 
 if [ -e "$out" ] && [ -n "$(ls -A "$out" 2>/dev/null)" ]; then
     die "$out exists and is not empty"
@@ -43,7 +58,7 @@ fi
 mkdir -p "$out"
 cp -r "$template"/. "$out"/
 out="$(cd "$out" && pwd)"
-sed -i "s|@ARMOUR_PLUGIN@|$plugin|g" "$out/system/controlDict"
+sed -i -e "s|@ARMOUR_PLUGIN@|$plugin|g" -e "s|@ARMOUR_WAVES@|$waves|g" "$out/system/controlDict"
 [ -f "$out/system/decomposeParDict" ] && sed -i "s|@NP@|$np|g" "$out/system/decomposeParDict"
 for f in "$out"/0/*.orig; do
     [ -e "$f" ] && cp "$f" "${f%.orig}"

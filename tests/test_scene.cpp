@@ -328,7 +328,50 @@ void expect_same(const Scene &a, const Scene &b) {
         EXPECT_EQ(x.spacing, y.spacing);
         EXPECT_EQ(x.gap, y.gap);
     }
+    ASSERT_EQ(a.fluid.has_value(), b.fluid.has_value());
+    if (a.fluid) {
+        const auto &x = *a.fluid, &y = *b.fluid;
+        EXPECT_EQ(x.case_name, y.case_name);
+        EXPECT_EQ(x.water_level, y.water_level);
+        EXPECT_EQ(x.cells, y.cells);
+        EXPECT_EQ(x.cell_size, y.cell_size);
+        EXPECT_EQ(x.penalty, y.penalty);
+        EXPECT_EQ(x.mask, y.mask);
+        EXPECT_EQ(x.smoothing_cells, y.smoothing_cells);
+        EXPECT_EQ(x.added_mass, y.added_mass);
+        EXPECT_EQ(x.np, y.np);
+        EXPECT_EQ(x.fluid_density, y.fluid_density);
+        EXPECT_EQ(x.air_density, y.air_density);
+        EXPECT_EQ(x.viscosity, y.viscosity);
+        EXPECT_EQ(x.air_viscosity, y.air_viscosity);
+        EXPECT_EQ(x.max_courant, y.max_courant);
+        EXPECT_EQ(x.max_time_step, y.max_time_step);
+        EXPECT_EQ(x.write_interval, y.write_interval);
+    }
 }
+
+// Every [fluid] key, with values that differ from the defaults.
+const char *kFluid = R"(
+[analysis]
+kind = "buoyancy"
+
+[fluid]
+case = "buoyancy_cube"
+water_level = 0.8
+cells = [12, 10, 8]
+penalty = 2e5
+mask = "spheres"
+smoothing_cells = 1.5
+added_mass = 0.5
+np = 2
+fluid_density = 1025
+air_density = 1.2
+viscosity = 1.2e-6
+air_viscosity = 1.5e-5
+max_courant = 0.4
+max_time_step = 0.002
+write_interval = 0.5
+)";
 
 } // namespace
 
@@ -650,6 +693,24 @@ TEST_F(SceneFile, ResolvedSceneRoundTrips) {
 }
 
 // The shipped examples load and say what their comments say.
+TEST(ExampleScenes, CoupledScenesLoadAsDescribed) {
+    const fs::path dir = fs::path(__FILE__).parent_path().parent_path() / "scenes";
+    const Scene b = load_scene((dir / "buoyancy_cube.toml").string());
+    ASSERT_TRUE(b.fluid.has_value());
+    EXPECT_EQ(b.analysis, "buoyancy");
+    // Fully submerged: the top face below the water level.
+    EXPECT_LT(b.bodies[0].position.z() + 0.5 * b.units[0].size, b.fluid->water_level);
+    const Scene f = load_scene((dir / "floating_cube.toml").string());
+    EXPECT_EQ(f.analysis, "float");
+    EXPECT_DOUBLE_EQ(f.units[0].density, 500.0);
+    // Released with its bottom face on the surface.
+    EXPECT_NEAR(f.bodies[0].position.z() - 0.5 * f.units[0].size, f.fluid->water_level, 1e-12);
+    const Scene s = load_scene((dir / "still_water_cube.toml").string());
+    EXPECT_EQ(s.analysis, "still");
+    EXPECT_DOUBLE_EQ(s.units[0].density, 2400.0);
+    EXPECT_NEAR(s.bodies[0].position.z() - 0.5 * s.units[0].size, s.walls[0].point.z(), 1e-12);
+}
+
 TEST(ExampleScenes, LoadAsDescribed) {
     const fs::path dir = fs::path(__FILE__).parent_path().parent_path() / "scenes";
     const Scene drop = load_scene((dir / "drop_bounce.toml").string());
@@ -679,4 +740,96 @@ TEST(ExampleScenes, LoadAsDescribed) {
         EXPECT_DOUBLE_EQ(slope->cot, 1.5);
         EXPECT_DOUBLE_EQ(slope->toe_height, 0.1);
     }
+}
+
+TEST_F(SceneFile, FluidTableReadsEveryKey) {
+    const Scene s = load_scene(write(std::string(kMinimal) + kFluid));
+    ASSERT_TRUE(s.fluid.has_value());
+    const auto &f = *s.fluid;
+    EXPECT_EQ(s.analysis, "buoyancy");
+    EXPECT_EQ(f.case_name, "buoyancy_cube");
+    EXPECT_DOUBLE_EQ(f.water_level, 0.8);
+    EXPECT_EQ(f.cells, (std::array<int, 3>{{12, 10, 8}}));
+    EXPECT_EQ(f.cell_size, 0.0);
+    EXPECT_DOUBLE_EQ(f.penalty, 2e5);
+    EXPECT_EQ(f.mask, "spheres");
+    EXPECT_DOUBLE_EQ(f.smoothing_cells, 1.5);
+    EXPECT_DOUBLE_EQ(f.added_mass, 0.5);
+    EXPECT_EQ(f.np, 2);
+    EXPECT_DOUBLE_EQ(f.fluid_density, 1025);
+    EXPECT_DOUBLE_EQ(f.air_density, 1.2);
+    EXPECT_DOUBLE_EQ(f.viscosity, 1.2e-6);
+    EXPECT_DOUBLE_EQ(f.air_viscosity, 1.5e-5);
+    EXPECT_DOUBLE_EQ(f.max_courant, 0.4);
+    EXPECT_DOUBLE_EQ(f.max_time_step, 0.002);
+    EXPECT_DOUBLE_EQ(f.write_interval, 0.5);
+    EXPECT_FALSE(load_scene(write(kMinimal)).fluid.has_value());
+}
+
+TEST_F(SceneFile, FluidDefaultsAndCellSize) {
+    // Domain 10 x 10 x 6 m (the [run] defaults) at 0.5 m cells.
+    const Scene s = load_scene(write(std::string(kMinimal) + "[fluid]\nwater_level = 1\ncell_size = 0.5\n"));
+    ASSERT_TRUE(s.fluid.has_value());
+    const auto &f = *s.fluid;
+    EXPECT_EQ(f.case_name, "tank");
+    EXPECT_EQ(f.cells, (std::array<int, 3>{{20, 20, 12}}));
+    EXPECT_DOUBLE_EQ(f.cell_size, 0.5);
+    EXPECT_DOUBLE_EQ(f.penalty, 1e5);
+    EXPECT_EQ(f.mask, "exact");
+    EXPECT_DOUBLE_EQ(f.smoothing_cells, 1.0);
+    EXPECT_DOUBLE_EQ(f.added_mass, 0.0);
+    EXPECT_EQ(f.np, 1);
+    EXPECT_DOUBLE_EQ(f.fluid_density, 1000.0);
+    EXPECT_DOUBLE_EQ(f.air_density, 1.0);
+    EXPECT_DOUBLE_EQ(f.viscosity, 1e-6);
+    EXPECT_DOUBLE_EQ(f.air_viscosity, 1.48e-5);
+    EXPECT_DOUBLE_EQ(f.max_courant, 0.5);
+    EXPECT_DOUBLE_EQ(f.max_time_step, 0.005);
+    EXPECT_DOUBLE_EQ(f.write_interval, s.duration);
+}
+
+TEST_F(SceneFile, FluidErrorsNameLineAndKey) {
+    const std::string base = std::string(kMinimal) + "[fluid]\n"; // [fluid] on line 14
+    const auto at = [&](const std::string &lines) { return write(base + lines); };
+    expect_error(at("cells = [4, 4, 4]\n"), 14, "fluid.water_level", "missing required key");
+    expect_error(at("water_level = 9\ncells = [4, 4, 4]\n"), 15, "fluid.water_level", "must lie inside");
+    expect_error(at("water_level = 1\n"), 14, "fluid.cells", "give cells = [nx, ny, nz] or cell_size");
+    expect_error(at("water_level = 1\ncells = [4, 4, 4]\ncell_size = 0.1\n"), 17, "fluid.cell_size",
+                 "not both");
+    expect_error(at("water_level = 1\ncells = [4, 0, 4]\n"), 16, "fluid.cells", "entry 1 is integer 0");
+    expect_error(at("water_level = 1\ncells = [4, 4]\n"), 16, "fluid.cells", "got 2 entries");
+    expect_error(at("water_level = 1\ncell_size = 20\n"), 16, "fluid.cell_size", "smallest extent");
+    expect_error(at("water_level = 1\ncells = [4, 4, 4]\nmax_courant = 1.5\n"), 17, "fluid.max_courant",
+                 "(0, 1]");
+    expect_error(at("water_level = 1\ncells = [4, 4, 4]\npenalty = 0\n"), 17, "fluid.penalty", "> 0");
+    expect_error(at("water_level = 1\ncells = [4, 4, 4]\nmask = \"clump\"\n"), 17, "fluid.mask",
+                 "\"exact\", \"spheres\"");
+    expect_error(at("water_level = 1\ncells = [4, 4, 4]\nnp = 0\n"), 17, "fluid.np", "integer in [1,");
+    expect_error(at("water_level = 1\ncells = [4, 4, 4]\nair_density = 2000\n"), 17, "fluid.air_density",
+                 "fluid_density");
+    expect_error(at("water_level = 1\ncells = [4, 4, 4]\nwrite_interval = 2\n"), 17, "fluid.write_interval",
+                 "run.duration");
+    expect_error(at("water_level = 1\ncells = [4, 4, 4]\nmax_time_step = 0.5\n"), 17, "fluid.max_time_step",
+                 "run.output_interval");
+    expect_error(at("water_level = 1\ncells = [4, 4, 4]\ncase = \"../x\"\n"), 17, "fluid.case",
+                 "template folder");
+    expect_error(at("water_level = 1\ncells = [4, 4, 4]\nwaterlevel = 1\n"), 17, "fluid.waterlevel",
+                 "did you mean 'water_level'?");
+    // Fluid analyses need the fluid.
+    const std::string p = write(std::string(kMinimal) + "[analysis]\nkind = \"float\"\n");
+    expect_error(p, 15, "analysis.kind", "needs a [fluid] table");
+}
+
+TEST_F(SceneFile, FluidRoundTripsAndOverrides) {
+    for (const std::string &fluid :
+         {std::string(kFluid), std::string("[fluid]\nwater_level = 0.3\ncell_size = 0.07\n")}) {
+        const Scene a = load_scene(write(std::string(kMinimal) + fluid), {"fluid.penalty=3.25e5"});
+        EXPECT_DOUBLE_EQ(a.fluid->penalty, 3.25e5);
+        const std::string resolved = armour::resolved_scene_toml(a);
+        const Scene b = load_scene(write(resolved, "resolved.toml"));
+        expect_same(a, b);
+    }
+    EXPECT_EQ(load_scene(write(kMinimal), {"fluid.water_level=1", "fluid.cells=[2, 2, 2]"}).fluid->cells[0],
+              2);
+    EXPECT_EQ(load_scene(write(kMinimal), {"run.engine=\"free_body\""}).engine, "free_body");
 }

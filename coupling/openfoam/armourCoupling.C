@@ -13,10 +13,14 @@
 #include "uniformDimensionedFields.H"
 
 // The armour side: plain C++ and Eigen, no OpenFOAM type crosses these.
+#include "body_recorder.h"
 #include "clump.h"
 #include "coupler.h"
+#include "engine_factory.h"
 #include "free_body_engine.h"
 #include "liggghts_engine.h"
+#include "scene.h"
+#include "scene_setup.h"
 #include "shapes.h"
 
 #include <array>
@@ -50,8 +54,18 @@ struct Foam::fv::armourCoupling::armourSide
     //- Owning body per cell at the last mask update, -1 outside all bodies
     std::vector<int> body;
 
-    //- Master only
+    //- Master only; optional with a scene
     std::ofstream csv;
+
+    //- Master only, scene mode: bodies.h5 + bodies.xdmf
+    std::unique_ptr<armour::BodyRecorder> recorder;
+
+    //- Fluid time of the next record [s], and the interval between records
+    double nextRecord = 0;
+    double recordInterval = 0;
+
+    //- Master only, scene mode: water volumes per record (fluid.csv)
+    std::ofstream fluidCsv;
 };
 
 
@@ -168,7 +182,7 @@ Foam::fv::armourCoupling::armourCoupling
 :
     option(name, modelType, dict, mesh),
     armour_(new armourSide),
-    penalty_(coeffs_.get<scalar>("penalty")),
+    penalty_(coeffs_.lookupOrDefault<scalar>("penalty", 0)),
     chi_
     (
         IOobject
@@ -199,6 +213,12 @@ Foam::fv::armourCoupling::armourCoupling
 {
     fieldNames_ = wordList(1, "U");
     applied_.setSize(fieldNames_.size(), false);
+
+    if (coeffs_.found("scene"))
+    {
+        constructFromScene(fileName(coeffs_.get<fileName>("scene")));
+        return;
+    }
 
     if (penalty_ <= 0)
     {
@@ -358,19 +378,11 @@ Foam::fv::armourCoupling::armourCoupling
 
     if (Pstream::master())
     {
-        const fileName csvName =
+        openCsv
+        (
             mesh.time().globalPath()
-           /coeffs_.lookupOrDefault<fileName>("csv", "armourBodies.csv");
-        armour_->csv.open(csvName);
-        if (!armour_->csv)
-        {
-            FatalErrorInFunction
-                << "cannot write " << csvName << exit(FatalError);
-        }
-        armour_->csv
-            << "time,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,"
-               "Fx,Fy,Fz,Mx,My,Mz,Sx,Sy,Sz,chiVolume,engineTime\n";
-        armour_->csv << std::setprecision(10);
+           /coeffs_.lookupOrDefault<fileName>("csv", "armourBodies.csv")
+        );
     }
 
     Info<< "    armourCoupling: " << armour_->names.size() << " bodies, engine "
@@ -384,6 +396,183 @@ Foam::fv::armourCoupling::~armourCoupling()
 
 
 // * * * * * * * * * * * * * * * Private Functions * * * * * * * * * * * * * //
+
+void Foam::fv::armourCoupling::constructFromScene(const fileName& scenePath)
+{
+    const Time& runTime = mesh_.time();
+    std::string engineName;
+    try
+    {
+        // Every rank reads the same resolved scene and builds the same
+        // engine: identical replicas fed with the same summed loads.
+        const armour::Scene scene = armour::load_scene(scenePath);
+        if (!scene.fluid)
+        {
+            FatalIOErrorInFunction(coeffs_)
+                << "scene " << scenePath << " has no [fluid] table"
+                << exit(FatalIOError);
+        }
+        const armour::SceneFluid& fluid = *scene.fluid;
+        penalty_ = fluid.penalty;
+        engineName = scene.engine;
+        if (scene.engine == "liggghts" && Pstream::parRun())
+        {
+            FatalIOErrorInFunction(coeffs_)
+                << "engine liggghts runs with serial interFoam only (it opens"
+                << " LIGGGHTS on MPI_COMM_WORLD); use free_body or bullet for"
+                << " parallel runs" << exit(FatalIOError);
+        }
+
+        // The fluid and the engine must feel the same gravity.
+        const Eigen::Vector3d gravity = toEigen
+        (
+            runTime.lookupObject<uniformDimensionedVectorField>("g").value()
+        );
+        if ((gravity - scene.gravity).norm() > 1e-9*scene.gravity.norm())
+        {
+            FatalIOErrorInFunction(coeffs_)
+                << "constant/g " << toFoam(gravity)
+                << " differs from the scene's run.gravity "
+                << toFoam(scene.gravity) << exit(FatalIOError);
+        }
+
+        const std::string cache =
+            coeffs_.lookupOrDefault<fileName>
+            (
+                "cache",
+                fileName(armour::default_cache_dir())
+            );
+        armour::SceneSetup setup = armour::build_scene(scene, cache, false);
+        setup.settings.work_dir = runTime.globalPath()/"armourEngine";
+        armour_->engine = armour::make_engine(scene.engine, setup.settings);
+        for (const armour::UnitTemplate& u : setup.units)
+        {
+            armour_->engine->add_template(u);
+        }
+        for (const armour::Wall& w : setup.walls)
+        {
+            armour_->engine->add_wall(w);
+        }
+        std::vector<int> bodyUnit;
+        for (const armour::BodyInit& b : setup.bodies)
+        {
+            armour_->engine->add_body(b);
+            bodyUnit.push_back(b.unit);
+            armour_->names.push_back
+            (
+                setup.units[b.unit].name + "_"
+              + std::to_string(armour_->names.size())
+            );
+        }
+
+        armour::CouplerSettings cs;
+        cs.mask =
+            fluid.mask == "spheres"
+          ? armour::MaskSource::clump_spheres
+          : armour::MaskSource::exact_shape;
+        cs.smoothing_cells = fluid.smoothing_cells;
+        cs.fluid_density = fluid.fluid_density;
+        cs.added_mass_coefficient = fluid.added_mass;
+        cs.gravity = gravity;
+
+        std::vector<armour::RecorderUnit> recorderUnits;
+        for (const armour::UnitTemplate& u : setup.units)
+        {
+            recorderUnits.push_back({u.name, u.mesh});
+        }
+        armour_->coupler.reset
+        (
+            new armour::Coupler(*armour_->engine, setup.units, bodyUnit, cs)
+        );
+
+        const vectorField& C = mesh_.C();
+        const scalarField& V = mesh_.V();
+        armour_->cells.centres.resize(C.size());
+        armour_->cells.volumes.resize(C.size());
+        forAll(C, i)
+        {
+            armour_->cells.centres[i] = toEigen(C[i]);
+            armour_->cells.volumes[i] = V[i];
+        }
+        updateFields();
+
+        // The record sits beside the scene it ran (the run's output
+        // folder), unless the dictionary names another folder.
+        if (Pstream::master())
+        {
+            const fileName outDir =
+                coeffs_.lookupOrDefault<fileName>("output", scenePath.path());
+            const armour::TimeStepReport dt =
+                armour_->engine->time_step_report();
+            armour_->recorder.reset
+            (
+                new armour::BodyRecorder
+                (
+                    outDir/"bodies.h5",
+                    outDir/"bodies.xdmf",
+                    recorderUnits,
+                    bodyUnit,
+                    {
+                        {"scene", scene.name},
+                        {"engine", armour_->engine->name()},
+                        {"dt", std::to_string(dt.used)},
+                        {"coupling", "interFoam armourCoupling"},
+                        {"external_force", "fluid load F (without gravity)"}
+                    }
+                )
+            );
+            std::vector<armour::BodyState> states;
+            for (int k = 0; k < armour_->engine->body_count(); ++k)
+            {
+                states.push_back(armour_->engine->state(k));
+                states.back().external_force.setZero();
+                states.back().external_torque.setZero();
+            }
+            armour_->recorder->append(runTime.value(), states);
+
+            // The free surface a floating unit settles against moves with
+            // the water it displaces and with what seeps into its ramp
+            // cells; the water volume outside the units pins it down.
+            armour_->fluidCsv.open(outDir/"fluid.csv");
+            armour_->fluidCsv
+                << "time,water_volume,water_volume_outside_units\n"
+                << std::setprecision(12);
+        }
+        // On every rank: the record times decide collective reductions.
+        armour_->recordInterval = scene.output_interval;
+        armour_->nextRecord = runTime.value() + scene.output_interval;
+    }
+    catch (const std::exception& err)
+    {
+        FatalErrorInFunction
+            << "armour: " << err.what() << exit(FatalError);
+    }
+
+    if (Pstream::master() && coeffs_.found("csv"))
+    {
+        openCsv(runTime.globalPath()/coeffs_.get<fileName>("csv"));
+    }
+
+    Info<< "    armourCoupling: scene " << scenePath << ", "
+        << armour_->names.size() << " bodies, engine " << engineName
+        << ", K = " << penalty_ << " 1/s" << endl;
+}
+
+
+void Foam::fv::armourCoupling::openCsv(const fileName& csvName)
+{
+    armour_->csv.open(csvName);
+    if (!armour_->csv)
+    {
+        FatalErrorInFunction
+            << "cannot write " << csvName << exit(FatalError);
+    }
+    armour_->csv
+        << "time,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,"
+           "Fx,Fy,Fz,Mx,My,Mz,Sx,Sy,Sz,chiVolume,engineTime\n";
+    armour_->csv << std::setprecision(10);
+}
+
 
 void Foam::fv::armourCoupling::updateFields()
 {
@@ -492,7 +681,61 @@ void Foam::fv::armourCoupling::couple
         FatalErrorInFunction << "armour: " << err.what() << exit(FatalError);
     }
 
-    if (Pstream::master())
+    // Every record interval and at the last step, so the record ends where
+    // the run does.
+    const double t = runTime.value();
+    const double dtF = runTime.deltaTValue();
+    const bool recordNow =
+        armour_->recordInterval > 0
+     && (
+            t >= armour_->nextRecord - 1e-6*dtF
+         || t + 0.5*dtF >= runTime.endTime().value()
+        );
+    scalar water = 0;
+    scalar waterOutside = 0;
+    if (recordNow)
+    {
+        if (mesh_.foundObject<volScalarField>("alpha.water"))
+        {
+            const volScalarField& alpha =
+                mesh_.lookupObject<volScalarField>("alpha.water");
+            forAll(alpha, i)
+            {
+                water += alpha[i]*mesh_.V()[i];
+                waterOutside += alpha[i]*(1 - chi_[i])*mesh_.V()[i];
+            }
+        }
+        reduce(water, sumOp<scalar>());
+        reduce(waterOutside, sumOp<scalar>());
+        while (armour_->nextRecord <= t + 1e-6*dtF)
+        {
+            armour_->nextRecord += armour_->recordInterval;
+        }
+    }
+    if (recordNow && armour_->recorder)
+    {
+        std::vector<armour::BodyState> states;
+        for (label k = 0; k < nb; ++k)
+        {
+            states.push_back(armour_->engine->state(k));
+            states.back().external_force =
+                Eigen::Vector3d(buf[10*k], buf[10*k + 1], buf[10*k + 2]);
+            states.back().external_torque =
+                Eigen::Vector3d(buf[10*k + 3], buf[10*k + 4], buf[10*k + 5]);
+        }
+        try
+        {
+            armour_->recorder->append(t, states);
+        }
+        catch (const std::exception& err)
+        {
+            FatalErrorInFunction << "armour: " << err.what() << exit(FatalError);
+        }
+        armour_->fluidCsv
+            << t << ',' << water << ',' << waterOutside << std::endl;
+    }
+
+    if (Pstream::master() && armour_->csv.is_open())
     {
         std::ofstream& out = armour_->csv;
         for (label k = 0; k < nb; ++k)

@@ -1,0 +1,715 @@
+#include "coupled_run.h"
+
+#include "body_recorder.h"
+#include "clump_io.h"
+#include "staged_output.h"
+#include "stl_io.h"
+
+#include <hdf5.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fcntl.h>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <sstream>
+#include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
+
+namespace armour {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+// Shortest text that reads back as the same double: the case files then
+// hold exactly the scene's values.
+std::string num(double v) {
+    char buf[64];
+    const auto result = std::to_chars(buf, buf + sizeof buf, v);
+    return std::string(buf, result.ptr);
+}
+
+std::string foam_vector(const Eigen::Vector3d &v) {
+    return "(" + num(v.x()) + " " + num(v.y()) + " " + num(v.z()) + ")";
+}
+
+std::string read_file(const fs::path &path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+fs::path source_dir() {
+#ifdef ARMOUR_SOURCE_DIR
+    return ARMOUR_SOURCE_DIR;
+#else
+    return fs::current_path();
+#endif
+}
+
+// The plugin: $ARMOUR_FOAM_PLUGIN (an installed copy), else the one this
+// build made.
+std::string plugin_path() {
+    if (const char *env = std::getenv("ARMOUR_FOAM_PLUGIN"); env && *env)
+        return env;
+#ifdef ARMOUR_FOAM_PLUGIN
+    return ARMOUR_FOAM_PLUGIN;
+#else
+    throw InputError("this armour was built without the OpenFOAM plugin (ARMOUR_BUILD_OPENFOAM=OFF, see "
+                     "docs/openfoam.md); set ARMOUR_FOAM_PLUGIN to a libarmourFoamCoupling.so");
+#endif
+}
+
+bool on_path(const std::string &tool) {
+    const char *path = std::getenv("PATH");
+    std::stringstream dirs(path ? path : "/usr/bin:/bin");
+    for (std::string dir; std::getline(dirs, dir, ':');)
+        if (!dir.empty() && ::access((fs::path(dir) / tool).c_str(), X_OK) == 0)
+            return true;
+    return false;
+}
+
+// Closest point on triangle abc to p (Voronoi regions of the triangle).
+Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d &p, const Eigen::Vector3d &a,
+                                    const Eigen::Vector3d &b, const Eigen::Vector3d &c) {
+    const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
+    const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+    if (d1 <= 0 && d2 <= 0)
+        return a;
+    const Eigen::Vector3d bp = p - b;
+    const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+    if (d3 >= 0 && d4 <= d3)
+        return b;
+    const double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0)
+        return a + d1 / (d1 - d3) * ab;
+    const Eigen::Vector3d cp = p - c;
+    const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+    if (d6 >= 0 && d5 <= d6)
+        return c;
+    const double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0)
+        return a + d2 / (d2 - d6) * ac;
+    const double va = d3 * d6 - d5 * d4;
+    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
+        return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
+    const double denom = 1.0 / (va + vb + vc);
+    return a + ab * (vb * denom) + ac * (vc * denom);
+}
+
+// Deepest point of a posed exact shape behind a wall (m, > 0 = inside the
+// wall): each vertex against its nearest wall triangle, whose normal points
+// to the bodies' side. build_scene checks the clump; the fluid sees the
+// exact shape, which a clump may not cover.
+double exact_wall_penetration(const std::vector<Eigen::Vector3d> &vertices, const Wall &wall) {
+    double deepest = -HUGE_VAL;
+    const auto &v = wall.surface.vertices;
+    for (const auto &p : vertices) {
+        double best = HUGE_VAL, signed_distance = 0.0;
+        for (const auto &t : wall.surface.triangles) {
+            const Eigen::Vector3d q = closest_on_triangle(p, v[t[0]], v[t[1]], v[t[2]]);
+            const double d = (p - q).norm();
+            if (d < best) {
+                best = d;
+                const Eigen::Vector3d n = (v[t[1]] - v[t[0]]).cross(v[t[2]] - v[t[0]]).normalized();
+                signed_distance = (p - q).dot(n);
+            }
+        }
+        deepest = std::max(deepest, -signed_distance);
+    }
+    return deepest;
+}
+
+std::vector<Eigen::Vector3d> posed_vertices(const SceneSetup &setup, const BodyInit &b) {
+    std::vector<Eigen::Vector3d> out;
+    for (const auto &v : setup.units[b.unit].mesh.vertices)
+        out.push_back(b.pose.position + b.pose.orientation * v);
+    return out;
+}
+
+Eigen::Vector3d cell_size(const Scene &scene) {
+    const SceneFluid &f = *scene.fluid;
+    return (scene.domain_max - scene.domain_min)
+        .cwiseQuotient(Eigen::Vector3d(f.cells[0], f.cells[1], f.cells[2]));
+}
+
+// The first FOAM FATAL message of a log, as one line.
+std::string fatal_line(const std::string &log) {
+    const auto at = log.find("FOAM FATAL");
+    if (at == std::string::npos)
+        return "";
+    std::istringstream in(log.substr(at));
+    std::string line, out;
+    for (int n = 0; n < 8 && std::getline(in, line);) {
+        line = std::regex_replace(line, std::regex("\\s+"), " ");
+        if (line.empty() || line == " ")
+            continue;
+        out += (out.empty() ? "" : " ") + line;
+        ++n;
+    }
+    return std::regex_replace(out, std::regex("\\s+"), " ");
+}
+
+// Last "Time = t" of a solver log (the step being solved).
+double last_solver_time(const std::string &log) {
+    const auto at = log.rfind("\nTime = ");
+    return at == std::string::npos ? 0.0 : std::atof(log.c_str() + at + 8);
+}
+
+// Runs one tool in the case folder, output to log.<name>, with a progress
+// line from the solver's "Time =" lines; throws InputError on failure with
+// the tool's FOAM FATAL line.
+void run_tool(const std::string &name, const std::vector<std::string> &args, const fs::path &case_dir,
+              double end_time, bool show_progress) {
+    const fs::path log = case_dir / ("log." + name);
+    std::vector<char *> argv;
+    for (const auto &a : args)
+        argv.push_back(const_cast<char *>(a.c_str()));
+    argv.push_back(nullptr);
+    const std::string dir = case_dir.string(), log_path = log.string();
+    const pid_t pid = ::fork();
+    if (pid < 0)
+        throw InputError(name + ": cannot start: " + std::strerror(errno));
+    if (pid == 0) {
+        const int fd = ::open(log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (fd < 0 || ::chdir(dir.c_str()) != 0)
+            ::_exit(127);
+        ::dup2(fd, STDOUT_FILENO);
+        ::dup2(fd, STDERR_FILENO);
+        ::execvp(argv[0], argv.data());
+        ::_exit(127);
+    }
+    const bool terminal = ::isatty(STDERR_FILENO) != 0;
+    const auto start = std::chrono::steady_clock::now();
+    double next_report = 0.1;
+    int status = 0;
+    for (;;) {
+        const pid_t done = ::waitpid(pid, &status, WNOHANG);
+        if (done == pid)
+            break;
+        if (done < 0 && errno != EINTR)
+            throw InputError(name + ": lost the process: " + std::strerror(errno));
+        std::this_thread::sleep_for(std::chrono::milliseconds(250));
+        if (!show_progress)
+            continue;
+        const double t = last_solver_time(read_file(log));
+        const double fraction = std::min(1.0, t / end_time);
+        const double elapsed =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const double eta = fraction > 0.0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
+        if (terminal)
+            std::fprintf(stderr, "\r[%-30s] t = %.3f / %.3f s  ETA %.0f s ",
+                         std::string(static_cast<std::size_t>(30 * fraction), '#').c_str(), t, end_time, eta);
+        else if (fraction >= next_report) {
+            std::fprintf(stderr, "run: t = %.3f / %.3f s (%3.0f %%), ETA %.0f s\n", t, end_time,
+                         100 * fraction, eta);
+            while (next_report <= fraction)
+                next_report += 0.1;
+        }
+    }
+    if (show_progress && terminal)
+        std::fputc('\n', stderr);
+    const std::string text = read_file(log);
+    const std::string fatal = fatal_line(text);
+    const bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+    // mpirun may exit 0 although a rank reported FOAM FATAL.
+    if (!ok || !fatal.empty()) {
+        std::string why = fatal;
+        if (why.empty()) {
+            if (WIFEXITED(status) && WEXITSTATUS(status) == 127)
+                why = "could not run " + args[0];
+            else {
+                std::istringstream in(text);
+                std::vector<std::string> lines;
+                for (std::string l; std::getline(in, l);)
+                    if (!l.empty())
+                        lines.push_back(l);
+                for (std::size_t i = lines.size() > 3 ? lines.size() - 3 : 0; i < lines.size(); ++i)
+                    why += (why.empty() ? "" : " | ") + lines[i];
+                if (WIFSIGNALED(status))
+                    why = "killed by signal " + std::to_string(WTERMSIG(status)) +
+                          (why.empty() ? "" : ": " + why);
+            }
+        }
+        throw InputError(name + " failed (see " + log.string() + "): " + why);
+    }
+}
+
+// Fills @TOKENS@ in every file of the copied case; a token left over is a
+// template the runner does not know, and would fail inside OpenFOAM.
+void fill_tokens(const fs::path &case_dir, const std::map<std::string, std::string> &tokens) {
+    const std::regex leftover("@[A-Z0-9_]+@");
+    for (const auto &entry : fs::recursive_directory_iterator(case_dir)) {
+        if (!entry.is_regular_file())
+            continue;
+        std::string text = read_file(entry.path());
+        if (text.find('@') == std::string::npos)
+            continue;
+        for (const auto &[key, value] : tokens)
+            for (std::size_t at = text.find(key); at != std::string::npos;
+                 at = text.find(key, at + value.size()))
+                text.replace(at, key.size(), value);
+        std::smatch m;
+        if (std::regex_search(text, m, leftover))
+            throw InputError("case template " + entry.path().string() + ": unknown token " + m.str() +
+                             " (known: the tokens listed in docs/openfoam.md)");
+        std::ofstream(entry.path(), std::ios::binary | std::ios::trunc) << text;
+    }
+}
+
+// ---------------------------------------------------------------- reading bodies.h5
+
+struct Record {
+    std::vector<double> time;                                  // steps
+    std::vector<std::vector<Eigen::Vector3d>> position, force; // [step][body]
+    std::vector<std::vector<Eigen::Quaterniond>> orientation;
+    std::map<std::string, std::string> attributes;
+};
+
+std::vector<double> read_dataset(hid_t file, const std::string &name, std::vector<hsize_t> &dims) {
+    const hid_t set = H5Dopen2(file, name.c_str(), H5P_DEFAULT);
+    if (set < 0)
+        throw InputError("bodies.h5: no dataset " + name);
+    const hid_t space = H5Dget_space(set);
+    const int rank = H5Sget_simple_extent_ndims(space);
+    dims.assign(static_cast<std::size_t>(std::max(rank, 0)), 0);
+    H5Sget_simple_extent_dims(space, dims.data(), nullptr);
+    hsize_t count = 1;
+    for (const hsize_t d : dims)
+        count *= d;
+    std::vector<double> data(count);
+    const herr_t status =
+        count ? H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) : 0;
+    H5Sclose(space);
+    H5Dclose(set);
+    if (status < 0)
+        throw InputError("bodies.h5: cannot read " + name);
+    return data;
+}
+
+std::string read_attribute(hid_t file, const std::string &name) {
+    if (H5Aexists(file, name.c_str()) <= 0)
+        return "";
+    const hid_t attribute = H5Aopen(file, name.c_str(), H5P_DEFAULT);
+    const hid_t type = H5Aget_type(attribute);
+    std::string value(H5Tget_size(type), '\0');
+    H5Aread(attribute, type, value.data());
+    H5Tclose(type);
+    H5Aclose(attribute);
+    return value.c_str();
+}
+
+Record read_record(const fs::path &path) {
+    // The solver has exited; no lock is needed and none may be left over.
+    const hid_t access = H5Pcreate(H5P_FILE_ACCESS);
+    H5Pset_file_locking(access, false, true);
+    const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, access);
+    H5Pclose(access);
+    if (file < 0)
+        throw InputError(path.string() + ": cannot open the plugin's record");
+    Record r;
+    try {
+        std::vector<hsize_t> dt, dp, dq, df;
+        r.time = read_dataset(file, "/time", dt);
+        const std::vector<double> p = read_dataset(file, "/bodies/position", dp);
+        const std::vector<double> q = read_dataset(file, "/bodies/orientation", dq);
+        const std::vector<double> f = read_dataset(file, "/bodies/external_force", df);
+        const std::size_t steps = r.time.size(), bodies = dp.size() == 3 ? dp[1] : 0;
+        for (std::size_t s = 0; s < steps; ++s) {
+            r.position.emplace_back();
+            r.force.emplace_back();
+            r.orientation.emplace_back();
+            for (std::size_t b = 0; b < bodies; ++b) {
+                const std::size_t i3 = 3 * (s * bodies + b), i4 = 4 * (s * bodies + b);
+                r.position.back().emplace_back(p[i3], p[i3 + 1], p[i3 + 2]);
+                r.force.back().emplace_back(f[i3], f[i3 + 1], f[i3 + 2]);
+                r.orientation.back().emplace_back(q[i4], q[i4 + 1], q[i4 + 2], q[i4 + 3]);
+            }
+        }
+        for (const char *key : {"engine", "dt"})
+            r.attributes[key] = read_attribute(file, key);
+    } catch (...) {
+        H5Fclose(file);
+        throw;
+    }
+    H5Fclose(file);
+    return r;
+}
+
+int count_solver_steps(const std::string &log) {
+    int n = 0;
+    for (std::size_t at = log.find("\nTime = "); at != std::string::npos; at = log.find("\nTime = ", at + 1))
+        ++n;
+    return n;
+}
+
+} // namespace
+
+std::vector<std::string> check_coupled_scene(const Scene &scene, const SceneSetup &setup, int np) {
+    const SceneFluid &f = *scene.fluid;
+    const std::string &file = scene.file;
+    std::vector<std::string> warnings;
+    const fs::path tmpl = source_dir() / "foam_cases" / f.case_name;
+    if (!fs::is_regular_file(tmpl / "system" / "controlDict")) {
+        std::string known;
+        std::error_code ec;
+        for (const auto &e : fs::directory_iterator(source_dir() / "foam_cases", ec))
+            if (fs::is_regular_file(e.path() / "system" / "controlDict"))
+                known += (known.empty() ? "" : ", ") + ("\"" + e.path().filename().string() + "\"");
+        throw InputError(file + ": key 'fluid.case': no case template " + tmpl.string() +
+                         " (known: " + known + ")");
+    }
+    for (const char *tool : {"blockMesh", "setFields", "interFoam"})
+        if (!on_path(tool))
+            throw InputError(std::string(tool) +
+                             " not found on PATH: install Debian's openfoam (docs/openfoam.md)");
+    if (np > 1) {
+        for (const char *tool : {"decomposePar", "mpirun"})
+            if (!on_path(tool))
+                throw InputError(std::string(tool) + " not found on PATH: needed for --np " +
+                                 std::to_string(np));
+        // The LIGGGHTS adapter opens LIGGGHTS on MPI_COMM_WORLD: inside a
+        // parallel interFoam every rank would join one LIGGGHTS run.
+        if (scene.engine == "liggghts")
+            throw InputError(file +
+                             ": key 'run.engine': \"liggghts\" couples with serial interFoam only; use "
+                             "\"free_body\" or \"bullet\" with " +
+                             std::to_string(np) + " ranks (or fluid.np = 1)");
+        if (f.cells[0] < 2 * np)
+            throw InputError(file + ": key 'fluid.np': " + std::to_string(np) +
+                             " ranks split the mesh along x, " + "which has only " +
+                             std::to_string(f.cells[0]) + " cells (need >= 2 per rank)");
+    }
+
+    const Eigen::Vector3d h = cell_size(scene);
+    if (h.maxCoeff() > 2.0 * h.minCoeff())
+        warnings.push_back("fluid cells are stretched (" + num(h.x()) + " x " + num(h.y()) + " x " +
+                           num(h.z()) + " m): the mask ramp follows the largest side");
+    for (std::size_t i = 0; i < setup.bodies.size(); ++i) {
+        const BodyInit &b = setup.bodies[i];
+        const std::string who = "body " + std::to_string(i) + " (unit '" + setup.units[b.unit].name + "')";
+        for (const auto &v : posed_vertices(setup, b))
+            if (((v.array() - scene.domain_min.array()) < -1e-9).any() ||
+                ((v.array() - scene.domain_max.array()) > 1e-9).any())
+                throw InputError(file + ": " + who +
+                                 " reaches outside the fluid mesh box run.domain_min .. " +
+                                 "run.domain_max (vertex " + foam_vector(v) + " m)");
+        for (const auto &w : setup.walls) {
+            const double depth = exact_wall_penetration(posed_vertices(setup, b), w);
+            if (depth > 1e-9)
+                throw InputError(file + ": " + who + " cuts into wall '" + w.name + "' by " + num(depth) +
+                                 " m at its initial pose; move it clear of the wall");
+        }
+    }
+    for (std::size_t k = 0; k < setup.units.size(); ++k) {
+        const double across = setup.unit_Dn[k] / h.maxCoeff();
+        if (across < 4.0) {
+            char buf[160];
+            std::snprintf(buf, sizeof buf,
+                          "unit '%s': %.2f cells across (Dn %.4g m, cell %.4g m); below ~4 the ",
+                          setup.units[k].name.c_str(), across, setup.unit_Dn[k], h.maxCoeff());
+            warnings.push_back(std::string(buf) + "mask and the loads are coarse (refine fluid.cells)");
+        }
+    }
+    // The body's own Courant number in its first step: interFoam only sees
+    // the body's velocity once the penalty has set the fluid moving.
+    for (std::size_t i = 0; i < setup.bodies.size(); ++i) {
+        const BodyInit &b = setup.bodies[i];
+        double reach = 0.0;
+        for (const auto &v : setup.units[b.unit].mesh.vertices)
+            reach = std::max(reach, v.norm());
+        const double speed = b.velocity.norm() + b.angular_velocity.norm() * reach;
+        const double co = speed * f.max_time_step / h.minCoeff();
+        if (co > f.max_courant)
+            warnings.push_back(
+                "body " + std::to_string(i) + ": initial speed " + num(speed) + " m/s gives Courant " +
+                num(co) + " > fluid.max_courant at fluid.max_time_step; " + "the first step starts smaller");
+    }
+    if (scene.analysis == "float") {
+        const SceneUnit *u = nullptr;
+        for (const auto &unit : scene.units)
+            if (!scene.bodies.empty() && unit.name == scene.bodies[0].unit)
+                u = &unit;
+        if (!u || u->shape != "cube" || setup.bodies.size() != 1)
+            throw InputError(file +
+                             ": key 'analysis.kind': \"float\" needs exactly one [[body]] of a cube unit");
+        if (u->density >= f.fluid_density)
+            throw InputError(file + ": key 'analysis.kind': \"float\": the cube's density " +
+                             num(u->density) + " kg/m^3 is not below fluid.fluid_density; it sinks");
+    }
+    if ((scene.analysis == "buoyancy" || scene.analysis == "still") && setup.bodies.empty())
+        throw InputError(file + ": key 'analysis.kind': needs a body");
+    return warnings;
+}
+
+int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &setup) {
+    const auto start = std::chrono::steady_clock::now();
+    Scene scene = scene_in;
+    SceneFluid &f = *scene.fluid;
+    if (r.np > 0)
+        f.np = r.np; // the resolved scene records what ran
+    const std::vector<std::string> warnings = check_coupled_scene(scene, setup, f.np);
+    const std::string plugin = plugin_path();
+    if (!fs::is_regular_file(plugin))
+        throw InputError("OpenFOAM plugin " + plugin + " not found: build the target armourFoamCoupling");
+    for (const auto &w : warnings)
+        std::fprintf(stderr, "armour: warning: %s\n", w.c_str());
+
+    const fs::path out = fs::absolute(r.out);
+    std::error_code ec;
+    if (fs::exists(out / "summary.json", ec) || fs::exists(out / "bodies.h5", ec) ||
+        fs::exists(out / "case", ec))
+        fs::remove_all(out, ec); // an earlier result of this command is replaced
+    fs::create_directories(out / "units", ec);
+    if (ec)
+        throw InputError("--out: cannot create " + out.string() + ": " + ec.message());
+    const fs::path resolved = out / "scene.resolved.toml";
+    write_text_file(resolved, resolved_scene_toml(scene));
+    for (const auto &u : setup.units) {
+        const fs::path dir = out / "units" / u.name;
+        fs::create_directories(dir);
+        write_sphere_file(u.clump, (dir / "clump.spheres").string(), u.name);
+        write_stl(u.mesh, (dir / "shape.stl").string(), true, u.name);
+    }
+
+    // The case: template copy with its tokens filled from the scene.
+    const fs::path case_dir = out / "case";
+    fs::copy(source_dir() / "foam_cases" / f.case_name, case_dir, fs::copy_options::recursive);
+    const Eigen::Vector3d &lo = scene.domain_min, &hi = scene.domain_max;
+    const Eigen::Vector3d pad = Eigen::Vector3d::Constant(1.0 + (hi - lo).maxCoeff());
+    double speed = 0.0;
+    for (const auto &b : setup.bodies)
+        speed = std::max(speed, b.velocity.norm());
+    const Eigen::Vector3d h = cell_size(scene);
+    const double first_dt =
+        speed > 0.0 ? std::min(f.max_time_step, f.max_courant * h.minCoeff() / speed) : f.max_time_step;
+    const std::map<std::string, std::string> tokens = {
+        {"@ARMOUR_PLUGIN@", plugin},
+        {"@NP@", std::to_string(f.np)},
+        {"@X0@", num(lo.x())},
+        {"@Y0@", num(lo.y())},
+        {"@Z0@", num(lo.z())},
+        {"@X1@", num(hi.x())},
+        {"@Y1@", num(hi.y())},
+        {"@Z1@", num(hi.z())},
+        {"@NX@", std::to_string(f.cells[0])},
+        {"@NY@", std::to_string(f.cells[1])},
+        {"@NZ@", std::to_string(f.cells[2])},
+        {"@BOX_MIN@", foam_vector(lo - pad)},
+        {"@WATER_MAX@", foam_vector(Eigen::Vector3d(hi.x() + pad.x(), hi.y() + pad.y(), f.water_level))},
+        {"@WATER_LEVEL@", num(f.water_level)},
+        {"@END_TIME@", num(scene.duration)},
+        {"@DELTA_T@", num(first_dt)},
+        {"@MAX_DELTA_T@", num(f.max_time_step)},
+        {"@MAX_CO@", num(f.max_courant)},
+        {"@WRITE_INTERVAL@", num(f.write_interval)},
+        {"@RHO_WATER@", num(f.fluid_density)},
+        {"@NU_WATER@", num(f.viscosity)},
+        {"@RHO_AIR@", num(f.air_density)},
+        {"@NU_AIR@", num(f.air_viscosity)},
+        {"@GRAVITY@", foam_vector(scene.gravity)},
+        {"@SCENE@", resolved.string()},
+        {"@CACHE@", r.cache.empty() ? default_cache_dir() : fs::absolute(r.cache).string()},
+        {"@OUTPUT@", out.string()},
+    };
+    fill_tokens(case_dir, tokens);
+    for (const auto &e : fs::directory_iterator(case_dir / "0"))
+        if (e.path().extension() == ".orig")
+            fs::copy_file(e.path(), case_dir / "0" / e.path().stem(), fs::copy_options::overwrite_existing);
+
+    // Debian's OpenFOAM finds its etc/ files only through this.
+    ::setenv("WM_PROJECT_DIR", "/usr/share/openfoam", 0);
+    std::fprintf(stderr, "run: %s: %d x %d x %d cells, %d rank%s, engine %s -> %s\n", scene.name.c_str(),
+                 f.cells[0], f.cells[1], f.cells[2], f.np, f.np > 1 ? "s" : "", scene.engine.c_str(),
+                 case_dir.c_str());
+    run_tool("blockMesh", {"blockMesh"}, case_dir, scene.duration, false);
+    run_tool("setFields", {"setFields"}, case_dir, scene.duration, false);
+    if (f.np == 1) {
+        run_tool("interFoam", {"interFoam"}, case_dir, scene.duration, true);
+    } else {
+        run_tool("decomposePar", {"decomposePar", "-force"}, case_dir, scene.duration, false);
+        run_tool("interFoam",
+                 {"mpirun", "--allow-run-as-root", "-np", std::to_string(f.np), "-x", "WM_PROJECT_DIR", "-x",
+                  "LD_LIBRARY_PATH", "interFoam", "-parallel"},
+                 case_dir, scene.duration, true);
+    }
+    const double wall_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+    const Record rec = read_record(out / "bodies.h5");
+    if (rec.time.empty() || rec.position.back().size() != setup.bodies.size())
+        throw InputError(out.string() + "/bodies.h5: the plugin recorded no steps");
+    const std::string solver_log = read_file(case_dir / "log.interFoam");
+
+    json spheres = json::object(), across = json::object();
+    for (std::size_t k = 0; k < setup.units.size(); ++k) {
+        spheres[setup.units[k].name] = setup.unit_spheres[k];
+        across[setup.units[k].name] = setup.unit_Dn[k] / h.maxCoeff();
+    }
+    const double simulated = rec.time.back();
+    json summary = {
+        {"command", "run"},
+        {"coupled", true},
+        {"scene", scene.name},
+        {"engine", rec.attributes.at("engine").empty() ? scene.engine : rec.attributes.at("engine")},
+        {"spheres_per_unit", spheres},
+        {"units", static_cast<int>(setup.bodies.size())},
+        {"dt", std::atof(rec.attributes.at("dt").c_str())},
+        {"simulated_seconds", simulated},
+        {"wall_seconds", wall_seconds},
+        {"wall_seconds_per_simulated_second", wall_seconds / std::max(simulated, 1e-300)},
+        {"records", rec.time.size()},
+        {"warnings", warnings},
+        {"fluid",
+         {{"case", f.case_name},
+          {"cells", {f.cells[0], f.cells[1], f.cells[2]}},
+          {"cells_total", static_cast<long>(f.cells[0]) * f.cells[1] * f.cells[2]},
+          {"cell_size", {h.x(), h.y(), h.z()}},
+          {"cells_across_unit", across},
+          {"np", f.np},
+          {"steps", count_solver_steps(solver_log)},
+          {"max_time_step", f.max_time_step},
+          {"max_courant", f.max_courant},
+          {"water_level", f.water_level},
+          {"fluid_density", f.fluid_density},
+          {"penalty", f.penalty},
+          {"mask", f.mask},
+          {"added_mass", f.added_mass}}},
+        {"files",
+         {{"bodies", "bodies.h5"},
+          {"paraview", "bodies.xdmf"},
+          {"scene", "scene.resolved.toml"},
+          {"case", "case"},
+          {"solver_log", "case/log.interFoam"}}},
+        {"si_units", {{"dt", "s"}, {"wall_seconds", "s"}, {"lengths", "m"}, {"forces", "N"}}}};
+
+    const double g = scene.gravity.norm();
+    const Eigen::Vector3d up = -scene.gravity.normalized();
+    const int unit0 = setup.bodies[0].unit;
+    const double volume = setup.units[unit0].props.volume;
+    std::string result;
+    if (scene.analysis == "buoyancy") {
+        const double expected = f.fluid_density * g * volume;
+        const double fz = rec.force.back()[0].dot(up);
+        summary["buoyancy_force"] = fz;
+        summary["buoyancy_expected"] = expected;
+        summary["buoyancy_error"] = std::abs(fz - expected) / expected;
+        summary["buoyancy_lateral"] = (rec.force.back()[0] - fz * up).norm();
+        char text[96];
+        std::snprintf(text, sizeof text, "buoyancy %.5g N vs rho g V = %.5g N", fz, expected);
+        result = text;
+    } else if (scene.analysis == "float") {
+        // The free surface rises as the cube sinks into the small tank, and
+        // falls by what seeps into the cube's ramp cells. With the waterline
+        // on the cube's sides (A_b = a^2, upright), the water outside the
+        // cube's mask, W_out = A (h - z0) - A_b (h - z_b), gives the level;
+        // the plugin measures W_out (fluid.csv). Without it: the cube's
+        // interior keeps the water it started with (W_in), so
+        // W_out = A (h0 - z0) - W_in.
+        const double a = scene.units[static_cast<std::size_t>(unit0)].size;
+        const double rho_u = scene.units[static_cast<std::size_t>(unit0)].density;
+        const double tank = (hi.x() - lo.x()) * (hi.y() - lo.y()), area = a * a;
+        const auto bottom = [&](std::size_t step) {
+            double low = HUGE_VAL;
+            for (const auto &v : setup.units[unit0].mesh.vertices)
+                low = std::min(low, (rec.position[step][0] + rec.orientation[step][0] * v).dot(up));
+            return low;
+        };
+        const double h0 = f.water_level, zb0 = bottom(0);
+        const double inside = area * std::clamp(h0 - zb0, 0.0, a);
+        const std::size_t n = rec.time.size();
+        const double z0 = lo.dot(up);
+        std::map<double, double> outside_water; // time -> W_out, from the plugin
+        {
+            std::ifstream csv(out / "fluid.csv");
+            std::string line;
+            std::getline(csv, line);
+            for (double t, w, wo; std::getline(csv, line);)
+                if (std::sscanf(line.c_str(), "%lf,%lf,%lf", &t, &w, &wo) == 3)
+                    outside_water[t] = wo;
+        }
+        std::vector<double> zb(n), drafts(n);
+        int measured = 0;
+        for (std::size_t s = 0; s < n; ++s) {
+            zb[s] = bottom(s);
+            double w_out = tank * (h0 - z0) - inside;
+            const auto it = outside_water.lower_bound(rec.time[s] - 1e-9);
+            if (it != outside_water.end() &&
+                std::abs(it->first - rec.time[s]) <= 1e-9 * std::max(1.0, it->first)) {
+                w_out = it->second;
+                ++measured;
+            }
+            drafts[s] = (w_out + tank * z0 - area * zb[s]) / (tank - area) - zb[s];
+        }
+        summary["water_level_from"] = measured > 0 ? "fluid.csv: water volume outside the units, measured"
+                                                   : "volume balance: the cube keeps its initial contents";
+        // Heave is lightly damped (radiated waves reflect in a small tank),
+        // so the equilibrium is taken as the mean over whole heave periods:
+        // from the first to the last crest of the bottom height in the second
+        // half of the run; without two crests, the last value.
+        std::vector<std::size_t> crests;
+        for (std::size_t s = 1; s + 1 < n; ++s)
+            if (rec.time[s] >= 0.5 * simulated && zb[s] > zb[s - 1] && zb[s] >= zb[s + 1])
+                crests.push_back(s);
+        double draft = drafts.back();
+        if (crests.size() >= 2) {
+            double sum = 0.0;
+            for (std::size_t s = crests.front(); s < crests.back(); ++s)
+                sum += drafts[s];
+            draft = sum / static_cast<double>(crests.back() - crests.front());
+            summary["draft_averaged_from"] = rec.time[crests.front()];
+            summary["draft_averaged_to"] = rec.time[crests.back()];
+            summary["heave_periods_averaged"] = crests.size() - 1;
+        }
+        const double expected = rho_u / f.fluid_density * a;
+        double zmin = HUGE_VAL, zmax = -HUGE_VAL;
+        for (std::size_t s = 0; s < n; ++s)
+            if (rec.time[s] >= 0.8 * simulated) {
+                zmin = std::min(zmin, zb[s]);
+                zmax = std::max(zmax, zb[s]);
+            }
+        summary["draft"] = draft;
+        summary["draft_expected"] = expected;
+        summary["draft_error"] = std::abs(draft - expected) / expected;
+        summary["draft_final"] = drafts.back();
+        summary["water_level_final"] = drafts.back() + zb.back();
+        summary["heave_amplitude_last_fifth"] = 0.5 * (zmax - zmin);
+        char text[96];
+        std::snprintf(text, sizeof text, "draft %.5g m vs %.5g m", draft, expected);
+        result = text;
+    } else if (scene.analysis == "still") {
+        double worst = 0.0, ratio = 0.0;
+        for (std::size_t s = 0; s < rec.time.size(); ++s)
+            for (std::size_t b = 0; b < setup.bodies.size(); ++b) {
+                const double d = (rec.position[s][b] - rec.position[0][b]).norm();
+                worst = std::max(worst, d);
+                ratio = std::max(ratio, d / setup.unit_Dn[setup.bodies[b].unit]);
+            }
+        summary["max_displacement"] = worst;
+        summary["max_displacement_over_Dn"] = ratio;
+        char text[96];
+        std::snprintf(text, sizeof text, "max displacement %.3g m (%.3g %% of Dn)", worst, 100 * ratio);
+        result = text;
+    }
+    write_text_file(out / "summary.json", summary.dump(2) + "\n");
+    std::printf("%s: %d units, %.4g s coupled in %.1f s wall%s%s -> %s\n", scene.name.c_str(),
+                static_cast<int>(setup.bodies.size()), simulated, wall_seconds, result.empty() ? "" : ", ",
+                result.c_str(), out.c_str());
+    return 0;
+}
+
+} // namespace armour

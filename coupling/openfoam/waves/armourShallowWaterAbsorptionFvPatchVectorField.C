@@ -1,0 +1,167 @@
+/*---------------------------------------------------------------------------*\
+    armour-fsi: absorbing outlet for long waves
+    (armourShallowWaterAbsorptionFvPatchVectorField.H)
+\*---------------------------------------------------------------------------*/
+
+#include "armourShallowWaterAbsorptionFvPatchVectorField.H"
+#include "addToRunTimeSelectionTable.H"
+#include "volFields.H"
+
+namespace
+{
+
+bool readFormulation(const Foam::dictionary& dict)
+{
+    const Foam::word f(dict.getOrDefault<Foam::word>("formulation", "linear"));
+    if (f != "linear" && f != "nonlinear")
+    {
+        FatalIOErrorInFunction(dict)
+            << "formulation must be linear or nonlinear, got " << f
+            << Foam::exit(Foam::FatalIOError);
+    }
+    return f == "nonlinear";
+}
+
+}
+
+
+Foam::armourShallowWaterAbsorptionFvPatchVectorField::
+armourShallowWaterAbsorptionFvPatchVectorField
+(
+    const fvPatch& p,
+    const DimensionedField<vector, volMesh>& iF
+)
+:
+    fixedValueFvPatchVectorField(p, iF),
+    h_(1),
+    nonlinear_(false),
+    alphaName_("alpha.water")
+{}
+
+
+Foam::armourShallowWaterAbsorptionFvPatchVectorField::
+armourShallowWaterAbsorptionFvPatchVectorField
+(
+    const fvPatch& p,
+    const DimensionedField<vector, volMesh>& iF,
+    const dictionary& dict
+)
+:
+    fixedValueFvPatchVectorField(p, iF, dict),
+    h_(dict.get<scalar>("waterDepth")),
+    nonlinear_(readFormulation(dict)),
+    alphaName_(dict.getOrDefault<word>("alpha", "alpha.water"))
+{
+    if (h_ <= 0)
+    {
+        FatalIOErrorInFunction(dict)
+            << "waterDepth must be positive, got " << h_ << exit(FatalIOError);
+    }
+}
+
+
+Foam::armourShallowWaterAbsorptionFvPatchVectorField::
+armourShallowWaterAbsorptionFvPatchVectorField
+(
+    const armourShallowWaterAbsorptionFvPatchVectorField& ptf,
+    const fvPatch& p,
+    const DimensionedField<vector, volMesh>& iF,
+    const fvPatchFieldMapper& mapper
+)
+:
+    fixedValueFvPatchVectorField(ptf, p, iF, mapper),
+    h_(ptf.h_),
+    nonlinear_(ptf.nonlinear_),
+    alphaName_(ptf.alphaName_)
+{}
+
+
+Foam::armourShallowWaterAbsorptionFvPatchVectorField::
+armourShallowWaterAbsorptionFvPatchVectorField
+(
+    const armourShallowWaterAbsorptionFvPatchVectorField& ptf
+)
+:
+    fixedValueFvPatchVectorField(ptf),
+    h_(ptf.h_),
+    nonlinear_(ptf.nonlinear_),
+    alphaName_(ptf.alphaName_)
+{}
+
+
+Foam::armourShallowWaterAbsorptionFvPatchVectorField::
+armourShallowWaterAbsorptionFvPatchVectorField
+(
+    const armourShallowWaterAbsorptionFvPatchVectorField& ptf,
+    const DimensionedField<vector, volMesh>& iF
+)
+:
+    fixedValueFvPatchVectorField(ptf, iF),
+    h_(ptf.h_),
+    nonlinear_(ptf.nonlinear_),
+    alphaName_(ptf.alphaName_)
+{}
+
+
+void Foam::armourShallowWaterAbsorptionFvPatchVectorField::updateCoeffs()
+{
+    if (updated())
+    {
+        return;
+    }
+
+    const vector g(armourWaves::gravity(patch()));
+    const armourWaves::patchFrame frame(patch(), g);
+
+    const volScalarField& alpha =
+        db().lookupObject<volScalarField>(alphaName_);
+    const scalarField alphaCells
+    (
+        alpha.boundaryField()[patch().index()].patchInternalField()
+    );
+    const scalar level = frame.waterLevel(patch(), alphaCells);
+    const scalar eta = level - h_;
+
+    const scalar uOut =
+        nonlinear_
+      ? eta*Foam::sqrt(mag(g)/max(level, SMALL))
+      : eta*Foam::sqrt(mag(g)/h_);
+
+    // frame.ex points into the domain; the wave leaves along -ex.
+    const scalarField wet(frame.wetFraction(level));
+    vectorField Up(patch().size(), Zero);
+    forAll(Up, facei)
+    {
+        if (wet[facei] > 0)
+        {
+            Up[facei] = -uOut*frame.ex;
+        }
+    }
+
+    operator==(Up);
+
+    fixedValueFvPatchVectorField::updateCoeffs();
+}
+
+
+void Foam::armourShallowWaterAbsorptionFvPatchVectorField::write
+(
+    Ostream& os
+) const
+{
+    fvPatchVectorField::write(os);
+    os.writeEntry("waterDepth", h_);
+    os.writeEntry("formulation", word(nonlinear_ ? "nonlinear" : "linear"));
+    os.writeEntry("alpha", alphaName_);
+    writeEntry("value", os);
+}
+
+
+namespace Foam
+{
+    makePatchTypeField
+    (
+        fvPatchVectorField,
+        armourShallowWaterAbsorptionFvPatchVectorField
+    );
+}

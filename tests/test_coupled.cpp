@@ -1,0 +1,232 @@
+// Coupled runs through `armour run` (in-process armour_main): the scenes in
+// scenes/ with [fluid] run interFoam with the plugin, and their summaries are
+// checked against the physics they claim. Needs Debian's openfoam (the
+// target exists only then).
+#include "cli.h"
+
+#include <gtest/gtest.h>
+#include <hdf5.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+const fs::path kScenes = fs::path(ARMOUR_SOURCE_DIR) / "scenes";
+
+struct Outcome {
+    int status = -1;
+    std::string err; // stderr of armour_main
+    fs::path out;
+    json summary;
+};
+
+fs::path temp_dir(const std::string &name) {
+    std::string tmpl = (fs::temp_directory_path() / ("armour_test_coupled_" + name + "_XXXXXX")).string();
+    if (!mkdtemp(tmpl.data()))
+        return {};
+    return tmpl;
+}
+
+Outcome armour_run(const std::string &scene, const std::string &name,
+                   const std::vector<std::string> &extra = {}) {
+    Outcome r;
+    r.out = temp_dir(name) / "out";
+    std::vector<std::string> args = {"armour", "run", (kScenes / scene).string(), "--out", r.out.string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    std::vector<const char *> argv;
+    for (const auto &a : args)
+        argv.push_back(a.c_str());
+    ::testing::internal::CaptureStderr();
+    r.status = armour::armour_main(static_cast<int>(argv.size()), argv.data());
+    r.err = ::testing::internal::GetCapturedStderr();
+    std::ifstream in(r.out / "summary.json");
+    if (in)
+        r.summary = json::parse(in);
+    return r;
+}
+
+void clean(const Outcome &r) {
+    if (!::testing::Test::HasFailure())
+        fs::remove_all(r.out.parent_path());
+}
+
+// /bodies/position of a run's record: [step][body][xyz] flattened, and the step count.
+std::vector<double> positions(const fs::path &h5, std::size_t &steps) {
+    std::vector<double> data;
+    const hid_t file = H5Fopen(h5.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    if (file < 0)
+        return data;
+    const hid_t set = H5Dopen2(file, "/bodies/position", H5P_DEFAULT);
+    const hid_t space = H5Dget_space(set);
+    hsize_t dims[3] = {0, 0, 0};
+    H5Sget_simple_extent_dims(space, dims, nullptr);
+    steps = dims[0];
+    data.resize(dims[0] * dims[1] * dims[2]);
+    H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data());
+    H5Sclose(space);
+    H5Dclose(set);
+    H5Fclose(file);
+    return data;
+}
+
+// A fixed, fully submerged cube: the fluid load is rho_w g a^3 upwards
+// (264.87 N). The smoothed mask over-counts edges by ~0.5 (h/a)^2 = +0.9 %
+// at 6 cells across; 2 % leaves room for that and nothing else.
+TEST(CoupledRun, ArchimedesOnFixedCube) {
+    const Outcome r = armour_run("buoyancy_cube.toml", "buoyancy");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_TRUE(fs::exists(r.out / "bodies.h5"));
+    EXPECT_TRUE(fs::exists(r.out / "bodies.xdmf"));
+    EXPECT_TRUE(fs::exists(r.out / "scene.resolved.toml"));
+    EXPECT_TRUE(fs::exists(r.out / "case" / "log.interFoam"));
+    EXPECT_EQ(r.summary["engine"], "free_body");
+    EXPECT_NEAR(r.summary["simulated_seconds"].get<double>(), 0.2, 1e-9);
+    EXPECT_NEAR(r.summary["buoyancy_expected"].get<double>(), 1000 * 9.81 * 0.027, 1e-9);
+    const double error = r.summary["buoyancy_error"].get<double>();
+    std::printf("[ coupled  ] buoyancy: F_z = %.4f N, rho g V = %.4f N, error %.3f %%, %.1f s wall\n",
+                r.summary["buoyancy_force"].get<double>(), r.summary["buoyancy_expected"].get<double>(),
+                100 * error, r.summary["wall_seconds"].get<double>());
+    EXPECT_LT(error, 0.02);
+    EXPECT_LT(r.summary["buoyancy_lateral"].get<double>(),
+              1e-3 * r.summary["buoyancy_expected"].get<double>());
+    clean(r);
+}
+
+// A concrete cube resting on the tank floor in still water: buoyancy takes
+// 42 % of its weight, the floor the rest; it must not drift (< 1 % of Dn).
+TEST(CoupledRun, RestingCubeDoesNotDrift) {
+    const Outcome r = armour_run("still_water_cube.toml", "still");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.summary["engine"], "bullet");
+    EXPECT_NEAR(r.summary["simulated_seconds"].get<double>(), 1.0, 1e-9);
+    const double ratio = r.summary["max_displacement_over_Dn"].get<double>();
+    std::printf("[ coupled  ] still water: max displacement %.3g m = %.4f %% of Dn, %.1f s wall\n",
+                r.summary["max_displacement"].get<double>(), 100 * ratio,
+                r.summary["wall_seconds"].get<double>());
+    EXPECT_LT(ratio, 0.01);
+    clean(r);
+}
+
+// A cube of density 500 released on the surface floats at half its edge
+// below the (risen) free surface. 3 % of the 0.1 m draft is 3 mm, 0.075 of a
+// cell. Its heave is lightly damped in this small closed tank (the radiated
+// waves come back; damping ratio ~0.03, amplitude -15 % per period), so the
+// draft is the mean over the whole periods of the second half (summary), and
+// "settling" is checked as decay: released 0.1 m (the whole draft) from
+// equilibrium, less than half of that swing is left in the last fifth.
+TEST(CoupledRun, FloatingCubeSettlesAtItsDraft) {
+    const Outcome r = armour_run("floating_cube.toml", "float");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const double draft = r.summary["draft"].get<double>(),
+                 expected = r.summary["draft_expected"].get<double>();
+    std::printf(
+        "[ coupled  ] floating: draft %.5f m (mean over %d periods), expected %.5f m, error %.2f %%, final "
+        "%.5f m, heave amplitude in the last fifth %.3g m, %.1f s wall\n",
+        draft, r.summary.value("heave_periods_averaged", 0), expected,
+        100 * r.summary["draft_error"].get<double>(), r.summary["draft_final"].get<double>(),
+        r.summary["heave_amplitude_last_fifth"].get<double>(), r.summary["wall_seconds"].get<double>());
+    EXPECT_NEAR(expected, 0.1, 1e-12);
+    EXPECT_GE(r.summary.value("heave_periods_averaged", 0), 1);
+    EXPECT_LT(r.summary["draft_error"].get<double>(), 0.03);
+    EXPECT_LT(r.summary["heave_amplitude_last_fifth"].get<double>(), 0.5 * expected);
+    clean(r);
+}
+
+// Loads are summed over ranks and every rank's engine replica takes the same
+// step, so 2 ranks follow the serial trajectory. They are not bitwise equal:
+// the decomposed pressure solver (per-rank DIC preconditioning) converges to
+// the same tolerance along another path. The tolerance, 1e-4 of the edge
+// (20 um), is far below the cube's heave (cm) and far above rounding.
+TEST(CoupledRun, SerialAndTwoRanksAgree) {
+    const std::vector<std::string> shorter = {"--set", "run.duration=0.3"};
+    const Outcome serial = armour_run("floating_cube.toml", "np1", shorter);
+    ASSERT_EQ(serial.status, 0) << serial.err;
+    std::vector<std::string> two = shorter;
+    two.insert(two.end(), {"--np", "2"});
+    const Outcome parallel = armour_run("floating_cube.toml", "np2", two);
+    ASSERT_EQ(parallel.status, 0) << parallel.err;
+    EXPECT_EQ(parallel.summary["fluid"]["np"], 2);
+    std::size_t ns = 0, np = 0;
+    const std::vector<double> a = positions(serial.out / "bodies.h5", ns);
+    const std::vector<double> b = positions(parallel.out / "bodies.h5", np);
+    ASSERT_EQ(ns, np);
+    ASSERT_EQ(a.size(), b.size());
+    ASSERT_GT(ns, 10u);
+    double worst = 0.0, heave = 0.0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        worst = std::max(worst, std::abs(a[i] - b[i]));
+        if (i % 3 == 2)
+            heave = std::max(heave, std::abs(a[i] - a[2]));
+    }
+    std::printf("[ coupled  ] serial vs 2 ranks over 0.3 s: max position difference %.3g m (heave %.3g m)\n",
+                worst, heave);
+    EXPECT_GT(heave, 0.01); // the comparison is of a moving cube
+    EXPECT_LT(worst, 1e-4 * 0.2);
+    clean(serial);
+    clean(parallel);
+}
+
+// Checked before anything runs: exit 2, one line, nothing started.
+TEST(CoupledRun, BadScenesStopBeforeTheSolver) {
+    const Outcome liggghts =
+        armour_run("floating_cube.toml", "bad_engine", {"--set", "run.engine=\"liggghts\"", "--np", "2"});
+    EXPECT_EQ(liggghts.status, 2);
+    EXPECT_NE(liggghts.err.find("key 'run.engine'"), std::string::npos) << liggghts.err;
+    EXPECT_FALSE(fs::exists(liggghts.out / "case"));
+
+    const Outcome outside =
+        armour_run("floating_cube.toml", "bad_box", {"--set", "body.0.position=[0.0, 0.0, 0.42]"});
+    EXPECT_EQ(outside.status, 2);
+    EXPECT_NE(outside.err.find("reaches outside"), std::string::npos) << outside.err;
+
+    const Outcome wall =
+        armour_run("still_water_cube.toml", "bad_wall", {"--set", "wall.0.point=[0.0, 0.0, 0.05]"});
+    EXPECT_EQ(wall.status, 2);
+    EXPECT_NE(wall.err.find("wall"), std::string::npos) << wall.err;
+
+    const Outcome tmpl = armour_run("buoyancy_cube.toml", "bad_case", {"--set", "fluid.case=\"nope\""});
+    EXPECT_EQ(tmpl.status, 2);
+    EXPECT_NE(tmpl.err.find("key 'fluid.case'"), std::string::npos) << tmpl.err;
+    for (const Outcome *r : {&liggghts, &outside, &wall, &tmpl})
+        fs::remove_all(r->out.parent_path());
+}
+
+// A coarse mesh runs, with a warning naming the number of cells across.
+TEST(CoupledRun, CoarseMeshWarns) {
+    const Outcome r = armour_run("buoyancy_cube.toml", "coarse",
+                                 {"--set", "fluid.cells=[5, 5, 5]", "--set", "run.duration=0.02"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("1.50 cells across"), std::string::npos) << r.err;
+    ASSERT_EQ(r.summary["warnings"].size(), 1u);
+    clean(r);
+}
+
+// A solver that fails surfaces its FOAM FATAL line as one error (exit 2),
+// and the case stays for inspection. A library without the plugin's type
+// makes interFoam stop at the fvOptions entry.
+TEST(CoupledRun, SolverFailureIsOneLine) {
+    ::setenv("ARMOUR_FOAM_PLUGIN", "/usr/lib/x86_64-linux-gnu/libm.so.6", 1);
+    const Outcome r = armour_run("buoyancy_cube.toml", "fatal", {"--set", "run.duration=0.02"});
+    ::unsetenv("ARMOUR_FOAM_PLUGIN");
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err.find("interFoam failed"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("FOAM FATAL"), std::string::npos) << r.err;
+    const std::string error = r.err.substr(std::min(r.err.find("armour: error: "), r.err.size()));
+    EXPECT_EQ(error.find('\n'), error.size() - 1) << r.err; // one line, the last
+    EXPECT_TRUE(fs::exists(r.out / "case" / "log.interFoam"));
+    EXPECT_FALSE(fs::exists(r.out / "summary.json"));
+    clean(r);
+}
+
+} // namespace
