@@ -2,6 +2,7 @@
 
 #include "body_recorder.h"
 #include "clump_io.h"
+#include "engine_factory.h"
 #include "staged_output.h"
 #include "stl_io.h"
 
@@ -83,49 +84,25 @@ bool on_path(const std::string &tool) {
     return false;
 }
 
-// Closest point on triangle abc to p (Voronoi regions of the triangle).
-Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d &p, const Eigen::Vector3d &a,
-                                    const Eigen::Vector3d &b, const Eigen::Vector3d &c) {
-    const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
-    const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-    if (d1 <= 0 && d2 <= 0)
-        return a;
-    const Eigen::Vector3d bp = p - b;
-    const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-    if (d3 >= 0 && d4 <= d3)
-        return b;
-    const double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0)
-        return a + d1 / (d1 - d3) * ab;
-    const Eigen::Vector3d cp = p - c;
-    const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-    if (d6 >= 0 && d5 <= d6)
-        return c;
-    const double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0)
-        return a + d2 / (d2 - d6) * ac;
-    const double va = d3 * d6 - d5 * d4;
-    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
-        return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
-    const double denom = 1.0 / (va + vb + vc);
-    return a + ab * (vb * denom) + ac * (vc * denom);
-}
-
 // Deepest point of a posed exact shape behind a wall (m, > 0 = inside the
-// wall): each vertex against its nearest wall triangle, whose normal points
-// to the bodies' side. build_scene checks the clump; the fluid sees the
-// exact shape, which a clump may not cover.
-double exact_wall_penetration(const std::vector<Eigen::Vector3d> &vertices, const Wall &wall) {
+// wall): each vertex against its nearest wall triangle, and behind it when
+// it lies on the other side of that triangle's plane than the body's centre
+// (so a wall read from an STL of either winding works). build_scene checks
+// the clump; the fluid sees the exact shape, which a clump may not cover.
+double exact_wall_penetration(const std::vector<Eigen::Vector3d> &vertices, const Eigen::Vector3d &centre,
+                              const Wall &wall) {
     double deepest = -HUGE_VAL;
     const auto &v = wall.surface.vertices;
     for (const auto &p : vertices) {
         double best = HUGE_VAL, signed_distance = 0.0;
         for (const auto &t : wall.surface.triangles) {
-            const Eigen::Vector3d q = closest_on_triangle(p, v[t[0]], v[t[1]], v[t[2]]);
+            const Eigen::Vector3d q = closest_point_on_triangle(p, v[t[0]], v[t[1]], v[t[2]]);
             const double d = (p - q).norm();
             if (d < best) {
                 best = d;
-                const Eigen::Vector3d n = (v[t[1]] - v[t[0]]).cross(v[t[2]] - v[t[0]]).normalized();
+                Eigen::Vector3d n = (v[t[1]] - v[t[0]]).cross(v[t[2]] - v[t[0]]).normalized();
+                if ((centre - q).dot(n) < 0.0)
+                    n = -n; // the body's side
                 signed_distance = (p - q).dot(n);
             }
         }
@@ -274,8 +251,8 @@ void fill_tokens(const fs::path &case_dir, const std::map<std::string, std::stri
 // ---------------------------------------------------------------- reading bodies.h5
 
 struct Record {
-    std::vector<double> time;                                  // steps
-    std::vector<std::vector<Eigen::Vector3d>> position, force; // [step][body]
+    std::vector<double> time;                                            // steps
+    std::vector<std::vector<Eigen::Vector3d>> position, force, velocity; // [step][body]
     std::vector<std::vector<Eigen::Quaterniond>> orientation;
     std::map<std::string, std::string> attributes;
 };
@@ -323,20 +300,23 @@ Record read_record(const fs::path &path) {
         throw InputError(path.string() + ": cannot open the plugin's record");
     Record r;
     try {
-        std::vector<hsize_t> dt, dp, dq, df;
+        std::vector<hsize_t> dt, dp, dq, df, dv;
         r.time = read_dataset(file, "/time", dt);
         const std::vector<double> p = read_dataset(file, "/bodies/position", dp);
         const std::vector<double> q = read_dataset(file, "/bodies/orientation", dq);
         const std::vector<double> f = read_dataset(file, "/bodies/external_force", df);
+        const std::vector<double> v = read_dataset(file, "/bodies/velocity", dv);
         const std::size_t steps = r.time.size(), bodies = dp.size() == 3 ? dp[1] : 0;
         for (std::size_t s = 0; s < steps; ++s) {
             r.position.emplace_back();
             r.force.emplace_back();
             r.orientation.emplace_back();
+            r.velocity.emplace_back();
             for (std::size_t b = 0; b < bodies; ++b) {
                 const std::size_t i3 = 3 * (s * bodies + b), i4 = 4 * (s * bodies + b);
                 r.position.back().emplace_back(p[i3], p[i3 + 1], p[i3 + 2]);
                 r.force.back().emplace_back(f[i3], f[i3 + 1], f[i3 + 2]);
+                r.velocity.back().emplace_back(v[i3], v[i3 + 1], v[i3 + 2]);
                 r.orientation.back().emplace_back(q[i4], q[i4 + 1], q[i4 + 2], q[i4 + 3]);
             }
         }
@@ -355,6 +335,120 @@ int count_solver_steps(const std::string &log) {
     for (std::size_t at = log.find("\nTime = "); at != std::string::npos; at = log.find("\nTime = ", at + 1))
         ++n;
     return n;
+}
+
+// Every file of a case template as one text (to see which tokens it uses).
+std::string template_text(const fs::path &dir) {
+    std::string text;
+    std::error_code ec;
+    for (const auto &e : fs::recursive_directory_iterator(dir, ec))
+        if (e.is_regular_file())
+            text += read_file(e.path());
+    return text;
+}
+
+int cells_along(double length, double h) {
+    return std::max(1, static_cast<int>(std::lround(length / h)));
+}
+
+// Geometry tokens of the templates with an obstacle or a sloping bed, from
+// the scene's walls, so the fluid mesh and the rigid bodies' walls are one
+// geometry (docs/openfoam.md, "Reference cases"):
+//   the first "slope" wall: @SLOPE_TOE_X@ @SLOPE_CREST_X@ @SLOPE_CREST_Z@, cells
+//     @NX_SEA@ (mesh start to toe), @NX_SLOPE@, @NX_CREST@ (crest to mesh end);
+//   the wall named "platform" (its bounding box): @PLATFORM_X0@ @PLATFORM_X1@
+//     @PLATFORM_Z1@ (top), cells @NX_BEFORE_PLATFORM@ @NX_ON_PLATFORM@
+//     @NX_AFTER_PLATFORM@ @NZ_BELOW_PLATFORM@ @NZ_ABOVE_PLATFORM@.
+// A wall that does not fit the mesh box is an error only for a template
+// that uses its tokens.
+void geometry_tokens(const Scene &scene, const SceneSetup &setup, const std::string &used,
+                     std::map<std::string, std::string> &tokens) {
+    const Eigen::Vector3d &lo = scene.domain_min, &hi = scene.domain_max;
+    const Eigen::Vector3d h = cell_size(scene);
+    const std::string where = scene.file + ": ";
+    for (const auto &w : scene.walls) {
+        if (w.type != "slope")
+            continue;
+        const double crest_x = w.toe_x + w.cot * w.height, crest_z = w.floor_z + w.height;
+        if (used.find("@SLOPE_") != std::string::npos) {
+            if (!(w.toe_x > lo.x() && crest_x < hi.x() && crest_z < hi.z()))
+                throw InputError(where + "slope wall '" + w.name + "': fluid.case \"" +
+                                 scene.fluid->case_name + "\" needs the toe (x = " + num(w.toe_x) +
+                                 " m) and the crest (x = " + num(crest_x) + " m, z = " + num(crest_z) +
+                                 " m) inside the mesh box");
+            if (w.floor_z != lo.z() || w.toe_height != 0.0)
+                throw InputError(where + "slope wall '" + w.name + "': fluid.case \"" +
+                                 scene.fluid->case_name + "\" needs floor_z = run.domain_min.z (" +
+                                 num(lo.z()) +
+                                 " m) and toe_height = 0 (the fluid bed is the slope's profile)");
+        }
+        tokens["@SLOPE_TOE_X@"] = num(w.toe_x);
+        tokens["@SLOPE_CREST_X@"] = num(crest_x);
+        tokens["@SLOPE_CREST_Z@"] = num(crest_z);
+        tokens["@NX_SEA@"] = std::to_string(cells_along(w.toe_x - lo.x(), h.x()));
+        tokens["@NX_SLOPE@"] = std::to_string(cells_along(crest_x - w.toe_x, h.x()));
+        tokens["@NX_CREST@"] = std::to_string(cells_along(hi.x() - crest_x, h.x()));
+        break;
+    }
+    for (std::size_t k = 0; k < scene.walls.size(); ++k) {
+        if (scene.walls[k].name != "platform")
+            continue;
+        Eigen::Vector3d a = Eigen::Vector3d::Constant(HUGE_VAL), b = -a;
+        for (const auto &v : setup.walls[k].surface.vertices) {
+            a = a.cwiseMin(v);
+            b = b.cwiseMax(v);
+        }
+        if (used.find("@PLATFORM_") != std::string::npos &&
+            !(a.x() > lo.x() && b.x() < hi.x() && b.z() > lo.z() && b.z() < hi.z() && a.z() <= lo.z() &&
+              a.y() <= lo.y() && b.y() >= hi.y()))
+            throw InputError(where + "wall 'platform': fluid.case \"" + scene.fluid->case_name +
+                             "\" needs it inside the mesh box along x, its top inside along z, and it must "
+                             "span the whole width (y) and reach down to the floor (bounding box " +
+                             foam_vector(a) + " .. " + foam_vector(b) + " m)");
+        tokens["@PLATFORM_X0@"] = num(a.x());
+        tokens["@PLATFORM_X1@"] = num(b.x());
+        tokens["@PLATFORM_Z1@"] = num(b.z());
+        tokens["@NX_BEFORE_PLATFORM@"] = std::to_string(cells_along(a.x() - lo.x(), h.x()));
+        tokens["@NX_ON_PLATFORM@"] = std::to_string(cells_along(b.x() - a.x(), h.x()));
+        tokens["@NX_AFTER_PLATFORM@"] = std::to_string(cells_along(hi.x() - b.x(), h.x()));
+        tokens["@NZ_BELOW_PLATFORM@"] = std::to_string(cells_along(b.z() - lo.z(), h.z()));
+        tokens["@NZ_ABOVE_PLATFORM@"] = std::to_string(cells_along(hi.z() - b.z(), h.z()));
+    }
+}
+
+// libarmourWaves.so (solitary inlet, absorbing outlet, gauges): $ARMOUR_WAVES_LIB,
+// else next to the coupling plugin (coupling/openfoam/waves/ in a build tree).
+std::string waves_library(const std::string &plugin) {
+    if (const char *env = std::getenv("ARMOUR_WAVES_LIB"); env && *env)
+        return env;
+    return (fs::path(plugin).parent_path() / "waves" / "libarmourWaves.so").string();
+}
+
+// Surface height at the first gauge of an armourWaveGauges function object
+// (postProcessing/gauges/<start>/surfaceElevation.dat): (time, z) rows.
+std::vector<std::pair<double, double>> gauge_series(const fs::path &case_dir) {
+    std::vector<std::pair<double, double>> rows;
+    std::error_code ec;
+    for (const auto &e : fs::recursive_directory_iterator(case_dir / "postProcessing", ec)) {
+        if (e.path().filename() != "surfaceElevation.dat")
+            continue;
+        std::ifstream in(e.path());
+        for (std::string line; std::getline(in, line);) {
+            double t = 0.0, z = 0.0;
+            if (!line.empty() && line[0] != '#' && std::sscanf(line.c_str(), "%lf %lf", &t, &z) == 2)
+                rows.emplace_back(t, z);
+        }
+        break;
+    }
+    return rows;
+}
+
+// nCells of the mesh as written (the note in constant/polyMesh/owner): templates
+// with several blocks or blocked cells are not cells[0] x cells[1] x cells[2].
+long mesh_cells(const fs::path &case_dir) {
+    const std::string owner = read_file(case_dir / "constant" / "polyMesh" / "owner");
+    const auto at = owner.find("nCells:");
+    return at == std::string::npos ? -1 : std::atol(owner.c_str() + at + 7);
 }
 
 } // namespace
@@ -409,7 +503,7 @@ std::vector<std::string> check_coupled_scene(const Scene &scene, const SceneSetu
                                  " reaches outside the fluid mesh box run.domain_min .. " +
                                  "run.domain_max (vertex " + foam_vector(v) + " m)");
         for (const auto &w : setup.walls) {
-            const double depth = exact_wall_penetration(posed_vertices(setup, b), w);
+            const double depth = exact_wall_penetration(posed_vertices(setup, b), b.pose.position, w);
             if (depth > 1e-9)
                 throw InputError(file + ": " + who + " cuts into wall '" + w.name + "' by " + num(depth) +
                                  " m at its initial pose; move it clear of the wall");
@@ -439,6 +533,29 @@ std::vector<std::string> check_coupled_scene(const Scene &scene, const SceneSetu
                 "body " + std::to_string(i) + ": initial speed " + num(speed) + " m/s gives Courant " +
                 num(co) + " > fluid.max_courant at fluid.max_time_step; " + "the first step starts smaller");
     }
+    // The engine's own step against its contact stability limit: refused here,
+    // before any tool runs, as a DEM run refuses it (run.force_time_step lets
+    // it through, with a warning); an engine step above the largest fluid step
+    // leaves fluid steps without an engine step.
+    {
+        const auto engine = make_engine(scene.engine, setup.settings);
+        for (const auto &u : setup.units)
+            engine->add_template(u);
+        for (const auto &w : setup.walls)
+            engine->add_wall(w);
+        TimeStepReport dt;
+        try {
+            dt = engine->time_step_report();
+        } catch (const InputError &e) {
+            throw InputError(file + ": " + e.what());
+        }
+        if (dt.forced)
+            warnings.push_back("run.time_step " + num(dt.used) + " s exceeds the engine's stability limit " +
+                               num(dt.limit) + " s (run.force_time_step = true): contacts may blow up");
+        if (dt.used > f.max_time_step)
+            warnings.push_back("engine step " + num(dt.used) + " s exceeds fluid.max_time_step " +
+                               num(f.max_time_step) + " s: fluid steps shorter than it run no engine step");
+    }
     if (scene.analysis == "float") {
         const SceneUnit *u = nullptr;
         for (const auto &unit : scene.units)
@@ -451,8 +568,15 @@ std::vector<std::string> check_coupled_scene(const Scene &scene, const SceneSetu
             throw InputError(file + ": key 'analysis.kind': \"float\": the cube's density " +
                              num(u->density) + " kg/m^3 is not below fluid.fluid_density; it sinks");
     }
-    if ((scene.analysis == "buoyancy" || scene.analysis == "still") && setup.bodies.empty())
+    if ((scene.analysis == "buoyancy" || scene.analysis == "still" || scene.analysis == "platform" ||
+         scene.analysis == "slope_waves") &&
+        setup.bodies.empty())
         throw InputError(file + ": key 'analysis.kind': needs a body");
+    if (scene.analysis == "dambreak" && setup.bodies.size() < 2)
+        throw InputError(file +
+                         ": key 'analysis.kind': \"dambreak\" compares two units: it needs at least two "
+                         "bodies (has " +
+                         std::to_string(setup.bodies.size()) + ")");
     return warnings;
 }
 
@@ -489,6 +613,7 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
     // The case: template copy with its tokens filled from the scene.
     const fs::path case_dir = out / "case";
     fs::copy(source_dir() / "foam_cases" / f.case_name, case_dir, fs::copy_options::recursive);
+    const std::string used = template_text(case_dir);
     const Eigen::Vector3d &lo = scene.domain_min, &hi = scene.domain_max;
     const Eigen::Vector3d pad = Eigen::Vector3d::Constant(1.0 + (hi - lo).maxCoeff());
     double speed = 0.0;
@@ -497,7 +622,10 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
     const Eigen::Vector3d h = cell_size(scene);
     const double first_dt =
         speed > 0.0 ? std::min(f.max_time_step, f.max_courant * h.minCoeff() / speed) : f.max_time_step;
-    const std::map<std::string, std::string> tokens = {
+    // Without a water column the column box is empty (below the mesh).
+    const Eigen::Vector3d column_min = f.has_water_box ? f.water_box_min : Eigen::Vector3d(lo - 2.0 * pad),
+                          column_max = f.has_water_box ? f.water_box_max : Eigen::Vector3d(lo - pad);
+    std::map<std::string, std::string> tokens = {
         {"@ARMOUR_PLUGIN@", plugin},
         {"@NP@", std::to_string(f.np)},
         {"@X0@", num(lo.x())},
@@ -525,11 +653,23 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
         {"@SCENE@", resolved.string()},
         {"@CACHE@", r.cache.empty() ? default_cache_dir() : fs::absolute(r.cache).string()},
         {"@OUTPUT@", out.string()},
+        {"@WATER_BOX_MIN@", foam_vector(column_min)},
+        {"@WATER_BOX_MAX@", foam_vector(column_max)},
+        {"@WATER_DEPTH@", num(f.water_level - lo.z())},
+        {"@WAVE_HEIGHT@", num(f.wave_height)},
     };
+    geometry_tokens(scene, setup, used, tokens);
+    if (used.find("@ARMOUR_WAVES@") != std::string::npos) {
+        const std::string waves = waves_library(plugin);
+        if (!fs::is_regular_file(waves))
+            throw InputError("fluid.case \"" + f.case_name + "\" needs the wave library " + waves +
+                             ": build the target armourWaves (or set ARMOUR_WAVES_LIB)");
+        tokens["@ARMOUR_WAVES@"] = waves;
+        if (f.wave_height <= 0.0)
+            throw InputError(scene.file + ": key 'fluid.wave_height': fluid.case \"" + f.case_name +
+                             "\" makes a solitary wave: give its height (> 0 m)");
+    }
     fill_tokens(case_dir, tokens);
-    for (const auto &e : fs::directory_iterator(case_dir / "0"))
-        if (e.path().extension() == ".orig")
-            fs::copy_file(e.path(), case_dir / "0" / e.path().stem(), fs::copy_options::overwrite_existing);
 
     // Debian's OpenFOAM finds its etc/ files only through this.
     ::setenv("WM_PROJECT_DIR", "/usr/share/openfoam", 0);
@@ -537,7 +677,19 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
                  f.cells[0], f.cells[1], f.cells[2], f.np, f.np > 1 ? "s" : "", scene.engine.c_str(),
                  case_dir.c_str());
     run_tool("blockMesh", {"blockMesh"}, case_dir, scene.duration, false);
+    // Blocked cells: a template with system/topoSetDict makes the cellSet
+    // "fluid" and the mesh keeps only it, the exposed faces joining the patch
+    // "walls" (foam_cases/slope_waves). Fields come from 0/*.orig afterwards.
+    if (fs::is_regular_file(case_dir / "system" / "topoSetDict")) {
+        run_tool("topoSet", {"topoSet"}, case_dir, scene.duration, false);
+        run_tool("subsetMesh", {"subsetMesh", "-overwrite", "fluid", "-patch", "walls"}, case_dir,
+                 scene.duration, false);
+    }
+    for (const auto &e : fs::directory_iterator(case_dir / "0"))
+        if (e.path().extension() == ".orig")
+            fs::copy_file(e.path(), case_dir / "0" / e.path().stem(), fs::copy_options::overwrite_existing);
     run_tool("setFields", {"setFields"}, case_dir, scene.duration, false);
+    const auto solver_start = std::chrono::steady_clock::now();
     if (f.np == 1) {
         run_tool("interFoam", {"interFoam"}, case_dir, scene.duration, true);
     } else {
@@ -547,6 +699,8 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
                   "LD_LIBRARY_PATH", "interFoam", "-parallel"},
                  case_dir, scene.duration, true);
     }
+    const double solver_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - solver_start).count();
     const double wall_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
@@ -577,7 +731,8 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
         {"fluid",
          {{"case", f.case_name},
           {"cells", {f.cells[0], f.cells[1], f.cells[2]}},
-          {"cells_total", static_cast<long>(f.cells[0]) * f.cells[1] * f.cells[2]},
+          {"cells_total", mesh_cells(case_dir) > 0 ? mesh_cells(case_dir)
+                                                   : static_cast<long>(f.cells[0]) * f.cells[1] * f.cells[2]},
           {"cell_size", {h.x(), h.y(), h.z()}},
           {"cells_across_unit", across},
           {"np", f.np},
@@ -704,6 +859,136 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
         char text[96];
         std::snprintf(text, sizeof text, "max displacement %.3g m (%.3g %% of Dn)", worst, 100 * ratio);
         result = text;
+    } else if (scene.analysis == "dambreak" || scene.analysis == "platform" ||
+               scene.analysis == "slope_waves") {
+        // Per unit over the record: displacement from the start (largest and
+        // last), speed, streamwise (+x) fluid load; a unit whose centre leaves
+        // the mesh box is counted.
+        const std::size_t n = rec.time.size(), bodies = setup.bodies.size();
+        json units = json::array();
+        std::vector<double> peak_fx(bodies, -HUGE_VAL), max_disp(bodies, 0.0), final_disp(bodies, 0.0);
+        int left = 0;
+        for (std::size_t b = 0; b < bodies; ++b) {
+            const double Dn = setup.unit_Dn[setup.bodies[b].unit];
+            double top_speed = 0.0, first_move = -1.0;
+            bool outside = false;
+            for (std::size_t s = 0; s < n; ++s) {
+                const Eigen::Vector3d d = rec.position[s][b] - rec.position[0][b];
+                max_disp[b] = std::max(max_disp[b], d.norm());
+                top_speed = std::max(top_speed, rec.velocity[s][b].norm());
+                peak_fx[b] = std::max(peak_fx[b], rec.force[s][b].x());
+                if (first_move < 0.0 && d.x() > 0.05 * Dn) // downstream, not the settling drop
+                    first_move = rec.time[s];
+                outside = outside || ((rec.position[s][b].array() < lo.array()).any() ||
+                                      (rec.position[s][b].array() > hi.array()).any());
+            }
+            const Eigen::Vector3d last = rec.position[n - 1][b] - rec.position[0][b];
+            final_disp[b] = last.norm();
+            left += outside ? 1 : 0;
+            units.push_back({{"body", b},
+                             {"initial_position",
+                              {rec.position[0][b].x(), rec.position[0][b].y(), rec.position[0][b].z()}},
+                             {"max_displacement", max_disp[b]},
+                             {"final_displacement", final_disp[b]},
+                             {"final_displacement_x", last.x()},
+                             {"max_speed", top_speed},
+                             {"peak_force_x", peak_fx[b]},
+                             {"first_move_time", first_move >= 0.0 ? json(first_move) : json(nullptr)},
+                             {"moved", max_disp[b] > 0.1 * Dn},
+                             {"displaced", final_disp[b] > Dn},
+                             {"Dn", Dn},
+                             {"left_domain", outside}});
+        }
+        summary["per_unit"] = units;
+        summary["units_left_domain"] = left;
+        summary["max_displacement"] = *std::max_element(max_disp.begin(), max_disp.end());
+        char text[160];
+        if (scene.analysis == "dambreak") {
+            // First and second in the flow: by initial x (the water column
+            // is upstream, at smaller x).
+            std::vector<std::size_t> order(bodies);
+            for (std::size_t b = 0; b < bodies; ++b)
+                order[b] = b;
+            std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) {
+                return rec.position[0][i].x() < rec.position[0][j].x();
+            });
+            summary["first_body"] = order[0];
+            summary["second_body"] = order[1];
+            summary["force_difference"] = peak_fx[order[0]] - peak_fx[order[1]];
+            std::snprintf(text, sizeof text,
+                          "peak F_x %.3g N (first) vs %.3g N (second), max displacement %.3g / %.3g m",
+                          peak_fx[order[0]], peak_fx[order[1]], max_disp[order[0]], max_disp[order[1]]);
+        } else {
+            // The wave at the first gauge: crest above the still level, and
+            // when it first exceeded 5 % of the inlet's wave height.
+            const auto gauge = gauge_series(case_dir);
+            double crest = -HUGE_VAL, arrival = -1.0;
+            for (const auto &[t, z] : gauge) {
+                crest = std::max(crest, z - f.water_level);
+                if (arrival < 0.0 && f.wave_height > 0.0 && z - f.water_level > 0.05 * f.wave_height)
+                    arrival = t;
+            }
+            summary["wave_height_inlet"] = f.wave_height;
+            summary["wave_height_gauge"] = gauge.empty() ? json(nullptr) : json(crest);
+            summary["wave_arrival_gauge"] = arrival >= 0.0 ? json(arrival) : json(nullptr);
+            // What moved before the wave reached the gauge (settling of the
+            // placed units in the still water).
+            double before = 0.0;
+            for (std::size_t s = 0; s < n && arrival >= 0.0 && rec.time[s] <= arrival; ++s)
+                for (std::size_t b = 0; b < bodies; ++b)
+                    before = std::max(before, (rec.position[s][b] - rec.position[0][b]).norm());
+            summary["max_displacement_before_wave"] = before;
+            int moved = 0, displaced = 0;
+            for (std::size_t b = 0; b < bodies; ++b) {
+                const double Dn = setup.unit_Dn[setup.bodies[b].unit];
+                moved += max_disp[b] > 0.1 * Dn ? 1 : 0;
+                displaced += final_disp[b] > Dn ? 1 : 0;
+            }
+            summary["units_moved"] = moved;         // largest displacement > 0.1 Dn
+            summary["units_displaced"] = displaced; // final displacement > Dn
+            std::snprintf(text, sizeof text, "wave %.3g m at the gauge, %d of %zu units moved, %d displaced",
+                          gauge.empty() ? 0.0 : crest, moved, bodies, displaced);
+        }
+        result = text;
+    }
+    // Cost and limits as run: interFoam's wall time per step, the largest
+    // Courant numbers it printed (the step adapts to max_courant from the
+    // previous step's flux, so it may overshoot; more than 10 % is reported),
+    // and the plugin's timings (coupling_times.json: engine advance = DEM).
+    {
+        const int steps = count_solver_steps(solver_log);
+        summary["fluid"]["solver_seconds"] = solver_seconds;
+        summary["fluid"]["seconds_per_step"] = solver_seconds / std::max(steps, 1);
+        summary["fluid"]["frozen"] = f.frozen;
+        double co = 0.0, interface_co = 0.0;
+        std::istringstream lines(solver_log);
+        for (std::string line; std::getline(lines, line);) {
+            const auto at = line.find("Courant Number mean:");
+            const auto mx = line.find("max:", at == std::string::npos ? 0 : at);
+            if (at == std::string::npos || mx == std::string::npos)
+                continue;
+            double &worst = at == 0 ? co : interface_co; // "Interface Courant Number ..."
+            worst = std::max(worst, std::atof(line.c_str() + mx + 4));
+        }
+        summary["fluid"]["courant_max_seen"] = co;
+        summary["fluid"]["interface_courant_max_seen"] = interface_co;
+        if (std::max(co, interface_co) > 1.1 * f.max_courant) {
+            const std::string w = "fluid Courant number reached " + num(std::max(co, interface_co)) +
+                                  " > fluid.max_courant " + num(f.max_courant) +
+                                  " (+10 %): the adjustable step lagged a sudden flow; lower max_time_step";
+            summary["warnings"].push_back(w);
+            std::fprintf(stderr, "armour: warning: %s\n", w.c_str());
+        }
+        std::ifstream times_file(out / "coupling_times.json");
+        const json times = times_file ? json::parse(times_file, nullptr, false) : json();
+        if (times.is_object()) {
+            for (const char *key : {"dem_seconds", "load_seconds", "mask_seconds"})
+                summary[key] = times.value(key, 0.0);
+            summary["dem_share_of_solver"] =
+                times.value("dem_seconds", 0.0) / std::max(solver_seconds, 1e-300);
+            summary["coupling_seconds"] = times.value("dem_seconds", 0.0) + times.value("load_seconds", 0.0) +
+                                          times.value("mask_seconds", 0.0);
+        }
     }
     write_text_file(out / "summary.json", summary.dump(2) + "\n");
     std::printf("%s: %d units, %.4g s coupled in %.1f s wall%s%s -> %s\n", scene.name.c_str(),

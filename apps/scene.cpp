@@ -37,7 +37,8 @@ const std::vector<std::string> kRootKeys = {"name",     "run",           "contac
 // Sections that are one table ([run]) rather than an array of tables ([[unit]]).
 const std::set<std::string> kSingleSections = {"run", "contact", "analysis", "fluid"};
 // Analyses that measure the fluid's load or its effect: they need a [fluid].
-const std::set<std::string> kFluidAnalyses = {"buoyancy", "float", "still"};
+const std::set<std::string> kFluidAnalyses = {"buoyancy", "float",    "still",
+                                              "dambreak", "platform", "slope_waves"};
 
 const std::vector<std::string> kUnitCommonKeys = {"name",       "shape",       "density", "spheres",
                                                   "tol_volume", "tol_surface", "method",  "material"};
@@ -76,10 +77,10 @@ const std::map<std::string, std::vector<std::string>> &section_keys() {
           "fixed_rotation"}},
         {"drop", {"unit", "count", "min", "max", "seed"}},
         {"pattern", {"unit", "wall", "rows", "columns", "spacing", "gap"}},
-        {"fluid",
-         {"case", "water_level", "cells", "cell_size", "penalty", "mask", "smoothing_cells", "added_mass",
-          "np", "fluid_density", "air_density", "viscosity", "air_viscosity", "max_courant", "max_time_step",
-          "write_interval"}},
+        {"fluid", {"case",           "water_level",     "cells",         "cell_size",   "penalty",
+                   "mask",           "smoothing_cells", "added_mass",    "np",          "fluid_density",
+                   "air_density",    "viscosity",       "air_viscosity", "max_courant", "max_time_step",
+                   "write_interval", "water_box_min",   "water_box_max", "wave_height", "frozen"}},
     };
     return keys;
 }
@@ -507,7 +508,8 @@ void read_contact_and_analysis(const Table &root, Scene &s) {
     const Table analysis = root.section("analysis");
     analysis.only(section_keys().at("analysis"));
     s.analysis = analysis.choice("kind", s.analysis,
-                                 {"none", "tilt", "slope", "bounce", "buoyancy", "float", "still"});
+                                 {"none", "tilt", "slope", "bounce", "buoyancy", "float", "still", "dambreak",
+                                  "platform", "slope_waves"});
     if (kFluidAnalyses.count(s.analysis) && !root.has("fluid"))
         analysis.fail("kind",
                       "kind " + quote(s.analysis) + " measures the fluid: the scene needs a [fluid] table");
@@ -695,12 +697,32 @@ void read_fluid(const Table &root, Scene &s) {
     if (f.case_name.empty() || f.case_name.find('/') != std::string::npos || f.case_name[0] == '.')
         t.fail("case",
                "must name a template folder in foam_cases/, e.g. \"tank\" (got " + quote(f.case_name) + ")");
-    t.require("water_level", " (z of the still-water surface, m)");
-    f.water_level = t.num("water_level", 0.0, "m");
-    t.check(f.water_level > s.domain_min.z() && f.water_level < s.domain_max.z(), "water_level",
+    // A water column (water_box_min/max) may replace the level: the level
+    // then defaults to the mesh's bottom (no water outside the column).
+    if (t.has("water_box_min") != t.has("water_box_max"))
+        t.fail(t.has("water_box_min") ? "water_box_max" : "water_box_min",
+               "missing: give both water_box_min and water_box_max (m)");
+    f.has_water_box = t.has("water_box_min");
+    if (f.has_water_box) {
+        f.water_box_min = t.vec3("water_box_min", f.water_box_min, "m");
+        f.water_box_max = t.vec3("water_box_max", f.water_box_max, "m");
+        if (!(f.water_box_max.array() > f.water_box_min.array()).all())
+            t.fail("water_box_max", "must exceed fluid.water_box_min " + vec_text(f.water_box_min) +
+                                        " m in every component (got " + vec_text(f.water_box_max) + ")");
+    } else {
+        t.require("water_level", " (z of the still-water surface, m)");
+    }
+    f.water_level = t.num("water_level", s.domain_min.z(), "m");
+    t.check((f.water_level > s.domain_min.z() || (f.has_water_box && f.water_level == s.domain_min.z())) &&
+                f.water_level < s.domain_max.z(),
+            "water_level",
             "must lie inside run.domain_min.z .. run.domain_max.z = (" + number(s.domain_min.z()) + ", " +
                 number(s.domain_max.z()) + ") m",
             f.water_level);
+    f.wave_height = t.num("wave_height", f.wave_height, "m");
+    t.check(f.wave_height >= 0 && (f.wave_height == 0 || f.wave_height < f.water_level - s.domain_min.z()),
+            "wave_height", "must be in [0, the still-water depth water_level - run.domain_min.z) m",
+            f.wave_height);
     if (t.has("cells") == t.has("cell_size"))
         t.fail(t.has("cells") ? "cell_size" : "cells",
                t.has("cells") ? "give either cells or cell_size, not both"
@@ -754,6 +776,7 @@ void read_fluid(const Table &root, Scene &s) {
     f.write_interval = t.num("write_interval", s.duration, "s");
     t.check(f.write_interval > 0 && f.write_interval <= s.duration, "write_interval",
             "must be in (0, run.duration = " + number(s.duration) + "] s", f.write_interval);
+    f.frozen = t.boolean("frozen", f.frozen);
     s.fluid = f;
 }
 
@@ -1045,7 +1068,12 @@ std::string resolved_scene_toml(const Scene &s) {
           << "air_viscosity = " << f(fl.air_viscosity) << " # m^2/s\n"
           << "max_courant = " << f(fl.max_courant) << "\n"
           << "max_time_step = " << f(fl.max_time_step) << " # s\n"
-          << "write_interval = " << f(fl.write_interval) << " # s\n";
+          << "write_interval = " << f(fl.write_interval) << " # s\n"
+          << "wave_height = " << f(fl.wave_height) << " # m\n"
+          << "frozen = " << (fl.frozen ? "true" : "false") << "\n";
+        if (fl.has_water_box)
+            o << "water_box_min = " << vec_text(fl.water_box_min) << " # m\n"
+              << "water_box_max = " << vec_text(fl.water_box_max) << " # m\n";
     }
     for (const auto &m : s.materials)
         o << "\n[[material]]\n"

@@ -120,6 +120,14 @@ struct SceneFluid {
     double max_courant = 0.5;            // interFoam maxCo and maxAlphaCo
     double max_time_step = 0.005;        // s, largest fluid step (at most run.output_interval)
     double write_interval = 0.0;         // s between field writes (the parser's default: run.duration)
+    // Optional water column (dam break): water in this box at the start, besides
+    // the water below water_level (which may then be left at domain_min.z: dry).
+    bool has_water_box = false;
+    Eigen::Vector3d water_box_min = Eigen::Vector3d::Zero(), water_box_max = Eigen::Vector3d::Zero(); // m
+    double wave_height = 0.0; // m, solitary wave H of a wave template's inlet (0 = none)
+    // Benchmark reference: units held where they start, mask imposed once, no
+    // load integration and no engine advance (bench/run_coupled_bench.sh).
+    bool frozen = false;
 };
 
 struct Scene {
@@ -137,9 +145,10 @@ struct Scene {
     std::string contact_model = "hertz";  // hertz | hooke
     double characteristic_velocity = 1.0; // m/s
     // [analysis]: what the summary reports
-    std::string analysis = "none"; // none | tilt | slope | bounce | buoyancy | float | still
-    double tilt_rate = 0.0;        // deg/s, tilt: gravity turns about +y at this rate
-    double tilt_max = 60.0;        // deg, tilt: stop here
+    std::string analysis =
+        "none"; // none | tilt | slope | bounce | buoyancy | float | still | dambreak | platform | slope_waves
+    double tilt_rate = 0.0; // deg/s, tilt: gravity turns about +y at this rate
+    double tilt_max = 60.0; // deg, tilt: stop here
     std::vector<SceneMaterial> materials;
     std::vector<SceneMaterialPair> material_pairs;
     std::vector<SceneUnit> units;

@@ -122,34 +122,6 @@ Eigen::Quaterniond random_orientation(std::mt19937_64 &rng) {
     return q;
 }
 
-// Closest point on triangle abc to p (Voronoi regions of the triangle).
-Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d &p, const Eigen::Vector3d &a,
-                                    const Eigen::Vector3d &b, const Eigen::Vector3d &c) {
-    const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
-    const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-    if (d1 <= 0 && d2 <= 0)
-        return a;
-    const Eigen::Vector3d bp = p - b;
-    const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-    if (d3 >= 0 && d4 <= d3)
-        return b;
-    const double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0)
-        return a + d1 / (d1 - d3) * ab;
-    const Eigen::Vector3d cp = p - c;
-    const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-    if (d6 >= 0 && d5 <= d6)
-        return c;
-    const double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0)
-        return a + d2 / (d2 - d6) * ac;
-    const double va = d3 * d6 - d5 * d4;
-    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
-        return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
-    const double denom = 1.0 / (va + vb + vc);
-    return a + ab * (vb * denom) + ac * (vc * denom);
-}
-
 // Deepest cut of a posed clump into any wall (m, <= 0 when clear) and the wall's index.
 std::pair<double, int> wall_penetration(const BodyInit &b, const Clump &clump,
                                         const std::vector<Wall> &walls) {
@@ -161,7 +133,7 @@ std::pair<double, int> wall_penetration(const BodyInit &b, const Clump &clump,
             for (const auto &t : walls[w].surface.triangles) {
                 const auto &v = walls[w].surface.vertices;
                 const double depth =
-                    sph.radius - (c - closest_on_triangle(c, v[t[0]], v[t[1]], v[t[2]])).norm();
+                    sph.radius - (c - closest_point_on_triangle(c, v[t[0]], v[t[1]], v[t[2]])).norm();
                 if (depth > deepest) {
                     deepest = depth;
                     which = static_cast<int>(w);
@@ -208,11 +180,12 @@ TriangleMesh slope_wall(const SceneWall &w, const Eigen::Vector3d &lo, const Eig
         const Eigen::Vector2d &a = profile[k], &b = profile[k + 1];
         if ((b - a).norm() <= 0.0)
             continue;
-        add_quad(m, {a.x(), y1, a.y()}, {b.x(), y1, b.y()}, {b.x(), y0, b.y()}, {a.x(), y0, a.y()});
+        add_quad(m, {a.x(), y0, a.y()}, {b.x(), y0, b.y()}, {b.x(), y1, b.y()}, {a.x(), y1, a.y()});
     }
-    // Side walls keep the units on the slope's width.
-    add_quad(m, {lo.x(), y0, w.floor_z}, {hi.x(), y0, w.floor_z}, {hi.x(), y0, hi.z()}, {lo.x(), y0, hi.z()});
-    add_quad(m, {lo.x(), y1, w.floor_z}, {lo.x(), y1, hi.z()}, {hi.x(), y1, hi.z()}, {hi.x(), y1, w.floor_z});
+    // Side walls keep the units on the slope's width. Every face's normal
+    // points to the units' side, as Wall requires.
+    add_quad(m, {lo.x(), y0, w.floor_z}, {lo.x(), y0, hi.z()}, {hi.x(), y0, hi.z()}, {hi.x(), y0, w.floor_z});
+    add_quad(m, {lo.x(), y1, w.floor_z}, {hi.x(), y1, w.floor_z}, {hi.x(), y1, hi.z()}, {lo.x(), y1, hi.z()});
     return m;
 }
 
@@ -253,15 +226,7 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
         t.props = shape.props;
         t.material = material_index(scene, u.material, "unit." + std::to_string(k) + ".material");
         t.clump = cached_clump(u, shape, cache_dir, progress);
-        if (u.shape == "dolos") {
-            // The parts are built in the construction frame; the unit frame is
-            // that frame moved so the union's centroid is the origin.
-            const Eigen::Vector3d centroid =
-                mass_properties(make_dolos_mesh(u.height, u.waist), 1.0).centroid;
-            for (const auto &part : make_dolos_parts(u.height, u.waist))
-                t.convex_parts.push_back(translated(part, -centroid));
-        } else if (u.shape == "cube")
-            t.convex_parts = {shape.mesh};
+        t.convex_parts = shape.convex_parts;
         setup.unit_Dn.push_back(shape.Dn());
         setup.unit_spheres.push_back(static_cast<int>(t.clump.size()));
         setup.units.push_back(std::move(t));

@@ -38,6 +38,10 @@ double surface_area(const TriangleMesh &mesh);
 std::vector<Eigen::Vector3d> sample_surface(const TriangleMesh &mesh, int count, std::uint64_t seed,
                                             std::vector<Eigen::Vector3d> *normals = nullptr);
 
+// The point of triangle abc nearest to p (m).
+Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d &p, const Eigen::Vector3d &a,
+                                          const Eigen::Vector3d &b, const Eigen::Vector3d &c);
+
 // The mesh moved by `offset` (m).
 TriangleMesh translated(const TriangleMesh &mesh, const Eigen::Vector3d &offset);
 

@@ -35,12 +35,15 @@ void require_density(double density) {
 
 // The unit frame has its origin at the exact centroid; the reference axes are
 // kept so that the user's orientation of the unit survives.
-Shape finish(std::string kind, std::string description, const TriangleMesh &mesh, double density) {
+Shape finish(std::string kind, std::string description, const TriangleMesh &mesh, double density,
+             const std::vector<TriangleMesh> &parts = {}) {
     Shape shape;
     shape.kind = std::move(kind);
     shape.description = std::move(description);
     const MassProperties raw = mass_properties(mesh, density);
     shape.mesh = translated(mesh, -raw.centroid);
+    for (const auto &part : parts) // moved with the union, so they stay its exact pieces
+        shape.convex_parts.push_back(translated(part, -raw.centroid));
     shape.props = mass_properties(shape.mesh, density);
     return shape;
 }
@@ -56,8 +59,9 @@ Shape make_cube_shape(double edge, double chamfer, double density) {
     require(chamfer >= 0.0 && chamfer < 0.5 * edge, chamfer, "--chamfer",
             "chamfer must be in [0, edge/2) = [0, " + number(0.5 * edge) + ") m");
     require_density(density);
-    return finish("cube", "cube a=" + number(edge) + " m chamfer=" + number(chamfer) + " m",
-                  make_cube_mesh(edge, chamfer), density);
+    const TriangleMesh mesh = make_cube_mesh(edge, chamfer);
+    return finish("cube", "cube a=" + number(edge) + " m chamfer=" + number(chamfer) + " m", mesh, density,
+                  {mesh});
 }
 
 Shape make_dolos_shape(double height, double waist_ratio, double density) {
@@ -66,7 +70,7 @@ Shape make_dolos_shape(double height, double waist_ratio, double density) {
             "dolos waist ratio must be in [" + fixed2(kDolosWaistMin) + ", " + fixed2(kDolosWaistMax) + "]");
     require_density(density);
     return finish("dolos", "dolos H=" + number(height) + " m r=" + number(waist_ratio),
-                  make_dolos_mesh(height, waist_ratio), density);
+                  make_dolos_mesh(height, waist_ratio), density, make_dolos_parts(height, waist_ratio));
 }
 
 Shape make_stl_shape(const std::string &path, double density) {

@@ -43,6 +43,7 @@ struct Shape {
     std::string kind;        // "cube", "dolos" or "stl"
     std::string description; // e.g. "cube a=1 m chamfer=0 m"
     TriangleMesh mesh;       // m, unit frame
+    std::vector<TriangleMesh> convex_parts; // m, unit frame: cube {mesh}, dolos shank + flukes, STL none
     MassProperties props;    // at the given density
     double Dn() const;       // nominal diameter V^(1/3), m
 };

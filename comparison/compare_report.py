@@ -60,7 +60,7 @@ for cost, err, r in sorted(points, key=lambda p: p[0]):
         front.append((cost, max(err, 1e-6)))
         best = err
 if front:
-    ax.plot(*zip(*front), "--", color="tab:red", label="Pareto front")
+    ax.plot(*zip(*front), "--o", mfc="none", ms=10, color="tab:red", label="Pareto front")
     ax.legend(fontsize=8)
 ax.set_xscale("log")
 ax.set_yscale("log")

@@ -27,19 +27,17 @@ UnitTemplate cube_unit(double a, double density) {
     unit.name = "cube";
     unit.mesh = shape.mesh;
     unit.props = shape.props;
-    unit.convex_parts = {shape.mesh};
+    unit.convex_parts = shape.convex_parts;
     return unit;
 }
 
 UnitTemplate dolos_unit(double height, double waist, double density) {
     const Shape shape = make_dolos_shape(height, waist, density);
-    const Eigen::Vector3d raw_centroid = mass_properties(make_dolos_mesh(height, waist), density).centroid;
     UnitTemplate unit;
     unit.name = "dolos";
     unit.mesh = shape.mesh;
     unit.props = shape.props;
-    for (const auto &part : make_dolos_parts(height, waist))
-        unit.convex_parts.push_back(translated(part, -raw_centroid));
+    unit.convex_parts = shape.convex_parts;
     return unit;
 }
 

@@ -610,5 +610,40 @@ TEST(MeshCheck, RejectsZeroVolume) {
     EXPECT_NO_THROW(validate_mesh(m, "tet"));
 }
 
+TEST(Shapes, ConvexPartsAreInTheUnitFrame) {
+    // The parts of a dolos move with its union: together they span exactly the
+    // union's bounding box, and the cube's one part is the cube itself.
+    const Shape dolos = make_dolos_shape(2.0, 0.33, 2400.0);
+    ASSERT_EQ(dolos.convex_parts.size(), 3u);
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(HUGE_VAL), hi = -lo, mlo = lo, mhi = -lo;
+    for (const auto &part : dolos.convex_parts)
+        for (const auto &v : part.vertices) {
+            lo = lo.cwiseMin(v);
+            hi = hi.cwiseMax(v);
+        }
+    for (const auto &v : dolos.mesh.vertices) {
+        mlo = mlo.cwiseMin(v);
+        mhi = mhi.cwiseMax(v);
+    }
+    EXPECT_LT((lo - mlo).norm() + (hi - mhi).norm(), 1e-12);
+    const Shape cube = make_cube_shape(1.0, 0.0, 2400.0);
+    ASSERT_EQ(cube.convex_parts.size(), 1u);
+    EXPECT_NEAR(signed_volume(cube.convex_parts[0]), 1.0, 1e-12);
+}
+
+TEST(Mesh, ClosestPointOnTriangleCoversEveryRegion) {
+    const Eigen::Vector3d a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+    auto nearest = [&](const Eigen::Vector3d &p, const Eigen::Vector3d &expected) {
+        EXPECT_LT((closest_point_on_triangle(p, a, b, c) - expected).norm(), 1e-15) << p.transpose();
+    };
+    nearest({0.2, 0.2, 5}, {0.2, 0.2, 0}); // face
+    nearest({-1, -1, 0}, a);               // vertices
+    nearest({2, -1, 0}, b);
+    nearest({-1, 3, 1}, c);
+    nearest({0.5, -2, 0}, {0.5, 0, 0}); // edges
+    nearest({-2, 0.5, 0}, {0, 0.5, 0});
+    nearest({1, 1, 0}, {0.5, 0.5, 0});
+}
+
 } // namespace
 } // namespace armour

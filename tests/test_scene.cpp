@@ -711,6 +711,48 @@ TEST(ExampleScenes, CoupledScenesLoadAsDescribed) {
     EXPECT_NEAR(s.bodies[0].position.z() - 0.5 * s.units[0].size, s.walls[0].point.z(), 1e-12);
 }
 
+// The reference cases (docs/openfoam.md): they take minutes to run, so only
+// their loading and layout are checked here (the dam break also runs, made
+// short, in test_coupled).
+TEST(ExampleScenes, ReferenceCasesLoadAsDescribed) {
+    const fs::path dir = fs::path(__FILE__).parent_path().parent_path() / "scenes";
+    const Scene d = load_scene((dir / "dambreak_two_cubes.toml").string());
+    EXPECT_EQ(d.analysis, "dambreak");
+    ASSERT_TRUE(d.fluid.has_value());
+    EXPECT_TRUE(d.fluid->has_water_box);
+    EXPECT_DOUBLE_EQ(d.fluid->water_level, d.domain_min.z()); // dry bed outside the column
+    ASSERT_EQ(d.bodies.size(), 2u);
+    EXPECT_LT(d.bodies[0].position.x(), d.bodies[1].position.x()); // first, then second in the flow
+    EXPECT_LT(d.units[0].density, d.fluid->fluid_density);         // light cubes
+    EXPECT_GT(d.bodies[0].position.x() - 0.5 * d.units[0].size, d.fluid->water_box_max.x());
+
+    const Scene p = load_scene((dir / "solitary_cubes_platform.toml").string());
+    EXPECT_EQ(p.analysis, "platform");
+    EXPECT_EQ(p.fluid->case_name, "solitary_platform");
+    EXPECT_GT(p.fluid->wave_height, 0.0);
+    EXPECT_LT(p.fluid->wave_height, 0.5 * (p.fluid->water_level - p.domain_min.z()));
+    EXPECT_EQ(p.bodies.size(), 3u);
+    bool platform = false;
+    for (const auto &w : p.walls)
+        platform = platform || w.name == "platform";
+    EXPECT_TRUE(platform); // the fluid template cuts this wall out of the mesh
+
+    const Scene s = load_scene((dir / "armour_slope_waves.toml").string());
+    EXPECT_EQ(s.analysis, "slope_waves");
+    EXPECT_EQ(s.fluid->case_name, "slope_waves");
+    ASSERT_EQ(s.patterns.size(), 1u);
+    const int units = s.patterns[0].rows * s.patterns[0].columns;
+    EXPECT_GE(units, 20);
+    EXPECT_LE(units, 30);
+    ASSERT_EQ(s.walls[0].type, "slope");
+    EXPECT_DOUBLE_EQ(s.walls[0].cot, 1.5);
+    EXPECT_DOUBLE_EQ(s.walls[0].floor_z, s.domain_min.z()); // the fluid bed starts on the floor
+    EXPECT_DOUBLE_EQ(s.walls[0].toe_height, 0.0);
+    for (const char *c : {"dambreak", "solitary_platform", "slope_waves"})
+        EXPECT_TRUE(fs::is_regular_file(dir.parent_path() / "foam_cases" / c / "system" / "blockMeshDict"))
+            << c;
+}
+
 TEST(ExampleScenes, LoadAsDescribed) {
     const fs::path dir = fs::path(__FILE__).parent_path().parent_path() / "scenes";
     const Scene drop = load_scene((dir / "drop_bounce.toml").string());

@@ -24,6 +24,7 @@
 #include "shapes.h"
 
 #include <array>
+#include <chrono>
 #include <exception>
 #include <fstream>
 #include <iomanip>
@@ -66,6 +67,19 @@ struct Foam::fv::armourCoupling::armourSide
 
     //- Master only, scene mode: water volumes per record (fluid.csv)
     std::ofstream fluidCsv;
+
+    //- Scene mode: units held, mask imposed once, no loads, no engine
+    //  advance (the fluid.frozen benchmark reference)
+    bool frozen = false;
+
+    //- Wall seconds of this rank in the coupling's parts, and its steps
+    double loadSeconds = 0;
+    double demSeconds = 0;
+    double maskSeconds = 0;
+    long steps = 0;
+
+    //- Master only, scene mode: where the timings go (coupling_times.json)
+    std::string timesFile;
 };
 
 
@@ -415,6 +429,7 @@ void Foam::fv::armourCoupling::constructFromScene(const fileName& scenePath)
         const armour::SceneFluid& fluid = *scene.fluid;
         penalty_ = fluid.penalty;
         engineName = scene.engine;
+        armour_->frozen = fluid.frozen;
         if (scene.engine == "liggghts" && Pstream::parRun())
         {
             FatalIOErrorInFunction(coeffs_)
@@ -533,6 +548,7 @@ void Foam::fv::armourCoupling::constructFromScene(const fileName& scenePath)
             // The free surface a floating unit settles against moves with
             // the water it displaces and with what seeps into its ramp
             // cells; the water volume outside the units pins it down.
+            armour_->timesFile = outDir/"coupling_times.json";
             armour_->fluidCsv.open(outDir/"fluid.csv");
             armour_->fluidCsv
                 << "time,water_volume,water_volume_outside_units\n"
@@ -555,7 +571,8 @@ void Foam::fv::armourCoupling::constructFromScene(const fileName& scenePath)
 
     Info<< "    armourCoupling: scene " << scenePath << ", "
         << armour_->names.size() << " bodies, engine " << engineName
-        << ", K = " << penalty_ << " 1/s" << endl;
+        << ", K = " << penalty_ << " 1/s"
+        << (armour_->frozen ? ", frozen (mask only)" : "") << endl;
 }
 
 
@@ -597,88 +614,103 @@ void Foam::fv::armourCoupling::couple
 )
 {
     const Time& runTime = mesh_.time();
-    const volScalarField& p = mesh_.lookupObject<volScalarField>("p");
-
-    // mu_eff = rho (nu + nut); nut only where a turbulence model made one.
-    volScalarField muEff
-    (
-        "armourMuEff",
-        rho*mesh_.lookupObject<volScalarField>("nu")
-    );
-    if (mesh_.foundObject<volScalarField>("nut"))
+    using clock = std::chrono::steady_clock;
+    const auto seconds = [](clock::time_point a, clock::time_point b)
     {
-        muEff += rho*mesh_.lookupObject<volScalarField>("nut");
-    }
-    const volVectorField f
-    (
-        "armourForceDensity",
-        -fvc::grad(p) + fvc::laplacian(muEff, U)
-    );
-
+        return std::chrono::duration<double>(b - a).count();
+    };
+    const clock::time_point t0 = clock::now();
     const label nb = armour_->names.size();
-    std::vector<Eigen::Vector3d> fd(f.size());
-    forAll(f, i)
-    {
-        fd[i] = toEigen(f[i]);
-    }
-
-    armour::BodyLoads loads;
-    try
-    {
-        loads = armour_->coupler->integrate_loads(armour_->cells, fd);
-    }
-    catch (const std::exception& err)
-    {
-        FatalErrorInFunction << "armour: " << err.what() << exit(FatalError);
-    }
-
-    // The momentum source each body puts into the fluid, at the same fields:
-    // with the loads, it checks the coupling's force balance.
+    ++armour_->steps;
     List<scalar> buf(10*nb, Zero);
-    forAll(U, i)
+    if (!armour_->frozen)
     {
-        const label k = armour_->body[i];
-        if (k < 0)
-        {
-            continue;
-        }
-        const vector S =
-            -rho[i]*penalty_*chi_[i]*(U[i] - UBody_[i])*mesh_.V()[i];
-        for (direction c = 0; c < 3; ++c)
-        {
-            buf[10*k + 6 + c] += S[c];
-        }
-        buf[10*k + 9] += chi_[i]*mesh_.V()[i];
-    }
-    for (label k = 0; k < nb; ++k)
-    {
-        for (direction c = 0; c < 3; ++c)
-        {
-            buf[10*k + c] = loads.force[k][c];
-            buf[10*k + 3 + c] = loads.torque[k][c];
-        }
-    }
-    // Every rank gets the same totals, so every rank's engine (free_body
-    // replicas) takes the same step.
-    Pstream::listCombineGather(buf, plusEqOp<scalar>());
-    Pstream::listCombineScatter(buf);
-    for (label k = 0; k < nb; ++k)
-    {
-        for (direction c = 0; c < 3; ++c)
-        {
-            loads.force[k][c] = buf[10*k + c];
-            loads.torque[k][c] = buf[10*k + 3 + c];
-        }
-    }
+        const volScalarField& p = mesh_.lookupObject<volScalarField>("p");
 
-    try
-    {
-        armour_->coupler->advance(loads, runTime.deltaTValue());
-        updateFields();
-    }
-    catch (const std::exception& err)
-    {
-        FatalErrorInFunction << "armour: " << err.what() << exit(FatalError);
+        // mu_eff = rho (nu + nut); nut only where a turbulence model made one.
+        volScalarField muEff
+        (
+            "armourMuEff",
+            rho*mesh_.lookupObject<volScalarField>("nu")
+        );
+        if (mesh_.foundObject<volScalarField>("nut"))
+        {
+            muEff += rho*mesh_.lookupObject<volScalarField>("nut");
+        }
+        const volVectorField f
+        (
+            "armourForceDensity",
+            -fvc::grad(p) + fvc::laplacian(muEff, U)
+        );
+
+        std::vector<Eigen::Vector3d> fd(f.size());
+        forAll(f, i)
+        {
+            fd[i] = toEigen(f[i]);
+        }
+
+        armour::BodyLoads loads;
+        try
+        {
+            loads = armour_->coupler->integrate_loads(armour_->cells, fd);
+        }
+        catch (const std::exception& err)
+        {
+            FatalErrorInFunction << "armour: " << err.what() << exit(FatalError);
+        }
+
+        // The momentum source each body puts into the fluid, at the same fields:
+        // with the loads, it checks the coupling's force balance.
+        forAll(U, i)
+        {
+            const label k = armour_->body[i];
+            if (k < 0)
+            {
+                continue;
+            }
+            const vector S =
+                -rho[i]*penalty_*chi_[i]*(U[i] - UBody_[i])*mesh_.V()[i];
+            for (direction c = 0; c < 3; ++c)
+            {
+                buf[10*k + 6 + c] += S[c];
+            }
+            buf[10*k + 9] += chi_[i]*mesh_.V()[i];
+        }
+        for (label k = 0; k < nb; ++k)
+        {
+            for (direction c = 0; c < 3; ++c)
+            {
+                buf[10*k + c] = loads.force[k][c];
+                buf[10*k + 3 + c] = loads.torque[k][c];
+            }
+        }
+        // Every rank gets the same totals, so every rank's engine (free_body
+        // replicas) takes the same step.
+        Pstream::listCombineGather(buf, plusEqOp<scalar>());
+        Pstream::listCombineScatter(buf);
+        for (label k = 0; k < nb; ++k)
+        {
+            for (direction c = 0; c < 3; ++c)
+            {
+                loads.force[k][c] = buf[10*k + c];
+                loads.torque[k][c] = buf[10*k + 3 + c];
+            }
+        }
+
+        const clock::time_point t1 = clock::now();
+        try
+        {
+            armour_->coupler->advance(loads, runTime.deltaTValue());
+            const clock::time_point t2 = clock::now();
+            updateFields();
+            armour_->loadSeconds += seconds(t0, t1);
+            armour_->demSeconds += seconds(t1, t2);
+            armour_->maskSeconds += seconds(t2, clock::now());
+        }
+        catch (const std::exception& err)
+        {
+            FatalErrorInFunction << "armour: " << err.what() << exit(FatalError);
+        }
     }
 
     // Every record interval and at the last step, so the record ends where
@@ -733,6 +765,14 @@ void Foam::fv::armourCoupling::couple
         }
         armour_->fluidCsv
             << t << ',' << water << ',' << waterOutside << std::endl;
+        std::ofstream times(armour_->timesFile);
+        times
+            << std::setprecision(9)
+            << "{\"frozen\": " << (armour_->frozen ? "true" : "false")
+            << ", \"coupling_steps\": " << armour_->steps
+            << ", \"load_seconds\": " << armour_->loadSeconds
+            << ", \"dem_seconds\": " << armour_->demSeconds
+            << ", \"mask_seconds\": " << armour_->maskSeconds << "}\n";
     }
 
     if (Pstream::master() && armour_->csv.is_open())
