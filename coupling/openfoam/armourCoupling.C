@@ -93,6 +93,23 @@ Eigen::Vector3d toEigen(const Foam::vector& v)
     return Eigen::Vector3d(v.x(), v.y(), v.z());
 }
 
+// This rank's cells for the coupler; copied once: the mesh is static.
+armour::CellSet cellSet(const Foam::fvMesh& mesh)
+{
+    armour::CellSet cells;
+    const Foam::vectorField& C = mesh.C();
+    const Foam::scalarField& V = mesh.V();
+    cells.centres.resize(C.size());
+    cells.volumes.resize(C.size());
+    forAll(C, i)
+    {
+        cells.centres[i] = toEigen(C[i]);
+        cells.volumes[i] = V[i];
+    }
+    return cells;
+}
+
+
 Foam::vector toFoam(const Eigen::Vector3d& v)
 {
     return Foam::vector(v.x(), v.y(), v.z());
@@ -372,16 +389,7 @@ Foam::fv::armourCoupling::armourCoupling
             )
         );
 
-        // Static mesh: the cells never change.
-        const vectorField& C = mesh.C();
-        const scalarField& V = mesh.V();
-        armour_->cells.centres.resize(C.size());
-        armour_->cells.volumes.resize(C.size());
-        forAll(C, i)
-        {
-            armour_->cells.centres[i] = toEigen(C[i]);
-            armour_->cells.volumes[i] = V[i];
-        }
+        armour_->cells = cellSet(mesh);
         updateFields();
     }
     catch (const std::exception& err)
@@ -500,15 +508,7 @@ void Foam::fv::armourCoupling::constructFromScene(const fileName& scenePath)
             new armour::Coupler(*armour_->engine, setup.units, bodyUnit, cs)
         );
 
-        const vectorField& C = mesh_.C();
-        const scalarField& V = mesh_.V();
-        armour_->cells.centres.resize(C.size());
-        armour_->cells.volumes.resize(C.size());
-        forAll(C, i)
-        {
-            armour_->cells.centres[i] = toEigen(C[i]);
-            armour_->cells.volumes[i] = V[i];
-        }
+        armour_->cells = cellSet(mesh_);
         updateFields();
 
         // The record sits beside the scene it ran (the run's output
