@@ -32,6 +32,11 @@ def error_of(r):
     return None if e is None else abs(e)
 
 
+def energy_gain(r):
+    """(E_max - E_0) / sum(m g Dn): zero or below for a stable, dissipative run."""
+    return (r["energy_max"] - r["energy_initial"]) / max(r.get("energy_scale") or 1.0, 1e-300)
+
+
 def label(r):
     return "exact hulls" if r["engine"] == "bullet" else f"{r['spheres']} spheres"
 
@@ -79,8 +84,7 @@ for engine, colour in (("liggghts", "tab:blue"), ("bullet", "black")):
     bad = [r for r in pts if r["status"] != "ok"]
     if ok:
         xs = [r["dt_factor"] for r in ok]
-        ys = [max((r["energy_max"] - r["energy_initial"]) / max(r.get("energy_scale", 1.0) or 1.0, 1e-300), 1e-8)
-              for r in ok]
+        ys = [max(energy_gain(r), 1e-8) for r in ok]
         ax.plot(xs, ys, "o-", color=colour, label=f"{engine}")
     if bad:
         ax.scatter([r["dt_factor"] for r in bad], [10.0] * len(bad), marker="x", s=60, color=colour,
@@ -152,8 +156,7 @@ lines += [
           "![time step](stability_dt.png)", "", "| run | dt / limit | status | energy gain |", "|---|---|---|---|"]
 for r in s["dt_sweep"]:
     if r["status"] == "ok":
-        gain = (r["energy_max"] - r["energy_initial"]) / max(r.get("energy_scale") or 1.0, 1e-300)
-        lines.append(f"| {r['label']} | {r['dt_factor']:g} | ok | {gain:.3g} |")
+        lines.append(f"| {r['label']} | {r['dt_factor']:g} | ok | {energy_gain(r):.3g} |")
     else:
         lines.append(f"| {r['label']} | {r['dt_factor']:g} | failed | {r['failure']} |")
 lines += ["", "![bumpiness](bumpiness.png)", ""]

@@ -20,25 +20,23 @@ double rad(double degrees) {
     return degrees * kPi / 180.0;
 }
 
-// The exact cube: one convex part, the cube mesh itself.
-UnitTemplate cube_unit(double a, double density) {
-    const Shape shape = make_cube_shape(a, 0.0, density);
+// A unit as the exact-shape engine sees it: exact mesh, convex parts (cube:
+// the cube itself; dolos: shank and flukes) and mass properties.
+UnitTemplate exact_unit(const Shape &shape) {
     UnitTemplate unit;
-    unit.name = "cube";
+    unit.name = shape.kind;
     unit.mesh = shape.mesh;
     unit.props = shape.props;
     unit.convex_parts = shape.convex_parts;
     return unit;
 }
 
+UnitTemplate cube_unit(double a, double density) {
+    return exact_unit(make_cube_shape(a, 0.0, density));
+}
+
 UnitTemplate dolos_unit(double height, double waist, double density) {
-    const Shape shape = make_dolos_shape(height, waist, density);
-    UnitTemplate unit;
-    unit.name = "dolos";
-    unit.mesh = shape.mesh;
-    unit.props = shape.props;
-    unit.convex_parts = shape.convex_parts;
-    return unit;
+    return exact_unit(make_dolos_shape(height, waist, density));
 }
 
 Wall floor_plane(double half, int material = 0) {
