@@ -5,6 +5,7 @@
 #include "clump_io.h"
 #include "coupled_run.h"
 #include "engine_factory.h"
+#include "materials.h"
 #include "scene_setup.h"
 #include "staged_output.h"
 #include "stl_io.h"
@@ -66,14 +67,6 @@ json nullable(const std::optional<double> &v) {
     return v ? json(*v) : json(nullptr);
 }
 
-double pair_friction(const EngineSettings &s, int a, int b) {
-    for (const auto &p : s.pairs)
-        if (p.friction >= 0.0 && ((p.a == s.materials[a].name && p.b == s.materials[b].name) ||
-                                  (p.a == s.materials[b].name && p.b == s.materials[a].name)))
-            return p.friction;
-    return std::min(s.materials[a].friction, s.materials[b].friction);
-}
-
 // Tilt: gravity turns about +y; the angle at which the unit first slides
 // (moves along x by 1 % of Dn without turning) and first topples (turns by
 // 10 degrees), each taken back to the last sample at which it was still at
@@ -90,7 +83,9 @@ struct TiltAnalysis {
     void sample(double t, const BodyState &s) {
         const double theta = angle(t);
         if (!reference) {
-            if (theta >= 1.0) // after the unit has settled on the plane
+            // The reference is the unit at rest on the plane: a unit placed
+            // above it lands and rocks for a while, and that motion is not sliding.
+            if (theta >= 1.0 && s.velocity.norm() < 5e-3 && s.angular_velocity.norm() < 5e-2)
                 reference = s.pose;
             return;
         }
@@ -343,8 +338,8 @@ int run_scene(const RunRequest &r) {
          {{"dt", "s"}, {"wall_seconds", "s"}, {"angles", "deg"}, {"lengths", "m"}, {"energy", "J"}}}};
     if (scene.analysis == "tilt") {
         const int wall_material = setup.walls.empty() ? 0 : setup.walls[0].material;
-        const double mu =
-            pair_friction(setup.settings, setup.units[setup.bodies[0].unit].material, wall_material);
+        const double mu = pair_value(setup.settings, setup.units[setup.bodies[0].unit].material,
+                                     wall_material, &Material::friction, &MaterialPair::friction);
         summary["mu"] = mu;
         summary["slide_angle_deg"] = nullable(tilt.slide);
         summary["topple_angle_deg"] = nullable(tilt.topple);
