@@ -80,8 +80,8 @@ int armour_main(int argc, const char *const *argv) {
                         "Clump cache folder (default $ARMOUR_CACHE or ~/.cache/armour-fsi)");
     run_cmd
         ->add_option("--np", run.np,
-                     "Scenes with [fluid]: MPI ranks of interFoam (overrides fluid.np; engine free_body or "
-                     "bullet when > 1)")
+                     "Scenes with [fluid]: MPI ranks of interFoam (overrides fluid.np; every rank runs "
+                     "the engine)")
         ->check(CLI::PositiveNumber);
     std::string run_engine;
     run_cmd->add_option("--engine", run_engine,

@@ -11,12 +11,15 @@
 #include "stl_io.h"
 
 #include <Eigen/Geometry>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <sys/wait.h>
 #include <unistd.h>
 
 namespace armour {
@@ -176,19 +179,11 @@ json slope_layer_figures(const Scene &scene, const SceneSetup &setup, const std:
             {"slope_angle_deg", alpha * 180.0 / kPi}};
 }
 
-} // namespace
-
-int run_scene(const RunRequest &r) {
+// The dry DEM run of a scene without [fluid]; `final_states` (optional)
+// receives every body's state at the end.
+int run_dem(const RunRequest &r, const Scene &scene, SceneSetup &setup,
+            std::vector<BodyState> *final_states) {
     const bool terminal = ::isatty(STDERR_FILENO) != 0;
-    const Scene scene = load_scene(r.scene, r.overrides);
-    SceneSetup setup = build_scene(scene, r.cache.empty() ? default_cache_dir() : r.cache, true);
-    if (r.out.empty())
-        throw InputError("--out: an output directory is required");
-    if (scene.fluid)
-        return run_coupled(r, scene, setup);
-    if (r.np != 0)
-        throw InputError("--np: only for scenes with a [fluid] table (MPI ranks of interFoam)");
-
     // Everything is checked before the output folder is touched.
     const fs::path out = fs::absolute(r.out);
     setup.settings.work_dir = (out / scene.engine).string();
@@ -357,7 +352,140 @@ int run_scene(const RunRequest &r) {
     write_text_file(out / "summary.json", summary.dump(2) + "\n");
     std::printf("%s: %d units, %ld steps of %.3g s, %.1f s wall -> %s\n", scene.name.c_str(),
                 static_cast<int>(setup.bodies.size()), engine->steps(), dt.used, wall_seconds, out.c_str());
+    if (final_states)
+        *final_states = states;
     return 0;
+}
+
+// Settles a coupled scene's units in the dry DEM for fluid.settle_time and
+// returns the scene the coupled run starts from: the same scene with every
+// unit an explicit [[body]] at its settled pose, at rest. The DEM runs in a
+// forked child: an engine that starts MPI (LIGGGHTS) in this process would
+// leave it unable to launch interFoam under mpirun. The child writes
+// OUT/settle (a normal `armour run` output), OUT/settle/scene.settled.toml
+// (rerunnable on its own) and OUT/settle/settled.json (how still it got).
+Scene settle_before_coupling(const RunRequest &r, const Scene &scene, SceneSetup &setup, json &report) {
+    const SceneFluid &fluid = *scene.fluid;
+    const fs::path dir = fs::absolute(r.out) / "settle";
+    const fs::path settled_file = dir / "scene.settled.toml";
+    std::fprintf(stderr, "run: settling %zu units in the dry DEM for %g s (fluid.settle_time) -> %s\n",
+                 setup.bodies.size(), fluid.settle_time, dir.c_str());
+    std::fflush(nullptr);
+    const pid_t pid = ::fork();
+    if (pid < 0)
+        throw InputError("fluid.settle_time: cannot start the settle run (fork failed)");
+    if (pid == 0) {
+        int status = 1;
+        try {
+            Scene dry = scene;
+            dry.fluid.reset();
+            dry.duration = fluid.settle_time;
+            dry.output_interval = std::min(scene.output_interval, fluid.settle_time);
+            dry.analysis = "none";
+            RunRequest request = r;
+            request.out = dir.string();
+            request.np = 0;
+            std::vector<BodyState> states;
+            run_dem(request, dry, setup, &states);
+
+            Scene settled = scene;
+            settled.fluid->settle_time = 0.0;
+            settled.drops.clear();
+            settled.patterns.clear();
+            settled.bodies.clear();
+            double speed = 0.0, displacement = 0.0;
+            for (std::size_t i = 0; i < states.size(); ++i) {
+                const BodyInit &init = setup.bodies[i];
+                SceneBody b;
+                if (i < scene.bodies.size())
+                    b = scene.bodies[i]; // explicit bodies keep their held axes
+                b.unit = setup.units[init.unit].name;
+                b.position = states[i].pose.position;
+                const Eigen::Quaterniond q = states[i].pose.orientation.normalized();
+                b.orientation = Eigen::Vector4d(q.w(), q.x(), q.y(), q.z());
+                b.velocity.setZero();
+                b.angular_velocity.setZero();
+                settled.bodies.push_back(b);
+                speed = std::max(speed, states[i].velocity.norm());
+                displacement = std::max(displacement, (states[i].pose.position - init.pose.position).norm());
+            }
+            write_text_file(settled_file, resolved_scene_toml(settled));
+            write_text_file(dir / "settled.json", json{{"settle_time", fluid.settle_time},
+                                                       {"max_speed_at_end", speed},
+                                                       {"max_displacement", displacement},
+                                                       {"units", states.size()},
+                                                       {"si_units", {{"speed", "m/s"}, {"lengths", "m"}}}}
+                                                          .dump(2) +
+                                                      "\n");
+            status = 0;
+        } catch (const std::exception &e) {
+            std::fprintf(stderr, "armour: settle run: %s\n", e.what());
+        }
+        std::fflush(nullptr);
+        ::_exit(status);
+    }
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !fs::is_regular_file(settled_file))
+        throw InputError(scene.file + ": key 'fluid.settle_time': the dry settle run failed (see the line " +
+                         "above and " + dir.string() + ")");
+    std::ifstream in(dir / "settled.json");
+    report = json::parse(in);
+    const double speed = report["max_speed_at_end"].get<double>();
+    // Still = slower than a fall through 1 % of a unit's size would give.
+    double Dn = HUGE_VAL;
+    for (const double d : setup.unit_Dn)
+        Dn = std::min(Dn, d);
+    const double still = std::sqrt(2.0 * scene.gravity.norm() * 0.01 * Dn);
+    report["still_speed"] = still;
+    if (speed > still)
+        std::fprintf(stderr,
+                     "armour: warning: after fluid.settle_time = %g s a unit still moves at %.3g m/s (> %.3g "
+                     "m/s): the layer has not settled; raise fluid.settle_time\n",
+                     fluid.settle_time, speed, still);
+    Scene settled = load_scene(settled_file.string());
+    setup = build_scene(settled, r.cache.empty() ? default_cache_dir() : r.cache, false);
+    return settled;
+}
+
+} // namespace
+
+int run_scene(const RunRequest &r) {
+    const Scene scene = load_scene(r.scene, r.overrides);
+    SceneSetup setup = build_scene(scene, r.cache.empty() ? default_cache_dir() : r.cache, true);
+    if (r.out.empty())
+        throw InputError("--out: an output directory is required");
+    if (!scene.fluid) {
+        if (r.np != 0)
+            throw InputError("--np: only for scenes with a [fluid] table (MPI ranks of interFoam)");
+        return run_dem(r, scene, setup, nullptr);
+    }
+    if (scene.fluid->settle_time <= 0.0)
+        return run_coupled(r, scene, setup);
+
+    // The placed scene is checked before anything is written; the settled
+    // one again by run_coupled.
+    check_coupled_scene(scene, setup, r.np > 0 ? r.np : scene.fluid->np);
+    const fs::path out = fs::absolute(r.out);
+    std::error_code ec;
+    if (fs::exists(out / "summary.json", ec) || fs::exists(out / "bodies.h5", ec) ||
+        fs::exists(out / "case", ec) || fs::exists(out / "settle", ec))
+        fs::remove_all(out, ec); // an earlier result of this command is replaced
+    json report;
+    const Scene settled = settle_before_coupling(r, scene, setup, report);
+    const int status = run_coupled(r, settled, setup);
+    // The coupled summary says where its start came from.
+    const fs::path summary_file = out / "summary.json";
+    std::ifstream in(summary_file);
+    if (status == 0 && in) {
+        json summary = json::parse(in);
+        in.close();
+        report["scene"] = "settle/scene.settled.toml";
+        summary["settle"] = report;
+        write_text_file(summary_file, summary.dump(2) + "\n");
+    }
+    return status;
 }
 
 } // namespace armour

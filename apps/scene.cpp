@@ -80,7 +80,8 @@ const std::map<std::string, std::vector<std::string>> &section_keys() {
         {"fluid", {"case",           "water_level",     "cells",         "cell_size",   "penalty",
                    "mask",           "smoothing_cells", "added_mass",    "np",          "fluid_density",
                    "air_density",    "viscosity",       "air_viscosity", "max_courant", "max_time_step",
-                   "write_interval", "water_box_min",   "water_box_max", "wave_height", "frozen"}},
+                   "write_interval", "water_box_min",   "water_box_max", "wave_height", "frozen",
+                   "settle_time"}},
     };
     return keys;
 }
@@ -777,6 +778,12 @@ void read_fluid(const Table &root, Scene &s) {
     t.check(f.write_interval > 0 && f.write_interval <= s.duration, "write_interval",
             "must be in (0, run.duration = " + number(s.duration) + "] s", f.write_interval);
     f.frozen = t.boolean("frozen", f.frozen);
+    f.settle_time = t.num("settle_time", f.settle_time, "s");
+    t.check(f.settle_time >= 0 && std::isfinite(f.settle_time), "settle_time", "must be >= 0 s",
+            f.settle_time);
+    t.check(!(f.frozen && f.settle_time > 0), "settle_time",
+            "must be 0 with frozen = true (the frozen benchmark holds the units where they start)",
+            f.settle_time);
     s.fluid = f;
 }
 
@@ -1070,7 +1077,8 @@ std::string resolved_scene_toml(const Scene &s) {
           << "max_time_step = " << f(fl.max_time_step) << " # s\n"
           << "write_interval = " << f(fl.write_interval) << " # s\n"
           << "wave_height = " << f(fl.wave_height) << " # m\n"
-          << "frozen = " << (fl.frozen ? "true" : "false") << "\n";
+          << "frozen = " << (fl.frozen ? "true" : "false") << "\n"
+          << "settle_time = " << f(fl.settle_time) << " # s\n";
         if (fl.has_water_box)
             o << "water_box_min = " << vec_text(fl.water_box_min) << " # m\n"
               << "water_box_max = " << vec_text(fl.water_box_max) << " # m\n";

@@ -227,10 +227,17 @@ AddedMassResult run_added_mass_problem(const AddedMassProblem &problem) {
         loads.force[0] = -rho_f * V * g - m_a * a_prev;
         const Eigen::Vector3d v0 = engine->state(0).velocity;
         const double t0 = engine->time();
-        coupler.advance(loads, problem.dt_fluid);
+        try {
+            coupler.advance(loads, problem.dt_fluid);
+        } catch (const std::runtime_error &) {
+            result.stopped = true; // the coupler recognised the instability
+            break;
+        }
         a_prev = (engine->state(0).velocity - v0) / (engine->time() - t0);
         result.acceleration.push_back(a_prev.z());
     }
+    if (result.acceleration.empty())
+        result.acceleration.push_back(a_prev.z());
     auto error = [&](double a) { return std::abs(a - result.analytic); };
     result.first_error = error(result.acceleration.front());
     result.last_error = error(result.acceleration.back());
@@ -240,7 +247,7 @@ AddedMassResult run_added_mass_problem(const AddedMassProblem &problem) {
         result.max_relative_error = std::max(result.max_relative_error, error(a) / scale);
     // An error at rounding level is not growth, however it fluctuates.
     const double noise = 1e-9 * std::max(std::abs(result.analytic), g.norm());
-    result.diverged = result.last_error > std::max(result.first_error, noise);
+    result.diverged = result.stopped || result.last_error > std::max(result.first_error, noise);
     return result;
 }
 

@@ -57,7 +57,8 @@ struct AddedMassResult {
     double first_error = 0.0;         // |a_1 - analytic|
     double last_error = 0.0;          // |a_N - analytic|
     double max_relative_error = 0.0;  // max_n |a_n - analytic| / |analytic|
-    bool diverged = false;            // the error grew from the first step to the last
+    bool diverged = false;            // the error grew from the first step to the last, or stopped
+    bool stopped = false;             // Coupler::advance refused to go on (an unstable exchange)
 };
 
 AddedMassResult run_added_mass_problem(const AddedMassProblem &problem);

@@ -39,6 +39,9 @@ std::string num(double v) {
 
 // LIGGGHTS ends the process on its own errors (exit or MPI_Abort). If that
 // happens, this prints the ERROR line from its log as the one error line.
+// In an MPI job every rank's replica meets the same error and prints it with
+// its own log's path; an MPI_Abort (LIGGGHTS' Error::one) ends the whole job
+// without running this.
 std::string g_log_path;
 void report_liggghts_exit() {
     if (g_log_path.empty())
@@ -208,6 +211,18 @@ class LiggghtsEngine final : public RigidBodyEngine {
             throw InputError("scene: no bodies to simulate");
         report();
         check_placement();
+        int initialised = 0;
+        MPI_Initialized(&initialised);
+        if (!initialised)
+            MPI_Init(nullptr, nullptr);
+        // In an MPI job (a parallel interFoam) every rank runs its own serial
+        // replica and writes the same file names: rank r > 0 keeps its files
+        // in work_dir/processor<r>, rank 0 in work_dir itself, where a serial
+        // run puts them (the files a run keeps are rank 0's).
+        int rank = 0;
+        MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+        if (rank > 0)
+            work_dir_ /= "processor" + std::to_string(rank);
         std::error_code ec;
         fs::create_directories(work_dir_, ec);
         if (ec)
@@ -220,10 +235,6 @@ class LiggghtsEngine final : public RigidBodyEngine {
             std::atexit(report_liggghts_exit);
             registered = true;
         }
-        int initialised = 0;
-        MPI_Initialized(&initialised);
-        if (!initialised)
-            MPI_Init(nullptr, nullptr);
         std::string log_arg = log.string();
         const char *args[] = {"liggghts", "-screen", "/dev/null", "-log", log_arg.c_str()};
         {
@@ -234,7 +245,15 @@ class LiggghtsEngine final : public RigidBodyEngine {
             const int null = ::open("/dev/null", O_WRONLY);
             if (null >= 0)
                 ::dup2(null, STDERR_FILENO);
-            lammps_open(5, const_cast<char **>(args), MPI_COMM_WORLD, &lmp_);
+            // MPI_COMM_SELF: one serial LIGGGHTS per process. On
+            // MPI_COMM_WORLD the ranks of a parallel interFoam would join one
+            // LIGGGHTS run split over a processor grid; the coupling wants a
+            // whole replica per rank instead, fed the same summed loads, so
+            // that every rank takes the same step (serial LIGGGHTS is
+            // deterministic). Nothing LIGGGHTS does here talks to
+            // MPI_COMM_WORLD: its one use, a timing gather in Finish::end,
+            // needs modify_timing verbose, which the inputs never set.
+            lammps_open(5, const_cast<char **>(args), MPI_COMM_SELF, &lmp_);
             if (saved >= 0)
                 ::dup2(saved, STDERR_FILENO);
             if (null >= 0)

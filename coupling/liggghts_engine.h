@@ -10,6 +10,12 @@
 //     its own errors; if it still does, its ERROR line from the log is printed.
 //     Bodies and walls must be added before the first advance().
 //
+//     Each engine is one serial LIGGGHTS (opened on MPI_COMM_SELF): in an MPI
+//     job every rank that builds one runs its own replica, as the interFoam
+//     plugin wants. Rank 0 writes its files (log.liggghts, input.liggghts,
+//     sphere and wall files) in settings.work_dir, rank r > 0 in
+//     work_dir/processor<r>, so the replicas never share a file.
+//
 // Usage
 //     EngineSettings settings;  settings.work_dir = "OUT/liggghts";
 //     auto engine = make_liggghts_engine(settings);

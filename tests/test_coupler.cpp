@@ -374,8 +374,55 @@ TEST(Loads, HydrostaticPressureGivesArchimedes) {
                 loads.force[0].y(), loads.force[0].z(), buoyancy, loads.torque[0].norm());
     EXPECT_LT(relative(loads.force[0].z(), buoyancy), 0.01);
     EXPECT_LT(loads.force[0].head<2>().norm(), 1e-9 * buoyancy);
-    // The mask's centroid can sit off the body's by a fraction of the ramp width.
+    // The mask's centroid can sit off the body's by a fraction of the ramp
+    // width: about the centre of mass a spurious moment remains ...
     EXPECT_LT(loads.torque[0].norm(), 1e-3 * buoyancy * a);
+    // ... about the mask's centroid a uniform density gives none.
+    BodyLoads centred = loads;
+    centre_torque_on_mask(centred);
+    std::printf("Archimedes: M about the mask centroid = %.3g N m\n", centred.torque[0].norm());
+    EXPECT_LT(centred.torque[0].norm(), 1e-9 * buoyancy * a);
+    EXPECT_EQ(centred.force[0], loads.force[0]);
+}
+
+// A floating cube (density ratio 1/2, draft a/2) heeled by theta about y,
+// its centre of mass on the still-water plane, water below z = 0. The
+// wall-sided formula is exact for a box while no face leaves the water or
+// the air (theta < atan(1/2)): righting arm GZ = sin(theta) (GM + BM tan^2
+// (theta) / 2) with BM = a / 6, BG = a / 4, so GM = -a / 12 (a cube floating
+// flat is unstable; it settles on an edge), moment -rho g V GZ about y.
+// Cells are all water or all air (z = 0 on a cell face), f = (0, 0, rho g)
+// in water. The moment is a small difference of large terms (GM = KB + BM -
+// KG), so the mask's sampling of the waterline faces, at the largest arm,
+// sets its error: measured -18 %, +19 %, -16 %, -14 %, +4 % at 4.4, 6, 8,
+// 10, 16 cells across (the centring changes it by 1-10 N m of 69 N m).
+// Floating units are held to heave in the shipped scenes for that reason;
+// at 16 cells across the moment is within 10 %.
+TEST(Loads, HeelingMomentOfAFloatingCube) {
+    const double a = 1.0, rho = 1000.0, h = a / 16.0;
+    const double theta = 10.0 * 3.14159265358979323846 / 180.0;
+    Pose pose;
+    pose.position = Eigen::Vector3d(0.137, -0.061, 0.0);
+    pose.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(theta, Eigen::Vector3d::UnitY()));
+    Scene scene({unit_of(make_cube_shape(a, 0.0, 500.0))}, {body_at(pose)});
+    // z = 0 on a cell face: each cell is all water or all air.
+    const double reach = std::ceil(1.2 * a / h) * h;
+    const CellSet cells =
+        uniform_cells(Eigen::Vector3d(-reach, -reach, -reach), Eigen::Vector3d(reach, reach, reach), h);
+    scene.coupler->update_mask(cells);
+    std::vector<Eigen::Vector3d> f;
+    for (const Eigen::Vector3d &x : cells.centres)
+        f.push_back(Eigen::Vector3d(0, 0, x.z() < 0.0 ? rho * kG : 0.0));
+    BodyLoads loads = scene.coupler->integrate_loads(cells, f);
+    const double raw = loads.torque[0].y();
+    centre_torque_on_mask(loads);
+    const double V = a * a * a;
+    const double gz = std::sin(theta) * (-a / 12.0 + (a / 6.0) * std::tan(theta) * std::tan(theta) / 2.0);
+    const double expected = -rho * kG * (V / 2.0) * gz; // about +y: heel grows (unstable)
+    std::printf("heeling moment: %.4g N m about the mask centroid, %.4g N m about the centre of mass, "
+                "wall-sided %.4g N m\n",
+                loads.torque[0].y(), raw, expected);
+    EXPECT_NEAR(loads.torque[0].y(), expected, 0.10 * std::abs(expected));
 }
 
 TEST(Loads, MomentIsAboutTheOwnersCentre) {
@@ -393,9 +440,12 @@ TEST(Loads, MomentIsAboutTheOwnersCentre) {
     const Eigen::Vector3d f0(300.0, -2000.0, 900.0);
     const BodyLoads uniform =
         scene.coupler->integrate_loads(cells, std::vector<Eigen::Vector3d>(cells.centres.size(), f0));
+    BodyLoads centred = uniform;
+    centre_torque_on_mask(centred);
     for (int k = 0; k < 2; ++k) {
         EXPECT_LT((uniform.force[k] - f0 * a * a * a).norm(), 0.01 * f0.norm());
         EXPECT_LT(uniform.torque[k].norm(), 1e-3 * f0.norm() * a) << k;
+        EXPECT_LT(centred.torque[k].norm(), 1e-12 * f0.norm() * a) << k;
     }
 
     // A load in one owned cell off the centre: M = r x F exactly.
@@ -423,7 +473,11 @@ TEST(AddedMass, PlainExplicitDivergesForLightUnitsOnly) {
     p.density_ratio = 0.3;
     const AddedMassResult light = run_added_mass_problem(p);
     EXPECT_TRUE(light.diverged);
-    EXPECT_GT(light.last_error, 1e3 * light.first_error); // (0.5/0.3)^39 = 4e8
+    // The coupler stops it (Coupler::check_stability) once the swings exceed
+    // five times the weight, after growing by (0.5/0.3) per step.
+    EXPECT_TRUE(light.stopped);
+    EXPECT_GT(light.last_error, 2.0 * light.first_error); // 4.6 when stopped, 4 steps in
+    EXPECT_LT(light.acceleration.size(), static_cast<std::size_t>(p.steps));
     p.density_ratio = 1.2;
     const AddedMassResult heavy = run_added_mass_problem(p);
     EXPECT_FALSE(heavy.diverged);

@@ -1,8 +1,10 @@
 // Geometry foundations: exact mass properties, STL input/output, mesh
 // validation and the exact cube and dolos shapes.
+#include "distance_grid.h"
 #include "mass_properties.h"
 #include "mesh.h"
 #include "mesh_check.h"
+#include "shape_query.h"
 #include "shapes.h"
 #include "stl_io.h"
 
@@ -17,6 +19,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <random>
 #include <string>
 #include <unistd.h>
 #include <vector>
@@ -643,6 +646,27 @@ TEST(Mesh, ClosestPointOnTriangleCoversEveryRegion) {
     nearest({0.5, -2, 0}, {0.5, 0, 0}); // edges
     nearest({-2, 0.5, 0}, {0, 0.5, 0});
     nearest({1, 1, 0}, {0.5, 0.5, 0});
+}
+
+TEST(DistanceGrid, SameDistancesAsTheAabbTree) {
+    // The grid only prunes triangles that cannot be nearest: every covered
+    // point must get the AABB tree's exact distance (to rounding).
+    const Shape dolos = make_dolos_shape(1.0, kDolosWaistDefault, 2400.0);
+    const ShapeQuery tree(dolos.mesh);
+    const DistanceGrid grid(dolos.mesh, 0.3, 12);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(-0.9, 0.9);
+    int covered = 0;
+    for (int i = 0; i < 20000; ++i) {
+        const Eigen::Vector3d p(u(rng), u(rng), u(rng));
+        if (!grid.covers(p))
+            continue;
+        ++covered;
+        ASSERT_NEAR(grid.distance(p), tree.distance(p), 1e-12) << "at " << p.transpose();
+    }
+    EXPECT_GT(covered, 10000);
+    // Pruning must actually prune, or the grid is a slow brute force.
+    EXPECT_LT(grid.mean_candidates(), 0.25 * static_cast<double>(dolos.mesh.triangles.size()));
 }
 
 } // namespace

@@ -80,6 +80,12 @@ struct Foam::fv::armourCoupling::armourSide
 
     //- Master only, scene mode: where the timings go (coupling_times.json)
     std::string timesFile;
+
+    //- Master only: whether every rank's engine replica had the master's
+    //  state to the bit at every record so far, and the largest spread of
+    //  a body's position over the ranks [m]
+    bool replicasIdentical = true;
+    double replicaSpread = 0;
 };
 
 
@@ -272,15 +278,6 @@ Foam::fv::armourCoupling::armourCoupling
             << "unknown mask '" << maskName << "' (use exact or spheres)"
             << exit(FatalIOError);
     }
-    // The LIGGGHTS adapter opens LIGGGHTS on MPI_COMM_WORLD with one
-    // processor grid cell: in a parallel run it would stop every rank.
-    // Every rank needs its own serial replica (as free_body does) first.
-    if (engineName == "liggghts" && Pstream::parRun())
-    {
-        FatalIOErrorInFunction(coeffs_)
-            << "engine liggghts runs with serial interFoam only for now;"
-            << " use free_body for parallel runs" << exit(FatalIOError);
-    }
     const bool needClump = engineName == "liggghts" || maskName == "spheres";
 
     // The solver's gravity, so the engine and the fluid agree on it.
@@ -438,13 +435,6 @@ void Foam::fv::armourCoupling::constructFromScene(const fileName& scenePath)
         penalty_ = fluid.penalty;
         engineName = scene.engine;
         armour_->frozen = fluid.frozen;
-        if (scene.engine == "liggghts" && Pstream::parRun())
-        {
-            FatalIOErrorInFunction(coeffs_)
-                << "engine liggghts runs with serial interFoam only (it opens"
-                << " LIGGGHTS on MPI_COMM_WORLD); use free_body or bullet for"
-                << " parallel runs" << exit(FatalIOError);
-        }
 
         // The fluid and the engine must feel the same gravity.
         const Eigen::Vector3d gravity = toEigen
@@ -676,24 +666,43 @@ void Foam::fv::armourCoupling::couple
             }
             buf[10*k + 9] += chi_[i]*mesh_.V()[i];
         }
+        // The mask's volume and first moment travel with the loads: the
+        // torque is taken about the mask's centroid once they are summed.
+        List<scalar> mask(4*nb, Zero);
         for (label k = 0; k < nb; ++k)
         {
             for (direction c = 0; c < 3; ++c)
             {
                 buf[10*k + c] = loads.force[k][c];
                 buf[10*k + 3 + c] = loads.torque[k][c];
+                mask[4*k + c] = loads.mask_first_moment[k][c];
             }
+            mask[4*k + 3] = loads.mask_volume[k];
         }
-        // Every rank gets the same totals, so every rank's engine (free_body
-        // replicas) takes the same step.
+        // Every rank gets the same totals, so every rank's engine replica
+        // (free_body, bullet, or a serial LIGGGHTS per rank) takes the same
+        // step.
         Pstream::listCombineGather(buf, plusEqOp<scalar>());
         Pstream::listCombineScatter(buf);
+        Pstream::listCombineGather(mask, plusEqOp<scalar>());
+        Pstream::listCombineScatter(mask);
         for (label k = 0; k < nb; ++k)
         {
             for (direction c = 0; c < 3; ++c)
             {
                 loads.force[k][c] = buf[10*k + c];
                 loads.torque[k][c] = buf[10*k + 3 + c];
+                loads.mask_first_moment[k][c] = mask[4*k + c];
+            }
+            loads.mask_volume[k] = mask[4*k + 3];
+        }
+        armour::centre_torque_on_mask(loads);
+        // What is recorded is what is applied.
+        for (label k = 0; k < nb; ++k)
+        {
+            for (direction c = 0; c < 3; ++c)
+            {
+                buf[10*k + 3 + c] = loads.torque[k][c];
             }
         }
 
@@ -744,6 +753,59 @@ void Foam::fv::armourCoupling::couple
             armour_->nextRecord += armour_->recordInterval;
         }
     }
+    if (recordNow && Pstream::parRun())
+    {
+        // The replicas only stay one run if the engine is deterministic
+        // (same summed loads in, same bits out); a rank that drifted would
+        // put its bodies elsewhere in its own cells. Checked at each record:
+        // the spread of every state component over the ranks.
+        List<scalar> hi(13*nb, Zero);
+        for (label k = 0; k < nb; ++k)
+        {
+            const armour::BodyState s = armour_->engine->state(k);
+            const Eigen::Quaterniond& q = s.pose.orientation;
+            const scalar state[13] =
+            {
+                s.pose.position.x(), s.pose.position.y(), s.pose.position.z(),
+                q.w(), q.x(), q.y(), q.z(),
+                s.velocity.x(), s.velocity.y(), s.velocity.z(),
+                s.angular_velocity.x(), s.angular_velocity.y(),
+                s.angular_velocity.z()
+            };
+            for (label c = 0; c < 13; ++c)
+            {
+                hi[13*k + c] = state[c];
+            }
+        }
+        List<scalar> lo(hi);
+        Pstream::listCombineGather(hi, maxEqOp<scalar>());
+        Pstream::listCombineGather(lo, minEqOp<scalar>());
+        if (Pstream::master())
+        {
+            const bool wasIdentical = armour_->replicasIdentical;
+            forAll(hi, i)
+            {
+                if (!(hi[i] == lo[i]))
+                {
+                    armour_->replicasIdentical = false;
+                }
+                if (i % 13 < 3)
+                {
+                    armour_->replicaSpread =
+                        max(armour_->replicaSpread, hi[i] - lo[i]);
+                }
+            }
+            if (wasIdentical && !armour_->replicasIdentical)
+            {
+                WarningInFunction
+                    << "armour: the ranks' engine replicas differ at t = "
+                    << t << " s (positions by up to " << armour_->replicaSpread
+                    << " m), so the ranks no longer run one simulation (an"
+                    << " engine that is not deterministic?); the record is the"
+                    << " master rank's" << endl;
+            }
+        }
+    }
     if (recordNow && armour_->recorder)
     {
         std::vector<armour::BodyState> states;
@@ -772,7 +834,11 @@ void Foam::fv::armourCoupling::couple
             << ", \"coupling_steps\": " << armour_->steps
             << ", \"load_seconds\": " << armour_->loadSeconds
             << ", \"dem_seconds\": " << armour_->demSeconds
-            << ", \"mask_seconds\": " << armour_->maskSeconds << "}\n";
+            << ", \"mask_seconds\": " << armour_->maskSeconds
+            << ", \"replicas_identical\": "
+            << (armour_->replicasIdentical ? "true" : "false")
+            << ", \"replica_position_spread\": " << armour_->replicaSpread
+            << "}\n";
     }
 
     if (Pstream::master() && armour_->csv.is_open())
