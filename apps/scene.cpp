@@ -781,9 +781,6 @@ void read_fluid(const Table &root, Scene &s) {
     f.settle_time = t.num("settle_time", f.settle_time, "s");
     t.check(f.settle_time >= 0 && std::isfinite(f.settle_time), "settle_time", "must be >= 0 s",
             f.settle_time);
-    t.check(!(f.frozen && f.settle_time > 0), "settle_time",
-            "must be 0 with frozen = true (the frozen benchmark holds the units where they start)",
-            f.settle_time);
     s.fluid = f;
 }
 

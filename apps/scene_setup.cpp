@@ -343,19 +343,20 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
 
     // A resting contact overlaps a little: a Hertz contact under a unit's own
     // weight by ~0.2 % of the sphere radius (E = 5e7 Pa, 0.06 m concrete
-    // cube). Poses taken from a settled run (fluid.settle_time) carry such
-    // overlaps; up to 1 % of the smaller radius is a contact, not a mistake.
-    // The same holds against the domain's faces.
-    const auto resting = [](double radius) { return 0.01 * radius; };
+    // cube), under a settled pile of 0.1 m cubes up to 1.5 %. Poses taken from
+    // a settled run (fluid.settle_time) carry such overlaps; up to 5 % of the
+    // smaller radius is a contact, not a mistake (at 5 % the softened Hertz
+    // contact pushes back with ~10 unit weights: a start that is not wrong).
+    // Against the domain's faces the engines' padded domain (above) counts.
+    const auto resting = [](double radius) { return 0.05 * radius; };
     // Bodies inside the domain, and no two overlapping.
     std::vector<std::string> problems;
     for (std::size_t i = 0; i < setup.bodies.size(); ++i) {
         const BodyInit &b = setup.bodies[i];
         for (const auto &sph : setup.units[b.unit].clump) {
             const Eigen::Vector3d c = b.pose.position + b.pose.orientation * sph.center;
-            const double r = sph.radius - resting(sph.radius);
-            if (((c.array() - r) < scene.domain_min.array()).any() ||
-                ((c.array() + r) > scene.domain_max.array()).any()) {
+            if (((c.array() - sph.radius) < s.domain_min.array()).any() ||
+                ((c.array() + sph.radius) > s.domain_max.array()).any()) {
                 throw InputError(scene.file + ": body " + std::to_string(i) + " (unit '" +
                                  setup.units[b.unit].name + "') reaches outside run.domain_min/domain_max");
             }

@@ -859,8 +859,6 @@ TEST_F(SceneFile, FluidErrorsNameLineAndKey) {
                  "did you mean 'water_level'?");
     expect_error(at("water_level = 1\ncells = [4, 4, 4]\nsettle_time = -1\n"), 17, "fluid.settle_time",
                  ">= 0 s");
-    expect_error(at("water_level = 1\ncells = [4, 4, 4]\nfrozen = true\nsettle_time = 1\n"), 18,
-                 "fluid.settle_time", "frozen");
     // Fluid analyses need the fluid.
     const std::string p = write(std::string(kMinimal) + "[analysis]\nkind = \"float\"\n");
     expect_error(p, 15, "analysis.kind", "needs a [fluid] table");
