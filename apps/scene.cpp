@@ -74,7 +74,7 @@ const std::map<std::string, std::vector<std::string>> &section_keys() {
         {"wall", joined(kWallCommonKeys, kWallTypeKeys)},
         {"body",
          {"unit", "position", "orientation", "velocity", "angular_velocity", "fixed_translation",
-          "fixed_rotation"}},
+          "fixed_rotation", "pivot"}},
         {"drop", {"unit", "count", "min", "max", "seed"}},
         {"pattern", {"unit", "wall", "rows", "columns", "spacing", "gap"}},
         {"fluid", {"case",           "water_level",     "cells",         "cell_size",   "penalty",
@@ -815,6 +815,16 @@ void read_placements(const Table &root, Scene &s) {
         b.angular_velocity = t.vec3("angular_velocity", b.angular_velocity, "rad/s");
         b.fixed_translation = t.flags("fixed_translation", b.fixed_translation);
         b.fixed_rotation = t.flags("fixed_rotation", b.fixed_rotation);
+        if (t.has("pivot")) {
+            b.pivot = t.vec3("pivot", Eigen::Vector3d::Zero(), "m");
+            if (s.engine != "free_body")
+                t.fail("pivot", "needs run.engine = \"free_body\" (got " + quote(s.engine) +
+                                    "): the contact engines hold locked axes at the centre of mass");
+            if (std::none_of(b.fixed_translation.begin(), b.fixed_translation.end(),
+                             [](bool f) { return f; }))
+                t.fail("pivot", "holds nothing without fixed_translation (the axes along which the pivot "
+                                "point stays put)");
+        }
         s.bodies.push_back(b);
     }
     for (const Table &t : root.entries("drop")) {
@@ -1151,7 +1161,8 @@ std::string resolved_scene_toml(const Scene &s) {
           << "velocity = " << vec_text(bd.velocity) << " # m/s\n"
           << "angular_velocity = " << vec_text(bd.angular_velocity) << " # rad/s\n"
           << "fixed_translation = " << flags(bd.fixed_translation) << "\n"
-          << "fixed_rotation = " << flags(bd.fixed_rotation) << "\n";
+          << "fixed_rotation = " << flags(bd.fixed_rotation) << "\n"
+          << (bd.pivot ? "pivot = " + vec_text(*bd.pivot) + " # m\n" : std::string());
     for (const auto &d : s.drops)
         o << "\n[[drop]]\n"
           << "unit = " << quote(d.unit) << "\n"

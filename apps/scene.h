@@ -80,6 +80,7 @@ struct SceneBody {
     Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero(); // rad/s
     std::array<bool, 3> fixed_translation{{false, false, false}};
     std::array<bool, 3> fixed_rotation{{false, false, false}};
+    std::optional<Eigen::Vector3d> pivot; // m, world: the point fixed_translation holds (free_body only)
 };
 
 // Random drop: `count` units at random non-overlapping poses in a region,

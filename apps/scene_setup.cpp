@@ -261,6 +261,7 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
         init.angular_velocity = b.angular_velocity;
         init.fixed_translation = b.fixed_translation;
         init.fixed_rotation = b.fixed_rotation;
+        init.pivot = b.pivot;
         setup.bodies.push_back(init);
     }
 

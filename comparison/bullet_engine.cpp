@@ -337,6 +337,10 @@ class BulletEngine final : public RigidBodyEngine {
             init.pose.orientation.norm() < 1e-12 || !init.velocity.allFinite() ||
             !init.angular_velocity.allFinite())
             throw InputError("body " + std::to_string(index) + ": pose and velocities must be finite");
+        if (init.pivot)
+            throw InputError("body " + std::to_string(index) +
+                             ": the bullet engine holds locked axes at the centre of mass; a pivot "
+                             "needs the free_body engine");
         const Unit &u = *units_[init.unit];
         const Eigen::Quaterniond q = init.pose.orientation.normalized();
         for (const auto &v : u.extent) {

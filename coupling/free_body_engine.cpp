@@ -5,10 +5,13 @@
 #include "shapes.h"
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+#include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace armour {
 
@@ -34,6 +37,9 @@ struct Body {
     Eigen::Vector3d momentum = Eigen::Vector3d::Zero(); // world angular momentum, kg m^2/s
     std::array<bool, 3> fixed_translation{{false, false, false}};
     std::array<bool, 3> fixed_rotation{{false, false, false}};
+    bool has_pivot = false;
+    Eigen::Vector3d pivot_in_unit = Eigen::Vector3d::Zero(); // m, unit frame, from the centre of mass
+    Eigen::Vector3d pivot_anchor = Eigen::Vector3d::Zero();  // m, world: where the held components stay
 };
 
 class FreeBodyEngine final : public RigidBodyEngine {
@@ -78,6 +84,15 @@ class FreeBodyEngine final : public RigidBodyEngine {
                 b.state.velocity[a] = 0.0;
             if (b.fixed_rotation[a])
                 b.state.angular_velocity[a] = 0.0;
+        }
+        if (init.pivot) {
+            if (!init.pivot->allFinite())
+                throw InputError("free_body engine: body " + std::to_string(bodies_.size()) +
+                                 ": pivot must be finite");
+            b.has_pivot = true;
+            b.pivot_anchor = *init.pivot;
+            b.pivot_in_unit = b.state.pose.orientation.conjugate() * (*init.pivot - b.state.pose.position);
+            project_onto_constraints(b, b.state.velocity, b.state.angular_velocity);
         }
         b.momentum = world_inertia(b, b.state.pose.orientation) * b.state.angular_velocity;
         bodies_.push_back(b);
@@ -144,7 +159,74 @@ class FreeBodyEngine final : public RigidBodyEngine {
         return w;
     }
 
+    // Velocities (v, omega) projected onto the hinge constraints with the
+    // body's mass metric: held components of the pivot velocity
+    // v + omega x r and of omega become zero, the constraint impulse being
+    // the smallest in kinetic energy (Gauss' principle).
+    void project_onto_constraints(const Body &b, Eigen::Vector3d &v, Eigen::Vector3d &w) const {
+        const Template &t = templates_[b.unit];
+        const Eigen::Quaterniond &q = b.state.pose.orientation;
+        const Eigen::Vector3d r = q * b.pivot_in_unit;
+        const Eigen::Matrix3d I_inv = world_inertia(b, q).inverse();
+        std::vector<Eigen::Matrix<double, 6, 1>> rows;
+        for (int k = 0; k < 3; ++k) {
+            const Eigen::Vector3d e = Eigen::Vector3d::Unit(k);
+            if (b.fixed_translation[k]) // e . (v + w x r) = e . v + (r x e) . w
+                rows.push_back((Eigen::Matrix<double, 6, 1>() << e, r.cross(e)).finished());
+            if (b.fixed_rotation[k])
+                rows.push_back((Eigen::Matrix<double, 6, 1>() << Eigen::Vector3d::Zero(), e).finished());
+        }
+        if (rows.empty())
+            return;
+        const int nc = static_cast<int>(rows.size());
+        Eigen::MatrixXd J(nc, 6);
+        for (int i = 0; i < nc; ++i)
+            J.row(i) = rows[i].transpose();
+        Eigen::Matrix<double, 6, 6> M_inv = Eigen::Matrix<double, 6, 6>::Zero();
+        M_inv.topLeftCorner<3, 3>() = Eigen::Matrix3d::Identity() / t.mass;
+        M_inv.bottomRightCorner<3, 3>() = I_inv;
+        Eigen::Matrix<double, 6, 1> u;
+        u << v, w;
+        const Eigen::MatrixXd A = J * M_inv * J.transpose();
+        // Redundant rows (a locked rotation that a locked translation already
+        // implies) make A singular: the pseudo-inverse through the complete
+        // orthogonal decomposition takes the least impulse.
+        const Eigen::VectorXd lambda = A.completeOrthogonalDecomposition().solve(J * u);
+        u -= M_inv * J.transpose() * lambda;
+        v = u.head<3>();
+        w = u.tail<3>();
+    }
+
+    // A body held at a pivot off its centre of mass: translation and
+    // rotation are coupled through the constraint, so the separate exact
+    // updates of step() do not apply. Symplectic Euler for the free motion,
+    // then the velocities projected onto the constraints and the held
+    // components of the pivot put back on their anchor (no drift).
+    void step_about_pivot(Body &b, double dt) const {
+        const Template &t = templates_[b.unit];
+        BodyState &s = b.state;
+        const Eigen::Matrix3d I_w = world_inertia(b, s.pose.orientation);
+        Eigen::Vector3d v = s.velocity + dt * (s.external_force / t.mass + gravity_);
+        Eigen::Vector3d w =
+            s.angular_velocity +
+            dt * I_w.ldlt().solve(s.external_torque - s.angular_velocity.cross(I_w * s.angular_velocity));
+        project_onto_constraints(b, v, w);
+        s.velocity = v;
+        s.angular_velocity = w;
+        s.pose.position += dt * v;
+        s.pose.orientation = (rotation_of(dt * w) * s.pose.orientation).normalized();
+        const Eigen::Vector3d pivot = s.pose.position + s.pose.orientation * b.pivot_in_unit;
+        for (int k = 0; k < 3; ++k)
+            if (b.fixed_translation[k])
+                s.pose.position[k] += b.pivot_anchor[k] - pivot[k];
+        b.momentum = world_inertia(b, s.pose.orientation) * w;
+    }
+
     void step(Body &b, double dt) const {
+        if (b.has_pivot) {
+            step_about_pivot(b, dt);
+            return;
+        }
         const Template &t = templates_[b.unit];
         BodyState &s = b.state;
 

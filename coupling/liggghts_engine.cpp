@@ -90,6 +90,10 @@ class LiggghtsEngine final : public RigidBodyEngine {
         require_setup_phase("add_body");
         if (body.unit < 0 || body.unit >= static_cast<int>(units_.size()))
             throw InputError("body " + std::to_string(bodies_.size()) + ": unknown unit template");
+        if (body.pivot)
+            throw InputError("body " + std::to_string(bodies_.size()) +
+                             ": the liggghts engine holds locked axes at the centre of mass; a pivot "
+                             "needs the free_body engine");
         Body b;
         b.init = body;
         b.init.pose.orientation.normalize();

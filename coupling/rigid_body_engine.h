@@ -25,6 +25,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -83,6 +84,11 @@ struct BodyInit {
     Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();
     std::array<bool, 3> fixed_translation{{false, false, false}}; // world x, y, z held
     std::array<bool, 3> fixed_rotation{{false, false, false}};    // rotation about world x, y, z held
+    // m, world, at the initial pose: the body point that fixed_translation
+    // holds (a hinge or slider off the centre of mass, as OpenFOAM's sixDoF
+    // centreOfRotation). Empty: the centre of mass. Engines that cannot
+    // hold a point off the centre of mass throw InputError.
+    std::optional<Eigen::Vector3d> pivot;
 };
 
 // A static wall: a closed or open triangle surface (planes are big quads).

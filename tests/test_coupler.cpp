@@ -13,6 +13,7 @@ using namespace armour;
 namespace {
 
 constexpr double kG = 9.81;
+constexpr double kPi = 3.14159265358979323846;
 
 UnitTemplate unit_of(const Shape &shape) {
     UnitTemplate unit;
@@ -86,7 +87,6 @@ BodyInit body_at(const Pose &pose, int unit = 0) {
 // (2 + pi/2)(1/16 - 1/(2 pi^2)) w^2 per unit length (coupler.cpp): for a cube
 // of edge a meshed at h = w, 12 a of edge give this relative volume excess.
 double cube_edge_excess(double h_over_a) {
-    constexpr double kPi = 3.14159265358979323846;
     return 12.0 * (2.0 + 0.5 * kPi) * (1.0 / 16.0 - 1.0 / (2.0 * kPi * kPi)) * h_over_a * h_over_a;
 }
 
@@ -217,6 +217,83 @@ TEST(FreeBody, LockedAxesHoldAndWallsAreIgnored) {
     EXPECT_LT(relative(s.angular_velocity.y(), 0.5 + 10.0 / I * 0.1), 1e-9);
     const Eigen::AngleAxisd turned(s.pose.orientation);
     EXPECT_LT((turned.axis().cwiseAbs() - Eigen::Vector3d::UnitY()).norm(), 1e-9);
+}
+
+// A cube hanging from a hinge at its top-face centre (line along y held in
+// x and z, rotation about y only) is a compound pendulum:
+// T = 2 pi sqrt(I_p / (m g d)), I_p = I_c + m d^2 (parallel axes), d = a/2.
+TEST(FreeBody, HingeOffTheCentreOfMassSwingsAsACompoundPendulum) {
+    const double a = 1.0;
+    const UnitTemplate cube = unit_of(make_cube_shape(a, 0.0, 2400.0));
+    auto engine = make_free_body_engine(EngineSettings{});
+    engine->add_template(cube);
+    const Eigen::Vector3d hinge(0.0, 0.0, 2.0);
+    const double theta0 = 0.05; // rad: the amplitude correction theta0^2/16 is 1.6e-4
+    BodyInit b;
+    b.pose.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(theta0, Eigen::Vector3d::UnitY()));
+    b.pose.position = hinge + b.pose.orientation * Eigen::Vector3d(0, 0, -0.5 * a);
+    b.fixed_translation = {{true, false, true}};
+    b.fixed_rotation = {{true, false, true}};
+    b.pivot = hinge;
+    engine->add_body(b);
+
+    const double m = cube.props.mass;
+    const double d = 0.5 * a;
+    const double I_p = cube.props.inertia(1, 1) + m * d * d;
+    const double period = 2.0 * kPi * std::sqrt(I_p / (m * kG * d)) * (1.0 + theta0 * theta0 / 16.0);
+    // Period from the times the swing passes the bottom going the same way.
+    std::vector<double> crossings;
+    double previous = theta0;
+    double max_hinge_error = 0.0;
+    while (engine->time() < 3.2 * period) {
+        engine->advance(1e-4);
+        const BodyState s = engine->state(0);
+        const Eigen::AngleAxisd turn(s.pose.orientation);
+        const double theta = turn.angle() * turn.axis().y();
+        if (previous > 0.0 && theta <= 0.0)
+            crossings.push_back(engine->time() - 1e-4 * theta / (theta - previous));
+        previous = theta;
+        const Eigen::Vector3d at_hinge =
+            s.pose.position + s.pose.orientation * Eigen::Vector3d(0, 0, 0.5 * a);
+        max_hinge_error = std::max(
+            {max_hinge_error, std::abs(at_hinge.x() - hinge.x()), std::abs(at_hinge.z() - hinge.z())});
+        ASSERT_LT(std::abs(theta), 1.01 * theta0) << "the swing grew at t = " << engine->time();
+    }
+    ASSERT_GE(crossings.size(), 3u);
+    EXPECT_LT(
+        relative((crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1), period),
+        2e-3);
+    EXPECT_LT(max_hinge_error, 1e-12);
+}
+
+// A push at the centre of mass of a unit hinged at its bottom face: the
+// moment about the hinge turns it with alpha = d F / I_p, and the push
+// along the hinge line slides it with F / m, unaffected by the hinge.
+TEST(FreeBody, HingeTakesPushesAboutThePivot) {
+    const double a = 1.0;
+    const UnitTemplate cube = unit_of(make_cube_shape(a, 0.0, 2400.0));
+    auto engine = make_free_body_engine(EngineSettings{});
+    engine->add_template(cube);
+    engine->set_gravity(Eigen::Vector3d::Zero());
+    BodyInit b;
+    b.pose.position = Eigen::Vector3d(0.0, 0.0, 0.5 * a);
+    b.fixed_translation = {{true, false, true}};
+    b.fixed_rotation = {{true, false, true}};
+    b.pivot = Eigen::Vector3d::Zero();
+    engine->add_body(b);
+    const Eigen::Vector3d F(100.0, 300.0, 0.0);
+    engine->set_external_load(0, F, Eigen::Vector3d::Zero());
+    const double t = 0.01;
+    engine->advance(t);
+    const BodyState s = engine->state(0);
+    const double m = cube.props.mass;
+    const double d = 0.5 * a;
+    const double alpha = d * F.x() / (cube.props.inertia(1, 1) + m * d * d);
+    EXPECT_LT(relative(s.angular_velocity.y(), alpha * t), 1e-3);
+    EXPECT_LT(relative(s.velocity.y(), F.y() / m * t), 1e-9);
+    EXPECT_LT(relative(s.velocity.x(), alpha * t * d), 1e-3); // the centre of mass swings about the hinge
+    EXPECT_NEAR(s.angular_velocity.x(), 0.0, 1e-15);
+    EXPECT_NEAR(s.angular_velocity.z(), 0.0, 1e-15);
 }
 
 // ---------------------------------------------------------------- mask

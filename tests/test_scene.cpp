@@ -308,6 +308,7 @@ void expect_same(const Scene &a, const Scene &b) {
         EXPECT_EQ(x.angular_velocity, y.angular_velocity);
         EXPECT_EQ(x.fixed_translation, y.fixed_translation);
         EXPECT_EQ(x.fixed_rotation, y.fixed_rotation);
+        EXPECT_EQ(x.pivot, y.pivot);
     }
     ASSERT_EQ(a.drops.size(), b.drops.size());
     for (std::size_t i = 0; i < a.drops.size(); ++i) {
@@ -638,6 +639,24 @@ TEST_F(SceneFile, OutOfRangeValues) {
     expect_error(p9, l9, "unit.0.shape", "must be one of \"cube\", \"dolos\", \"stl\" (got \"sphere\")");
 }
 
+// A hinge off the centre of mass: the free_body engine only, and only with
+// held translations for the pivot to keep.
+TEST_F(SceneFile, PivotNeedsFreeBodyAndHeldTranslation) {
+    const std::string hinge = "fixed_translation = [true, false, true]\npivot = [0, 0, 0.9]";
+    const std::string free_body = "[run]\nengine = \"free_body\"\n";
+    const std::string ok = write(std::string(kMinimal) + hinge + "\n" + free_body);
+    const Scene s = load_scene(ok);
+    ASSERT_TRUE(s.bodies[0].pivot.has_value());
+    EXPECT_EQ(*s.bodies[0].pivot, Eigen::Vector3d(0, 0, 0.9));
+    const std::string resolved = write(resolved_scene_toml(s));
+    EXPECT_EQ(load_scene(resolved).bodies[0].pivot, s.bodies[0].pivot);
+
+    const std::string liggghts = write(std::string(kMinimal) + hinge + "\n");
+    expect_error(liggghts, 15, "body.0.pivot", "needs run.engine = \"free_body\" (got \"liggghts\")");
+    const std::string loose = write(std::string(kMinimal) + "pivot = [0, 0, 0.9]\n" + free_body);
+    expect_error(loose, 14, "body.0.pivot", "holds nothing without fixed_translation");
+}
+
 TEST_F(SceneFile, UnknownReferences) {
     const auto [p1, l1] = minimal_with("unit = \"u\"", "unit = \"v\"");
     expect_error(p1, l1, "body.0.unit", "no [[unit]] named \"v\" (known: \"u\")");
@@ -709,6 +728,12 @@ TEST(ExampleScenes, CoupledScenesLoadAsDescribed) {
     EXPECT_EQ(s.analysis, "still");
     EXPECT_DOUBLE_EQ(s.units[0].density, 2400.0);
     EXPECT_NEAR(s.bodies[0].position.z() - 0.5 * s.units[0].size, s.walls[0].point.z(), 1e-12);
+    // The tutorial's hinge: the bottom-face centre slides along y.
+    const Scene box = load_scene((dir / "floating_box.toml").string());
+    ASSERT_TRUE(box.bodies[0].pivot.has_value());
+    EXPECT_EQ(*box.bodies[0].pivot, Eigen::Vector3d(0.5, 0.45, 0.1));
+    EXPECT_EQ(box.bodies[0].fixed_translation, (std::array<bool, 3>{{true, false, true}}));
+    EXPECT_EQ(box.bodies[0].fixed_rotation, (std::array<bool, 3>{{true, false, true}}));
 }
 
 // The reference cases (docs/openfoam.md): they take minutes to run, so only
