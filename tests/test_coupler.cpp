@@ -4,9 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cfenv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 using namespace armour;
 
@@ -539,6 +541,33 @@ TEST(Loads, MomentIsAboutTheOwnersCentre) {
     EXPECT_LT((point.torque[1] - (cells.centres[probe] - right.position).cross(F)).norm(), 1e-12 * F.norm());
     EXPECT_EQ(point.force[0], Eigen::Vector3d::Zero());
     EXPECT_EQ(point.torque[0], Eigen::Vector3d::Zero());
+}
+
+// A blown-up fluid hands over inf or absurd loads. Inside interFoam floating
+// point exceptions trap (FOAM_SIGFPE): the coupler must stop with its message,
+// not die of SIGFPE while looking at the numbers.
+TEST(Stability, BlownUpLoadStopsTheRunUnderFloatingPointTraps) {
+    const UnitTemplate cube = unit_of(make_cube_shape(1.0, 0.0, 2400.0));
+    Scene scene({cube}, {body_at(Pose{})});
+    BodyLoads loads;
+    loads.torque.assign(1, Eigen::Vector3d::Zero());
+    loads.mask_volume.assign(1, 1.0);
+    loads.mask_first_moment.assign(1, Eigen::Vector3d::Zero());
+    feenableexcept(FE_INVALID | FE_OVERFLOW | FE_DIVBYZERO); // as OpenFOAM does
+    std::vector<std::string> messages;
+    for (const double bad :
+         {std::numeric_limits<double>::infinity(), 1e200, std::numeric_limits<double>::quiet_NaN()}) {
+        loads.force.assign(1, Eigen::Vector3d(0.0, bad, 0.0));
+        try {
+            scene.coupler->advance(loads, 1e-3);
+        } catch (const std::runtime_error &e) {
+            messages.emplace_back(e.what());
+        }
+    }
+    fedisableexcept(FE_INVALID | FE_OVERFLOW | FE_DIVBYZERO);
+    ASSERT_EQ(messages.size(), 3u);
+    for (const std::string &m : messages)
+        EXPECT_NE(m.find("the fluid solution has blown up"), std::string::npos) << m;
 }
 
 // ---------------------------------------------------------------- added mass

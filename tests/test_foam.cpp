@@ -37,7 +37,8 @@ std::string slurp(const fs::path &path) {
     return s.str();
 }
 
-CaseRun run_case(const std::string &name, int np) {
+CaseRun run_case(const std::string &name, int np,
+                 const fs::path &case_template = fs::path(ARMOUR_SOURCE_DIR) / "foam_cases/buoyancy_cube") {
     CaseRun r;
     std::string tmpl = (fs::temp_directory_path() / ("armour_test_foam_" + name + "_XXXXXX")).string();
     if (!mkdtemp(tmpl.data()))
@@ -46,8 +47,8 @@ CaseRun run_case(const std::string &name, int np) {
     const fs::path log = r.dir / "run_case.log";
     const std::string cmd = std::string("bash '") + ARMOUR_SOURCE_DIR + "/foam_cases/run_case.sh' --np " +
                             std::to_string(np) + " --plugin '" + ARMOUR_FOAM_PLUGIN + "' '" +
-                            ARMOUR_SOURCE_DIR + "/foam_cases/buoyancy_cube' '" + (r.dir / "case").string() +
-                            "' > '" + log.string() + "' 2>&1";
+                            case_template.string() + "' '" + (r.dir / "case").string() + "' > '" +
+                            log.string() + "' 2>&1";
     const int rc = std::system(cmd.c_str());
     r.status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
     r.output = slurp(log);
@@ -106,6 +107,49 @@ TEST_F(FoamBuoyancy, CaseRuns) {
     ASSERT_EQ(serial_->status, 0) << serial_->output;
     EXPECT_TRUE(fs::exists(serial_->dir / "case/0.2/armourChi"));
     EXPECT_TRUE(fs::exists(serial_->dir / "case/0.2/armourUBody"));
+    // On this orthogonal mesh the loads take the fast path, which agreed
+    // with fvc on smooth test fields (armourCoupling.C).
+    EXPECT_NE(slurp(serial_->dir / "case/log.interFoam").find("force density face by face"),
+              std::string::npos);
+}
+
+// A sheared mesh (2.9 deg non-orthogonal): the face-by-face force density
+// leaves out the non-orthogonal correction, the check sees the difference and
+// the plugin computes the loads with fvc instead, within Archimedes.
+TEST(FoamForceDensity, NonOrthogonalMeshFallsBackToFvc) {
+    std::string tmpl = (fs::temp_directory_path() / "armour_test_foam_sheared_XXXXXX").string();
+    ASSERT_NE(mkdtemp(tmpl.data()), nullptr);
+    const fs::path sheared = fs::path(tmpl) / "template";
+    fs::copy(fs::path(ARMOUR_SOURCE_DIR) / "foam_cases/buoyancy_cube", sheared, fs::copy_options::recursive);
+    const fs::path dict = sheared / "system/blockMeshDict";
+    std::string text = slurp(dict);
+    const std::string top = "(0 0 1) (1 0 1) (1 1 1) (0 1 1)";
+    const auto at = text.find(top);
+    ASSERT_NE(at, std::string::npos) << "blockMeshDict vertices changed";
+    text.replace(at, top.size(), "(0.05 0 1) (1.05 0 1) (1.05 1 1) (0.05 1 1)");
+    std::ofstream(dict) << text;
+    // Four steps: the sheared tank itself (without the plugin too) blows up
+    // in interFoam after ~0.1 s with this template's solver settings.
+    const fs::path control = sheared / "system/controlDict";
+    std::string controls = slurp(control);
+    const std::string end = "endTime         0.2;";
+    const auto end_at = controls.find(end);
+    ASSERT_NE(end_at, std::string::npos) << "controlDict endTime changed";
+    controls.replace(end_at, end.size(), "endTime         0.02;");
+    std::ofstream(control) << controls;
+
+    const CaseRun run = run_case("sheared", 1, sheared);
+    ASSERT_EQ(run.status, 0) << run.output;
+    EXPECT_NE(slurp(run.dir / "case/log.interFoam").find("force density by fvc on the whole mesh"),
+              std::string::npos);
+    const auto row = last_row(run.dir / "case/armourBodies.csv", "cube");
+    ASSERT_FALSE(row.empty());
+    const double buoyancy = kRhoWater * kG * kEdge * kEdge * kEdge;
+    EXPECT_NEAR(num(row, "Fz") / buoyancy, 1.0, 0.02);
+    if (!::testing::Test::HasFailure()) {
+        fs::remove_all(run.dir);
+        fs::remove_all(tmpl);
+    }
 }
 
 // A fixed, fully submerged cube in still water: the fluid load is the weight
@@ -155,6 +199,9 @@ TEST_F(FoamBuoyancy, TwoRanksMatchSerial) {
     ASSERT_FALSE(p.empty());
     EXPECT_NEAR(num(p, "Fz"), num(s, "Fz"), 1e-5 * num(s, "Fz"));
     EXPECT_NEAR(num(p, "chiVolume"), num(s, "chiVolume"), 1e-12);
+    // The check passed across the processor patches too.
+    EXPECT_NE(slurp(parallel.dir / "case/log.interFoam").find("force density face by face"),
+              std::string::npos);
     if (!HasFailure())
         fs::remove_all(parallel.dir);
 }
