@@ -80,12 +80,12 @@ class FreeBodyEngine final : public RigidBodyEngine {
         b.state.velocity = init.velocity;
         b.state.angular_velocity = init.angular_velocity;
         for (int a = 0; a < 3; ++a) {
-            if (b.fixed_translation[a])
+            if (b.fixed_translation[a] && !init.pivot)
                 b.state.velocity[a] = 0.0;
             if (b.fixed_rotation[a])
                 b.state.angular_velocity[a] = 0.0;
         }
-        if (init.pivot) {
+        if (init.pivot) { // the held translations are the pivot's: projected below
             if (!init.pivot->allFinite())
                 throw InputError("free_body engine: body " + std::to_string(bodies_.size()) +
                                  ": pivot must be finite");
@@ -168,20 +168,18 @@ class FreeBodyEngine final : public RigidBodyEngine {
         const Eigen::Quaterniond &q = b.state.pose.orientation;
         const Eigen::Vector3d r = q * b.pivot_in_unit;
         const Eigen::Matrix3d I_inv = world_inertia(b, q).inverse();
-        std::vector<Eigen::Matrix<double, 6, 1>> rows;
+        Eigen::Matrix<double, 6, 6> rows;
+        int nc = 0;
         for (int k = 0; k < 3; ++k) {
             const Eigen::Vector3d e = Eigen::Vector3d::Unit(k);
             if (b.fixed_translation[k]) // e . (v + w x r) = e . v + (r x e) . w
-                rows.push_back((Eigen::Matrix<double, 6, 1>() << e, r.cross(e)).finished());
+                rows.row(nc++) << e.transpose(), r.cross(e).transpose();
             if (b.fixed_rotation[k])
-                rows.push_back((Eigen::Matrix<double, 6, 1>() << Eigen::Vector3d::Zero(), e).finished());
+                rows.row(nc++) << Eigen::RowVector3d::Zero(), e.transpose();
         }
-        if (rows.empty())
+        if (nc == 0)
             return;
-        const int nc = static_cast<int>(rows.size());
-        Eigen::MatrixXd J(nc, 6);
-        for (int i = 0; i < nc; ++i)
-            J.row(i) = rows[i].transpose();
+        const Eigen::MatrixXd J = rows.topRows(nc);
         Eigen::Matrix<double, 6, 6> M_inv = Eigen::Matrix<double, 6, 6>::Zero();
         M_inv.topLeftCorner<3, 3>() = Eigen::Matrix3d::Identity() / t.mass;
         M_inv.bottomRightCorner<3, 3>() = I_inv;

@@ -37,6 +37,17 @@ std::string slurp(const fs::path &path) {
     return s.str();
 }
 
+// Replaces the first `from` in the file by `to`; false if it is not there.
+bool replace_in_file(const fs::path &path, const std::string &from, const std::string &to) {
+    std::string text = slurp(path);
+    const auto at = text.find(from);
+    if (at == std::string::npos)
+        return false;
+    text.replace(at, from.size(), to);
+    std::ofstream(path) << text;
+    return true;
+}
+
 CaseRun run_case(const std::string &name, int np,
                  const fs::path &case_template = fs::path(ARMOUR_SOURCE_DIR) / "foam_cases/buoyancy_cube") {
     CaseRun r;
@@ -121,22 +132,14 @@ TEST(FoamForceDensity, NonOrthogonalMeshFallsBackToFvc) {
     ASSERT_NE(mkdtemp(tmpl.data()), nullptr);
     const fs::path sheared = fs::path(tmpl) / "template";
     fs::copy(fs::path(ARMOUR_SOURCE_DIR) / "foam_cases/buoyancy_cube", sheared, fs::copy_options::recursive);
-    const fs::path dict = sheared / "system/blockMeshDict";
-    std::string text = slurp(dict);
-    const std::string top = "(0 0 1) (1 0 1) (1 1 1) (0 1 1)";
-    const auto at = text.find(top);
-    ASSERT_NE(at, std::string::npos) << "blockMeshDict vertices changed";
-    text.replace(at, top.size(), "(0.05 0 1) (1.05 0 1) (1.05 1 1) (0.05 1 1)");
-    std::ofstream(dict) << text;
+    ASSERT_TRUE(replace_in_file(sheared / "system/blockMeshDict", "(0 0 1) (1 0 1) (1 1 1) (0 1 1)",
+                                "(0.05 0 1) (1.05 0 1) (1.05 1 1) (0.05 1 1)"))
+        << "blockMeshDict vertices changed";
     // Four steps: the sheared tank itself (without the plugin too) blows up
     // in interFoam after ~0.1 s with this template's solver settings.
-    const fs::path control = sheared / "system/controlDict";
-    std::string controls = slurp(control);
-    const std::string end = "endTime         0.2;";
-    const auto end_at = controls.find(end);
-    ASSERT_NE(end_at, std::string::npos) << "controlDict endTime changed";
-    controls.replace(end_at, end.size(), "endTime         0.02;");
-    std::ofstream(control) << controls;
+    ASSERT_TRUE(
+        replace_in_file(sheared / "system/controlDict", "endTime         0.2;", "endTime         0.02;"))
+        << "controlDict endTime changed";
 
     const CaseRun run = run_case("sheared", 1, sheared);
     ASSERT_EQ(run.status, 0) << run.output;
