@@ -108,6 +108,20 @@ Eigen::Vector3d toEigen(const Foam::vector& v)
     return Eigen::Vector3d(v.x(), v.y(), v.z());
 }
 
+// f = -grad(p) + laplacian(muEff, U) on the whole mesh, as OpenFOAM's
+// schemes give it: the reference, and the fallback where the face-by-face
+// sum below does not reproduce it.
+Foam::tmp<Foam::volVectorField> fvcForceDensity
+(
+    const Foam::volScalarField& p,
+    const Foam::volScalarField& muEff,
+    const Foam::volVectorField& U
+)
+{
+    return -Foam::fvc::grad(p) + Foam::fvc::laplacian(muEff, U);
+}
+
+
 // f = -grad(p) + laplacian(muEff, U) in the listed cells only, face by
 // face: Gauss linear gradient, Gauss linear laplacian with the uncorrected
 // surface-normal gradient. On a 100-unit tank the whole-mesh fvc expression
@@ -272,7 +286,7 @@ bool forceDensityAgrees(const Foam::fvMesh& mesh, const Foam::volScalarField& mu
     p.correctBoundaryConditions();
     U.correctBoundaryConditions();
 
-    const volVectorField reference(-fvc::grad(p) + fvc::laplacian(muEff, U));
+    const volVectorField reference(fvcForceDensity(p, muEff, U));
     labelList all(mesh.nCells());
     forAll(all, i)
     {
@@ -847,11 +861,7 @@ void Foam::fv::armourCoupling::couple
         }
         else
         {
-            const volVectorField f
-            (
-                "armourForceDensity",
-                -fvc::grad(p) + fvc::laplacian(muEff, U)
-            );
+            const volVectorField f(fvcForceDensity(p, muEff, U));
             forAll(f, i)
             {
                 fd[i] = toEigen(f[i]);
