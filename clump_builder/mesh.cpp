@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cmath>
 #include <random>
 
 namespace armour {
@@ -100,6 +101,32 @@ TriangleMesh translated(const TriangleMesh &mesh, const Eigen::Vector3d &offset)
     for (auto &v : moved.vertices)
         v += offset;
     return moved;
+}
+
+std::optional<Eigen::Vector3d> axis_aligned_box_half_extents(const TriangleMesh &mesh) {
+    if (mesh.vertices.empty() || mesh.triangles.empty())
+        return std::nullopt;
+    Eigen::Vector3d half = Eigen::Vector3d::Zero();
+    for (const Eigen::Vector3d &v : mesh.vertices)
+        half = half.cwiseMax(v.cwiseAbs());
+    const double tolerance = 1e-9 * half.maxCoeff();
+    if (!(half.minCoeff() > tolerance))
+        return std::nullopt;
+    // Every vertex at a corner, and the full box's volume enclosed: a closed
+    // surface spanned by the corners alone that encloses all of the box IS
+    // the box (any missing piece would cut the volume).
+    for (const Eigen::Vector3d &v : mesh.vertices)
+        if (((v.cwiseAbs() - half).cwiseAbs().array() > tolerance).any())
+            return std::nullopt;
+    const double box_volume = 8.0 * half.prod();
+    if (std::abs(signed_volume(mesh) - box_volume) > 1e-9 * box_volume)
+        return std::nullopt;
+    return half;
+}
+
+double box_signed_distance(const Eigen::Vector3d &p, const Eigen::Vector3d &half) {
+    const Eigen::Vector3d q = p.cwiseAbs() - half;
+    return q.cwiseMax(0.0).norm() + std::min(q.maxCoeff(), 0.0);
 }
 
 } // namespace armour

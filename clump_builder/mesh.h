@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -44,5 +45,14 @@ Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d &p, const Eigen:
 
 // The mesh moved by `offset` (m).
 TriangleMesh translated(const TriangleMesh &mesh, const Eigen::Vector3d &offset);
+
+// The half extents (m) when the mesh is a box centred at the origin with its
+// faces normal to the axes (cubes and boxes in their unit frame), otherwise
+// empty. Such a box has an exact closed-form signed distance, much cheaper
+// than a query against its triangles.
+std::optional<Eigen::Vector3d> axis_aligned_box_half_extents(const TriangleMesh &mesh);
+
+// Exact signed distance (m, negative inside) from p to the box [-half, half].
+double box_signed_distance(const Eigen::Vector3d &p, const Eigen::Vector3d &half);
 
 } // namespace armour

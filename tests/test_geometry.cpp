@@ -669,5 +669,45 @@ TEST(DistanceGrid, SameDistancesAsTheAabbTree) {
     EXPECT_LT(grid.mean_candidates(), 0.25 * static_cast<double>(dolos.mesh.triangles.size()));
 }
 
+TEST(BoxDistance, ClosedFormMatchesTheTriangleQuery) {
+    // The mask's closed form for boxes must give the AABB tree's exact
+    // signed distance (to rounding) inside, outside, near faces, edges and
+    // corners.
+    TriangleMesh box = make_cube_mesh(1.0);
+    for (Eigen::Vector3d &v : box.vertices)
+        v = v.cwiseProduct(Eigen::Vector3d(0.3, 0.2, 0.5)); // a 0.3 x 0.2 x 0.5 m box
+    const auto half = axis_aligned_box_half_extents(box);
+    ASSERT_TRUE(half.has_value());
+    EXPECT_NEAR((*half - Eigen::Vector3d(0.15, 0.1, 0.25)).norm(), 0.0, 1e-15);
+    const ShapeQuery tree(box);
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> u(-0.4, 0.4);
+    int inside = 0;
+    for (int i = 0; i < 20000; ++i) {
+        const Eigen::Vector3d p(u(rng), u(rng), u(rng));
+        const double d = box_signed_distance(p, *half);
+        inside += d < 0.0;
+        ASSERT_NEAR(d, tree.signed_distance(p), 1e-12) << "at " << p.transpose();
+    }
+    EXPECT_GT(inside, 500);
+}
+
+TEST(BoxDistance, OnlyAxisAlignedCentredBoxesAreRecognised) {
+    EXPECT_TRUE(axis_aligned_box_half_extents(make_cube_mesh(0.1)).has_value());
+    EXPECT_FALSE(axis_aligned_box_half_extents(make_cube_mesh(0.1, 0.01)).has_value()); // chamfered
+    EXPECT_FALSE(
+        axis_aligned_box_half_extents(translated(make_cube_mesh(0.1), {0.01, 0.0, 0.0})).has_value());
+    TriangleMesh turned = make_cube_mesh(0.1);
+    const Eigen::Matrix3d r = Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    for (Eigen::Vector3d &v : turned.vertices)
+        v = r * v;
+    EXPECT_FALSE(axis_aligned_box_half_extents(turned).has_value());
+    // Corners only, but two faces missing: not the box.
+    TriangleMesh open = make_cube_mesh(0.1);
+    open.triangles.resize(open.triangles.size() - 4);
+    EXPECT_FALSE(axis_aligned_box_half_extents(open).has_value());
+    EXPECT_FALSE(axis_aligned_box_half_extents(make_dolos_mesh(1.0, kDolosWaistDefault)).has_value());
+}
+
 } // namespace
 } // namespace armour
