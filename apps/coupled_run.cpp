@@ -567,6 +567,8 @@ std::vector<std::string> check_coupled_scene(const Scene &scene, const SceneSetu
             }
         }
     }
+    for (const std::string &w : rocking_clump_warnings(scene, setup))
+        warnings.push_back(w);
     // The body's own Courant number in its first step: interFoam only sees
     // the body's velocity once the penalty has set the fluid moving.
     for (std::size_t i = 0; i < setup.bodies.size(); ++i) {

@@ -459,6 +459,8 @@ int run_scene(const RunRequest &r) {
     if (!scene.fluid) {
         if (r.np != 0)
             throw InputError("--np: only for scenes with a [fluid] table (MPI ranks of interFoam)");
+        for (const std::string &w : rocking_clump_warnings(scene, setup))
+            std::fprintf(stderr, "armour: warning: %s\n", w.c_str());
         return run_dem(r, scene, setup, nullptr);
     }
     if (scene.fluid->settle_time <= 0.0)

@@ -25,6 +25,11 @@ struct SceneSetup {
 // region too small for its units, a pattern wall that is not a slope.
 SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool progress);
 
+// LIGGGHTS units whose clump has too few spheres to rest on a face and no
+// rolling friction to stop the rocking that follows: one warning per unit
+// template, naming the unit and the remedy. Empty for other engines.
+std::vector<std::string> rocking_clump_warnings(const Scene &scene, const SceneSetup &setup);
+
 // The default clump cache: $ARMOUR_CACHE, else $XDG_CACHE_HOME/armour-fsi,
 // else ~/.cache/armour-fsi.
 std::string default_cache_dir();
