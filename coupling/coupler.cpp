@@ -400,9 +400,9 @@ void Coupler::check_stability(const BodyLoads &total) {
                 "'): its fluid load swings to the opposite side every fluid step and grows (step change " +
                 std::to_string(static_cast<long>(change.norm())) + " N, x" + growth + " per step, weight " +
                 std::to_string(static_cast<long>(weight)) +
-                " N). Typical causes: a unit in soft contact with a wall squeezing the fluid between "
-                "them (LIGGGHTS contacts vibrate; lower fluid.max_time_step or use engine bullet), or a "
-                "light unit without fluid.added_mass");
+                " N). Typical causes: a unit moving against a wall or the mesh's edge, squeezing the "
+                "fluid between them (lower fluid.penalty; LIGGGHTS' soft contacts vibrate there, engine "
+                "bullet does not), or a light unit without enough fluid.added_mass");
         }
     }
 }
