@@ -3,7 +3,10 @@
 // force balance. Needs Debian's openfoam (the target exists only then).
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -149,6 +152,50 @@ TEST(FoamForceDensity, NonOrthogonalMeshFallsBackToFvc) {
     ASSERT_FALSE(row.empty());
     const double buoyancy = kRhoWater * kG * kEdge * kEdge * kEdge;
     EXPECT_NEAR(num(row, "Fz") / buoyancy, 1.0, 0.02);
+    if (!::testing::Test::HasFailure()) {
+        fs::remove_all(run.dir);
+        fs::remove_all(tmpl);
+    }
+}
+
+// The stand-alone dictionary's pivot: the template's cube hinged about a
+// y-parallel axis through a point 0.1 m off its centre in +x (translations
+// held at the pivot, rotation free about y only). Weight less buoyancy,
+// (rho_c - rho_w) g V = 371 N down at the centre, turns it about -y, the
+// centre swinging down. Facts: the pivot stays where it was (the free
+// body's constraint projection, to rounding); the rotation is about y
+// only and negative; and in 0.2 s it is at most what the same torque
+// gives without the fluid's inertia, 1/2 (T / I_p) t^2 = 0.458 rad
+// (I_p = m a^2/6 + m d^2 = 1.62 kg m^2): added mass and drag only slow it.
+TEST(FoamPivot, StandAloneDictionaryHingesTheCube) {
+    std::string tmpl = (fs::temp_directory_path() / "armour_test_foam_pivot_XXXXXX").string();
+    ASSERT_NE(mkdtemp(tmpl.data()), nullptr);
+    const fs::path hinged = fs::path(tmpl) / "template";
+    fs::copy(fs::path(ARMOUR_SOURCE_DIR) / "foam_cases/buoyancy_cube", hinged, fs::copy_options::recursive);
+    const double pivot[3] = {kPosition[0] + 0.1, kPosition[1], kPosition[2]};
+    ASSERT_TRUE(replace_in_file(hinged / "constant/fvOptions", "fixedRotation    (x y z);",
+                                "fixedRotation    (x z);\n                pivot       (" +
+                                    std::to_string(pivot[0]) + " " + std::to_string(pivot[1]) + " " +
+                                    std::to_string(pivot[2]) + ");"))
+        << "fvOptions changed";
+    const CaseRun run = run_case("pivot", 1, hinged);
+    ASSERT_EQ(run.status, 0) << run.output;
+    const auto row = last_row(run.dir / "case/armourBodies.csv", "cube");
+    ASSERT_FALSE(row.empty());
+    const Eigen::Quaterniond q(num(row, "qw"), num(row, "qx"), num(row, "qy"), num(row, "qz"));
+    const Eigen::Vector3d centre(num(row, "x"), num(row, "y"), num(row, "z"));
+    const Eigen::Vector3d start(kPosition[0], kPosition[1], kPosition[2]),
+        hinge(pivot[0], pivot[1], pivot[2]);
+    const Eigen::Vector3d hinge_now = centre + q * (hinge - start);
+    const Eigen::AngleAxisd turn(q);
+    const double about_y = turn.angle() * turn.axis().y();
+    std::printf(
+        "[ pivot    ] hinge moved %.3g m, turned %.4f rad about y (bound -0.458), centre moved %.4f m\n",
+        (hinge_now - hinge).norm(), about_y, (centre - start).norm());
+    EXPECT_LT((hinge_now - hinge).norm(), 1e-9);
+    EXPECT_NEAR(std::abs(turn.axis().y()), 1.0, 1e-9);
+    EXPECT_LT(about_y, -0.05);
+    EXPECT_GT(about_y, -0.458 * 1.01);
     if (!::testing::Test::HasFailure()) {
         fs::remove_all(run.dir);
         fs::remove_all(tmpl);

@@ -551,6 +551,10 @@ Foam::fv::armourCoupling::armourCoupling
                 toEigen(bd.lookupOrDefault<vector>("angularVelocity", Zero));
             init.fixed_translation = readAxes(bd, "fixedTranslation");
             init.fixed_rotation = readAxes(bd, "fixedRotation");
+            if (bd.found("pivot"))
+            {
+                init.pivot = toEigen(bd.get<vector>("pivot"));
+            }
 
             bodyUnit.push_back(armour_->engine->add_body(init));
             // One template per body: body k uses unit k.
