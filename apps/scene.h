@@ -129,9 +129,10 @@ struct SceneFluid {
     // Benchmark reference: units held where they start, mask imposed once, no
     // load integration and no engine advance (bench/run_coupled_bench.sh).
     bool frozen = false;
-    // s: settle the units in the dry DEM this long before coupling (0 = start
-    // coupling from the placed poses). The coupled run starts from the
-    // settled poses, written to OUT/settle/scene.settled.toml.
+    // s: settle the units in the DEM, under the still water's buoyancy, this
+    // long before coupling (0 = start coupling from the placed poses). The
+    // coupled run starts from the settled poses, written to
+    // OUT/settle/scene.settled.toml.
     double settle_time = 0.0;
 };
 

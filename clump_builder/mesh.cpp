@@ -129,4 +129,39 @@ double box_signed_distance(const Eigen::Vector3d &p, const Eigen::Vector3d &half
     return q.cwiseMax(0.0).norm() + std::min(q.maxCoeff(), 0.0);
 }
 
+PartBelowPlane part_below_plane(const TriangleMesh &mesh, const Eigen::Vector3d &point,
+                                const Eigen::Vector3d &up) {
+    const Eigen::Vector3d n = up.normalized();
+    double six_volume = 0.0;
+    Eigen::Vector3d moment = Eigen::Vector3d::Zero(); // 24 x first moment about `point`
+    auto add = [&](const Eigen::Vector3d &a, const Eigen::Vector3d &b, const Eigen::Vector3d &c) {
+        const double v6 = a.dot(b.cross(c)); // tetrahedron (point, a, b, c), relative to point
+        six_volume += v6;
+        moment += v6 * (a + b + c);
+    };
+    for (const auto &t : mesh.triangles) {
+        // Sutherland-Hodgman against the half-space h <= 0: a triangle gives
+        // a polygon of at most 4 corners, fanned into triangles.
+        std::array<Eigen::Vector3d, 4> kept;
+        int count = 0;
+        for (int i = 0; i < 3; ++i) {
+            const Eigen::Vector3d p = mesh.vertices[t[i]] - point;
+            const Eigen::Vector3d q = mesh.vertices[t[(i + 1) % 3]] - point;
+            const double hp = p.dot(n), hq = q.dot(n);
+            if (hp <= 0.0)
+                kept[count++] = p;
+            if ((hp < 0.0 && hq > 0.0) || (hp > 0.0 && hq < 0.0))
+                kept[count++] = p + (hp / (hp - hq)) * (q - p);
+        }
+        for (int i = 2; i < count; ++i)
+            add(kept[0], kept[i - 1], kept[i]);
+    }
+    PartBelowPlane part;
+    part.volume = six_volume / 6.0;
+    part.centroid = point;
+    if (part.volume > 0.0)
+        part.centroid += moment / (4.0 * six_volume);
+    return part;
+}
+
 } // namespace armour

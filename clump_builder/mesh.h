@@ -55,4 +55,15 @@ std::optional<Eigen::Vector3d> axis_aligned_box_half_extents(const TriangleMesh 
 // Exact signed distance (m, negative inside) from p to the box [-half, half].
 double box_signed_distance(const Eigen::Vector3d &p, const Eigen::Vector3d &half);
 
+// The part of a closed outward mesh on the side of a plane opposite its
+// normal `up` (below a water surface): volume (m^3) and centroid (m). Exact
+// for a closed mesh: the cut face lies in the plane, so about a point of the
+// plane it adds no volume. An empty part has volume 0 and centroid `point`.
+struct PartBelowPlane {
+    double volume = 0.0;
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+};
+PartBelowPlane part_below_plane(const TriangleMesh &mesh, const Eigen::Vector3d &point,
+                                const Eigen::Vector3d &up);
+
 } // namespace armour

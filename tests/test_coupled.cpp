@@ -62,12 +62,12 @@ void clean(const Outcome &r) {
 }
 
 // /bodies/position of a run's record: [step][body][xyz] flattened, and the step count.
-std::vector<double> positions(const fs::path &h5, std::size_t &steps) {
+std::vector<double> positions(const fs::path &h5, std::size_t &steps, const char *field = "position") {
     std::vector<double> data;
     const hid_t file = H5Fopen(h5.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
     if (file < 0)
         return data;
-    const hid_t set = H5Dopen2(file, "/bodies/position", H5P_DEFAULT);
+    const hid_t set = H5Dopen2(file, (std::string("/bodies/") + field).c_str(), H5P_DEFAULT);
     const hid_t space = H5Dget_space(set);
     hsize_t dims[3] = {0, 0, 0};
     H5Sget_simple_extent_dims(space, dims, nullptr);
@@ -151,8 +151,8 @@ TEST(CoupledRun, FloatingCubeSettlesAtItsDraft) {
 }
 
 // fluid.settle_time: the cube starts 3 cm above the tank floor, settles in
-// the dry DEM, and the coupled run starts from where it came to rest. Facts:
-// the settle run ends with the cube on its face (centre at a/2 = 0.1 m,
+// the DEM under the still water's buoyancy, and the coupled run starts from
+// where it came to rest. Facts: the settle run ends with the cube on its face (centre at a/2 = 0.1 m,
 // within 1 mm: Bullet's contact margin and overlap are well under that) and
 // at rest (below the report's own stillness speed); the coupled record
 // starts at the settled pose (to the rounding of the scene file); and the
@@ -176,23 +176,39 @@ TEST(CoupledRun, SettlesInTheDemBeforeCoupling) {
     ASSERT_GT(settle_steps, 1u);
     const double settled_z = dry[3 * (settle_steps - 1) + 2];
     std::printf(
-        "[ coupled  ] settle: cube at rest at z = %.5f m after the dry DEM, coupled start z = %.5f m, "
+        "[ coupled  ] settle: cube at rest at z = %.5f m after the DEM settle, coupled start z = %.5f m, "
         "then max displacement %.3g m in water\n",
         settled_z, coupled[2], r.summary["max_displacement"].get<double>());
     EXPECT_NEAR(settled_z, 0.1, 1e-3);
     for (int c = 0; c < 3; ++c)
         EXPECT_NEAR(coupled[c], dry[3 * (settle_steps - 1) + c], 1e-12);
     EXPECT_LT(r.summary["max_displacement_over_Dn"].get<double>(), 0.01);
+    // The settle ran under the still water: the submerged cube carried its
+    // buoyancy rho g a^3 (exact volume of the cube below the surface), and at
+    // rest the floor held its submerged weight (rho_s - rho) g a^3 (1 %: the
+    // engine's last contact step before the record, at rest).
+    const std::vector<double> buoyancy =
+        positions(r.out / "settle" / "bodies.h5", settle_steps, "external_force");
+    const std::vector<double> contact =
+        positions(r.out / "settle" / "bodies.h5", settle_steps, "contact_force");
+    const double volume = 0.2 * 0.2 * 0.2, g = 9.81;
+    EXPECT_NEAR(buoyancy[3 * (settle_steps - 1) + 2], 1000.0 * g * volume, 1e-9 * 1000.0 * g * volume);
+    EXPECT_NEAR(contact[3 * (settle_steps - 1) + 2], 1400.0 * g * volume, 0.01 * 1400.0 * g * volume);
+    std::printf("[ coupled  ] settle under water: buoyancy %.4f N (rho g V = %.4f N), floor %.4f N "
+                "(submerged weight %.4f N)\n",
+                buoyancy[3 * (settle_steps - 1) + 2], 1000.0 * g * volume,
+                contact[3 * (settle_steps - 1) + 2], 1400.0 * g * volume);
     clean(r);
 }
 
 // The resting cube of RestingCubeDoesNotDrift on the DEM engine: an
 // 8-sphere LIGGGHTS clump with rolling friction 0.05 (without it the clump
 // rocks on two of its spheres and drifts 1.8-2.8 % of Dn: docs/dem.md),
-// settled in the dry DEM first because the clump, placed flat, tips ~0.8
+// settled in the DEM first because the clump, placed flat, tips ~0.8
 // degrees onto its lowest spheres. Penalty 1e4: at the scene's 1e5 LIGGGHTS'
 // soft contact makes the exchange unstable (the squeeze film, warned about
-// and stopped; docs/openfoam.md). Measured 0.09 % of Dn.
+// and stopped; docs/openfoam.md). Measured 0.033 % of Dn (0.09 % when the
+// settle run was dry).
 TEST(CoupledRun, LiggghtsRestingCubeDoesNotDrift) {
     const Outcome r =
         armour_run("still_water_cube.toml", "lig_still",

@@ -709,5 +709,50 @@ TEST(BoxDistance, OnlyAxisAlignedCentredBoxesAreRecognised) {
     EXPECT_FALSE(axis_aligned_box_half_extents(make_dolos_mesh(1.0, kDolosWaistDefault)).has_value());
 }
 
+TEST(PartBelowPlane, CubeCutsMatchTheirClosedForms) {
+    const TriangleMesh cube = make_cube_mesh(1.0);
+    const Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
+    // A slab: the cube below z = 0.2 is 1 x 1 x 0.7, centred at z = -0.15.
+    PartBelowPlane slab = part_below_plane(cube, {0.0, 0.0, 0.2}, up);
+    EXPECT_NEAR(slab.volume, 0.7, 1e-12);
+    EXPECT_NEAR((slab.centroid - Eigen::Vector3d(0.0, 0.0, -0.15)).norm(), 0.0, 1e-12);
+    // Turned 45 degrees about x and cut through its centre: the lower half is
+    // a prism whose section is a right isosceles triangle of height sqrt(2)/2,
+    // its centroid a third of that below the cut.
+    TriangleMesh turned = cube;
+    const Eigen::Matrix3d r =
+        Eigen::AngleAxisd(0.25 * std::acos(-1.0), Eigen::Vector3d::UnitX()).toRotationMatrix();
+    for (Eigen::Vector3d &v : turned.vertices)
+        v = r * v;
+    const PartBelowPlane prism = part_below_plane(turned, Eigen::Vector3d::Zero(), up);
+    EXPECT_NEAR(prism.volume, 0.5, 1e-12);
+    EXPECT_NEAR((prism.centroid - Eigen::Vector3d(0.0, 0.0, -std::sqrt(2.0) / 6.0)).norm(), 0.0, 1e-12);
+    // Wholly below and wholly above.
+    EXPECT_NEAR(part_below_plane(cube, {0.0, 0.0, 0.5}, up).volume, 1.0, 1e-12);
+    const PartBelowPlane dry = part_below_plane(cube, {0.0, 0.0, -0.5}, up);
+    EXPECT_EQ(dry.volume, 0.0);
+    EXPECT_EQ(dry.centroid, Eigen::Vector3d(0.0, 0.0, -0.5));
+}
+
+TEST(PartBelowPlane, TheTwoSidesOfAnyCutAddUpToTheDolos) {
+    // Volume and first moment are additive: the parts below a plane and
+    // below its reverse make the whole dolos, whatever the plane.
+    const TriangleMesh dolos = make_dolos_mesh(1.0, kDolosWaistDefault);
+    const MassProperties whole = mass_properties(dolos, 1.0);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(-0.4, 0.4);
+    for (int i = 0; i < 50; ++i) {
+        const Eigen::Vector3d point(u(rng), u(rng), u(rng));
+        const Eigen::Vector3d n = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
+        const PartBelowPlane below = part_below_plane(dolos, point, n);
+        const PartBelowPlane above = part_below_plane(dolos, point, -n);
+        EXPECT_GE(below.volume, 0.0);
+        EXPECT_GE(above.volume, 0.0);
+        ASSERT_NEAR(below.volume + above.volume, whole.volume, 1e-12 * whole.volume);
+        const Eigen::Vector3d moment = below.volume * below.centroid + above.volume * above.centroid;
+        ASSERT_NEAR((moment / whole.volume - whole.centroid).norm(), 0.0, 1e-12);
+    }
+}
+
 } // namespace
 } // namespace armour
