@@ -47,13 +47,17 @@ json deviation_json(const SurfaceDeviation &d) {
 }
 
 json quality_json(const ClumpQuality &q) {
-    return {{"spheres", q.spheres},
-            {"volume_error", q.volume_error},
-            {"surface_rms", q.surface_rms},
-            {"surface_max", q.surface_max},
-            {"inertia_error", q.inertia_error},
-            {"centroid_offset", q.centroid_offset},
-            {"build_seconds", q.build_seconds}};
+    return {
+        {"spheres", q.spheres},
+        {"volume_error", q.volume_error},
+        {"surface_rms", q.surface_rms},
+        {"surface_max", q.surface_max},
+        {"inertia_error", q.inertia_error},
+        {"centroid_offset", q.centroid_offset},
+        {"rest_gap", std::isfinite(q.rest_gap) ? json(q.rest_gap) : json(nullptr)}, // null: stands on no face
+        {"rest_faces", q.rest_faces},
+        {"tipping_faces", q.tipping_faces},
+        {"build_seconds", q.build_seconds}};
 }
 
 json matrix_json(const Eigen::Matrix3d &m) {
@@ -95,7 +99,8 @@ json write_clump_files(const std::filesystem::path &dir, const std::filesystem::
                   {"time", "s"},
                   {"volume_error", "fraction, signed (clump - exact) / exact"},
                   {"inertia_error", "fraction, max over exact principal axes"},
-                  {"surface_and_centroid", "fractions of Dn"}};
+                  {"surface_and_centroid", "fractions of Dn"},
+                  {"rest_gap", "fraction of Dn (null: the clump stands on none of the faces)"}};
     s["files"] = {{"spheres", "clump.spheres"},
                   {"liggghts_template", "template.liggghts"},
                   {"exact_shape", "shape.stl"},
@@ -180,11 +185,13 @@ int run_clump(const ClumpRequest &r) {
     summary["tolerance"] = b.tolerance;
     write_text_file(out.file("summary.json"), summary.dump(2) + "\n");
     out.commit();
-    std::printf("%s: %d spheres (%s), volume error %+.3f %%, surface RMS %.3f %% Dn, max %.3f %% Dn, "
-                "inertia error %.3f %%, built in %.2f s -> %s\n",
-                shape.description.c_str(), b.quality.spheres, r.method.c_str(),
-                100.0 * b.quality.volume_error, 100.0 * b.quality.surface_rms, 100.0 * b.quality.surface_max,
-                100.0 * b.quality.inertia_error, b.quality.build_seconds, out.target().c_str());
+    std::printf(
+        "%s: %d spheres (%s), volume error %+.3f %%, surface RMS %.3f %% Dn, max %.3f %% Dn, "
+        "inertia error %.3f %%, rest gap %.3f %% Dn (tips off %d of %d faces), built in %.2f s -> %s\n",
+        shape.description.c_str(), b.quality.spheres, r.method.c_str(), 100.0 * b.quality.volume_error,
+        100.0 * b.quality.surface_rms, 100.0 * b.quality.surface_max, 100.0 * b.quality.inertia_error,
+        100.0 * b.quality.rest_gap, b.quality.tipping_faces, b.quality.rest_faces, b.quality.build_seconds,
+        out.target().c_str());
     return 0;
 }
 
@@ -233,15 +240,15 @@ int run_demo(const DemoRequest &r) {
     write_text_file(out.file("summary.json"), summary.dump(2) + "\n");
     out.commit();
 
-    std::printf("\nClump error table (errors in %%; surface and centroid in %% of Dn)\n");
-    std::printf("%-6s %-10s %5s %10s %10s %10s %10s %10s %9s\n", "unit", "method", "N", "volume", "surf.RMS",
-                "surf.max", "inertia", "centroid", "build[s]");
+    std::printf("\nClump error table (errors in %%; surface, centroid and rest gap in %% of Dn)\n");
+    std::printf("%-6s %-10s %5s %10s %10s %10s %10s %10s %10s %9s\n", "unit", "method", "N", "volume",
+                "surf.RMS", "surf.max", "inertia", "centroid", "rest gap", "build[s]");
     for (const Row &row : table) {
         const ClumpQuality &q = row.quality;
-        std::printf("%-6s %-10s %5d %+10.3f %10.3f %10.3f %10.3f %10.4f %9.2f\n", row.unit.c_str(),
+        std::printf("%-6s %-10s %5d %+10.3f %10.3f %10.3f %10.3f %10.4f %10.3f %9.2f\n", row.unit.c_str(),
                     row.method.c_str(), q.spheres, 100.0 * q.volume_error, 100.0 * q.surface_rms,
                     100.0 * q.surface_max, 100.0 * q.inertia_error, 100.0 * q.centroid_offset,
-                    q.build_seconds);
+                    100.0 * q.rest_gap, q.build_seconds);
     }
     std::printf(
         "\nFiles: %s (per unit: clump.spheres, template.liggghts, shape.stl, clump.stl, summary.json)\n",

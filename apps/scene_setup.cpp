@@ -405,35 +405,60 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
     return setup;
 }
 
-// A clump of few spheres does not rest on a face: its lowest spheres differ
-// in height by more than the contact overlap, so it stands on two of them
-// and rocks about that line, a rolling motion with no sliding at the
-// contacts and hence nothing to damp it. Measured on a plane in the dry DEM
-// (a = 0.2 m cube, E = 5e7 Pa, between 0.5 and 1.5 s): 8 spheres wander
-// 2-4 mm tilting 2-3 degrees back and forth, 12 spheres 0.6 mm, 27 spheres
-// 0.04 mm; rolling friction 0.05 stops the 8-sphere cube (0.015 mm). In
-// water the rocking unit stirs the flow and drifts (docs/dem.md).
+// A clump does not rest on a face but on its spheres. Where the lowest
+// spheres on a face differ in height by more than the contacts can absorb
+// (the face's rest gap, clump_evaluator.h), the clump stands on two of them
+// and rocks about the line through them: a rolling motion with no sliding
+// at the contacts, hence nothing to damp it. The contacts absorb their
+// overlap: a unit on two spheres puts half its weight on each, and a third
+// sphere touches when its gap is under that Hertz overlap. Measured on a
+// plane in the dry DEM (a = 0.2 m cube, E = 5e7 Pa, 0.5-1.5 s; overlap
+// estimate 0.4-0.5 mm): the optimised 8-sphere cube (gap 4.4 mm) wanders
+// 2-4 mm tilting 2-3 degrees; the 27-sphere cube rests on its -z face (gap
+// 0.40 mm, 0.037 mm wander) and rocks on its +x face (gap 3.5 mm, 1.5 mm).
+// Rolling friction 0.05 stops the rocking (8 spheres: 0.015 mm). In water
+// the rocking unit stirs the flow and drifts (docs/dem.md).
 std::vector<std::string> rocking_clump_warnings(const Scene &scene, const SceneSetup &setup) {
     std::vector<std::string> warnings;
     if (scene.engine != "liggghts")
         return warnings;
     const EngineSettings &st = setup.settings;
     for (std::size_t k = 0; k < setup.units.size(); ++k) {
-        if (setup.unit_spheres[k] >= 27)
-            continue;
-        const int m = setup.units[k].material;
+        const UnitTemplate &unit = setup.units[k];
+        const int m = unit.material;
         double rolling = pair_value(st, m, m, &Material::rolling_friction, &MaterialPair::rolling_friction);
         for (const Wall &w : setup.walls)
             rolling = std::min(rolling, pair_value(st, m, w.material, &Material::rolling_friction,
                                                    &MaterialPair::rolling_friction));
-        if (rolling == 0.0)
-            warnings.push_back(
-                "unit '" + setup.units[k].name + "': " + std::to_string(setup.unit_spheres[k]) +
-                " spheres and no rolling friction: a clump of few spheres rests on two of them "
-                "and rocks without end (an 8-sphere cube wanders 2-4 mm in 1 s); set "
-                "rolling_friction = 0.05 on its material, or use 27 spheres or more");
+        if (rolling != 0.0)
+            continue;
+        const double gap = rest_summary(unit.mesh, Eigen::Vector3d::Zero(), unit.clump, setup.unit_Dn[k]).gap;
+        const double overlap = resting_overlap(unit, st.materials[m], scene.gravity.norm());
+        if (gap > overlap) {
+            char figures[160];
+            std::snprintf(figures, sizeof figures, "rest gap %.2f mm > %.2f mm", 1e3 * gap, 1e3 * overlap);
+            warnings.push_back("unit '" + unit.name + "': its " + std::to_string(setup.unit_spheres[k]) +
+                               "-sphere clump stands on two spheres on some faces (" +
+                               (std::isfinite(gap) ? std::string(figures) : std::string("it rolls")) +
+                               ", the contact overlap under half its weight) and rocks without end there; "
+                               "set rolling_friction = 0.05 on its material, or use a clump that rests "
+                               "flat (`armour clump` reports rest_gap; docs/dem.md)");
+        }
     }
     return warnings;
+}
+
+double resting_overlap(const UnitTemplate &unit, const Material &material, double gravity) {
+    std::vector<double> radii;
+    for (const Sphere &s : unit.clump)
+        radii.push_back(s.radius);
+    std::nth_element(radii.begin(), radii.begin() + static_cast<long>(radii.size() / 2), radii.end());
+    const double radius = radii[radii.size() / 2];
+    // Hertz, sphere on a plane of the same material: F = 4/3 E* sqrt(R) d^(3/2).
+    const double e_star =
+        material.youngs_modulus / (2.0 * (1.0 - material.poisson_ratio * material.poisson_ratio));
+    const double force = 0.5 * unit.props.mass * gravity;
+    return std::pow(3.0 * force / (4.0 * e_star * std::sqrt(radius)), 2.0 / 3.0);
 }
 
 } // namespace armour

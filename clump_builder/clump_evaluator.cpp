@@ -7,6 +7,7 @@
 
 #include "shape_query.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -194,6 +195,129 @@ std::vector<double> distances_to_clump_surface(const Clump &clump, const std::ve
     return distances_to_boundary(clump, PointGrid(on_clump), points);
 }
 
+namespace {
+
+// Counter-clockwise convex hull of 2-D points (Andrew's monotone chain).
+std::vector<Eigen::Vector2d> hull_2d(std::vector<Eigen::Vector2d> points) {
+    std::sort(points.begin(), points.end(), [](const Eigen::Vector2d &a, const Eigen::Vector2d &b) {
+        return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+    });
+    if (points.size() < 3)
+        return points;
+    auto cross = [](const Eigen::Vector2d &o, const Eigen::Vector2d &a, const Eigen::Vector2d &b) {
+        return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
+    };
+    std::vector<Eigen::Vector2d> hull(2 * points.size());
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        while (k >= 2 && cross(hull[k - 2], hull[k - 1], points[i]) <= 0.0)
+            --k;
+        hull[k++] = points[i];
+    }
+    for (std::size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
+        while (k >= lower && cross(hull[k - 2], hull[k - 1], points[i]) <= 0.0)
+            --k;
+        hull[k++] = points[i];
+    }
+    hull.resize(k - 1);
+    return hull;
+}
+
+// Distance from p to the outside of the counter-clockwise polygon (negative
+// or zero when p is outside or on it).
+double depth_inside(const std::vector<Eigen::Vector2d> &polygon, const Eigen::Vector2d &p) {
+    if (polygon.size() < 3)
+        return -1.0;
+    double depth = HUGE_VAL;
+    for (std::size_t i = 0; i < polygon.size(); ++i) {
+        const Eigen::Vector2d &a = polygon[i];
+        const Eigen::Vector2d edge = polygon[(i + 1) % polygon.size()] - a;
+        depth = std::min(depth, (edge.x() * (p - a).y() - edge.y() * (p - a).x()) / edge.norm());
+    }
+    return depth;
+}
+
+} // namespace
+
+std::vector<FaceRest> rest_gaps(const TriangleMesh &mesh, const Eigen::Vector3d &centre_of_mass,
+                                const Clump &clump, double Dn) {
+    const TriangleMesh hull = convex_hull(mesh.vertices);
+    const double tolerance = 1e-9 * Dn;
+    // Hull faces: coplanar triangles grouped by their outward plane.
+    struct Face {
+        Eigen::Vector3d normal;
+        double offset;
+        std::vector<int> triangles;
+    };
+    std::vector<Face> faces;
+    for (std::size_t t = 0; t < hull.triangles.size(); ++t) {
+        const auto &tri = hull.triangles[t];
+        const Eigen::Vector3d &a = hull.vertices[tri[0]];
+        const Eigen::Vector3d n = (hull.vertices[tri[1]] - a).cross(hull.vertices[tri[2]] - a).normalized();
+        auto same = std::find_if(faces.begin(), faces.end(), [&](const Face &f) {
+            return (f.normal - n).norm() < 1e-9 && std::abs(f.offset - n.dot(a)) < tolerance;
+        });
+        if (same == faces.end())
+            faces.push_back({n, n.dot(a), {static_cast<int>(t)}});
+        else
+            same->triangles.push_back(static_cast<int>(t));
+    }
+    std::vector<FaceRest> rests;
+    for (const Face &face : faces) {
+        // The centre of mass, projected along the normal, must land inside
+        // the face (a convex polygon) for the unit to rest on it.
+        const Eigen::Vector3d foot =
+            centre_of_mass - (face.normal.dot(centre_of_mass) - face.offset) * face.normal;
+        const Eigen::Vector3d u = face.normal.unitOrthogonal(), v = face.normal.cross(u);
+        auto in_plane = [&](const Eigen::Vector3d &p) { return Eigen::Vector2d(u.dot(p), v.dot(p)); };
+        std::vector<Eigen::Vector2d> corners;
+        for (int t : face.triangles)
+            for (int c : hull.triangles[t])
+                corners.push_back(in_plane(hull.vertices[c]));
+        const Eigen::Vector2d centre = in_plane(foot);
+        const double support = depth_inside(hull_2d(corners), centre);
+        if (support <= tolerance)
+            continue;
+        // The touching points and the gaps.
+        std::vector<std::pair<double, Eigen::Vector2d>> touch;
+        for (const Sphere &s : clump)
+            touch.emplace_back(face.offset - (face.normal.dot(s.center) + s.radius), in_plane(s.center));
+        std::sort(touch.begin(), touch.end(), [](const auto &a, const auto &b) { return a.first < b.first; });
+        double gap = HUGE_VAL; // until a support surrounds it (never: it rolls)
+        std::vector<Eigen::Vector2d> lowest;
+        for (std::size_t k = 0; k < touch.size(); ++k) {
+            lowest.push_back(touch[k].second);
+            // Spheres at the same height come in together.
+            if (k + 1 < touch.size() && touch[k + 1].first - touch[k].first < tolerance)
+                continue;
+            if (lowest.size() >= 3 && depth_inside(hull_2d(lowest), centre) >= 0.01 * Dn) {
+                gap = touch[k].first - touch.front().first;
+                break;
+            }
+        }
+        rests.push_back({face.normal, support, gap});
+    }
+    return rests;
+}
+
+RestSummary rest_summary(const TriangleMesh &mesh, const Eigen::Vector3d &centre_of_mass, const Clump &clump,
+                         double Dn) {
+    RestSummary r;
+    bool stands = false;
+    for (const FaceRest &face : rest_gaps(mesh, centre_of_mass, clump, Dn)) {
+        ++r.faces;
+        if (face.gap > kTippingGap * Dn) {
+            ++r.tipping_faces;
+            continue;
+        }
+        stands = true;
+        r.gap = std::max(r.gap, face.gap);
+    }
+    if (!stands)
+        r.gap = HUGE_VAL;
+    return r;
+}
+
 ClumpQuality evaluate_clump(const Shape &shape, const Clump &clump, const EvaluatorSettings &settings) {
     ClumpQuality q;
     q.spheres = static_cast<int>(clump.size());
@@ -229,6 +353,10 @@ ClumpQuality evaluate_clump(const Shape &shape, const Clump &clump, const Evalua
     q.surface_rms =
         std::sqrt(sum2 / static_cast<double>(exact_to_clump.size() + clump_to_exact.size())) / q.Dn;
     q.surface_max = std::max(q.exact_to_clump.max, q.clump_to_exact.max);
+    const RestSummary rest = rest_summary(shape.mesh, exact.centroid, clump, q.Dn);
+    q.rest_gap = rest.gap / q.Dn;
+    q.rest_faces = rest.faces;
+    q.tipping_faces = rest.tipping_faces;
     return q;
 }
 

@@ -34,6 +34,9 @@ struct ClumpQuality {
     SurfaceDeviation clump_to_exact;
     double surface_rms = 0.0;   // both directions pooled, fraction of Dn
     double surface_max = 0.0;   // symmetric Hausdorff distance / Dn
+    double rest_gap = 0.0;      // RestSummary::gap / Dn: 0 = rests flat, inf = stands on no face
+    int rest_faces = 0;         // faces the exact unit rests on
+    int tipping_faces = 0;      // of those, faces the clump tips off
     double build_seconds = 0.0; // s, filled by the caller that timed the build
 };
 
@@ -50,6 +53,36 @@ std::vector<double> distances_to_clump_surface(const Clump &clump, const std::ve
                                                int boundary_samples = 40000, std::uint64_t seed = 12345);
 
 ClumpQuality evaluate_clump(const Shape &shape, const Clump &clump, const EvaluatorSettings &settings = {});
+
+// How flat a clump rests. A clump stands on its spheres, not on the exact
+// faces: lowered onto the plane of a face it touches first with the sphere
+// that reaches furthest, and it stands still only on spheres whose touching
+// points surround its centre of mass. For each face of the exact shape's
+// convex hull that the unit can rest on (its centre of mass above the face),
+// the spheres are ordered by the gap between their lowest point and the
+// plane; the face's rest gap (m) is the height spread among the lowest
+// spheres needed before their touching points surround the centre of mass
+// with a margin of 1 % of Dn; infinite when no set of spheres does (a single
+// sphere rolls). A clump whose gap on a face exceeds the contact overlap
+// under its weight stands there on two spheres and rocks about the line
+// through them (docs/clump_builder.md). `centre_of_mass` in the mesh frame.
+struct FaceRest {
+    Eigen::Vector3d normal; // outward unit normal of the face, mesh frame
+    double support;         // m, the centre of mass's distance inside the face's edges
+    double gap;             // m
+};
+std::vector<FaceRest> rest_gaps(const TriangleMesh &mesh, const Eigen::Vector3d &centre_of_mass,
+                                const Clump &clump, double Dn);
+// A gap above this fraction of Dn is not rocking: closing it tilts the clump
+// by ~10 degrees or more, so it tips off that face onto another.
+constexpr double kTippingGap = 0.1;
+struct RestSummary {
+    double gap = 0.0;      // m, the largest gap over the faces the clump stands on (inf: none)
+    int faces = 0;         // faces the exact unit rests on
+    int tipping_faces = 0; // of those, faces the clump tips off (gap > kTippingGap Dn)
+};
+RestSummary rest_summary(const TriangleMesh &mesh, const Eigen::Vector3d &centre_of_mass, const Clump &clump,
+                         double Dn);
 
 // Tolerance mode: the fewest spheres whose clump meets both tolerances.
 struct ToleranceSearch {

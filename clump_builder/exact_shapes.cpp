@@ -51,17 +51,6 @@ template <class SM, class ToDouble> TriangleMesh to_triangle_mesh(const SM &sm, 
     return mesh;
 }
 
-// Convex hull, triangulated, faces outward (CGAL orients hull faces outward).
-TriangleMesh convex_hull(const std::vector<Eigen::Vector3d> &points) {
-    std::vector<Epick::Point_3> pts;
-    pts.reserve(points.size());
-    for (const auto &p : points)
-        pts.emplace_back(p.x(), p.y(), p.z());
-    HullMesh hull;
-    CGAL::convex_hull_3(pts.begin(), pts.end(), hull);
-    return to_triangle_mesh(hull, [](double x) { return x; });
-}
-
 // Regular octagon with across-flats `flats`, flats normal to u, v and the two
 // diagonals, centred at `centre` in the plane spanned by unit vectors u and v.
 void add_octagon(std::vector<Eigen::Vector3d> &points, const Eigen::Vector3d &centre,
@@ -85,6 +74,17 @@ ExactMesh to_exact(const TriangleMesh &mesh) {
     return sm;
 }
 } // namespace
+
+// CGAL orients hull faces outward.
+TriangleMesh convex_hull(const std::vector<Eigen::Vector3d> &points) {
+    std::vector<Epick::Point_3> pts;
+    pts.reserve(points.size());
+    for (const auto &p : points)
+        pts.emplace_back(p.x(), p.y(), p.z());
+    HullMesh hull;
+    CGAL::convex_hull_3(pts.begin(), pts.end(), hull);
+    return to_triangle_mesh(hull, [](double x) { return x; });
+}
 
 TriangleMesh make_cube_mesh(double edge, double chamfer) {
     const double h = 0.5 * edge;

@@ -37,15 +37,18 @@ std::vector<TriangleMesh> make_dolos_parts(double height, double waist_ratio);
 // Exact union of the dolos parts (CGAL exact constructions).
 TriangleMesh make_dolos_mesh(double height, double waist_ratio);
 
+// Convex hull of `points` (m), triangulated, faces outward.
+TriangleMesh convex_hull(const std::vector<Eigen::Vector3d> &points);
+
 // A unit ready for clump building: its mesh in the unit frame (origin at the
 // exact centroid, reference axes kept) and its exact mass properties.
 struct Shape {
-    std::string kind;        // "cube", "dolos" or "stl"
-    std::string description; // e.g. "cube a=1 m chamfer=0 m"
-    TriangleMesh mesh;       // m, unit frame
+    std::string kind;                       // "cube", "dolos" or "stl"
+    std::string description;                // e.g. "cube a=1 m chamfer=0 m"
+    TriangleMesh mesh;                      // m, unit frame
     std::vector<TriangleMesh> convex_parts; // m, unit frame: cube {mesh}, dolos shank + flukes, STL none
-    MassProperties props;    // at the given density
-    double Dn() const;       // nominal diameter V^(1/3), m
+    MassProperties props;                   // at the given density
+    double Dn() const;                      // nominal diameter V^(1/3), m
 };
 
 // These validate their arguments and throw InputError naming the option.

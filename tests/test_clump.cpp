@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -98,6 +100,66 @@ TEST(ClumpEvaluator, DistanceToUnionBoundaryIgnoresBuriedSurface) {
     EXPECT_NEAR(d[0], seam - 0.2, 0.004); // boundary-sample spacing bounds the error
     EXPECT_NEAR(d[1], R, 1e-12);
     EXPECT_NEAR(d[2], std::hypot(0.25, 0.6) - R, 1e-12);
+}
+
+// Rest gap (clump_evaluator.h): a unit cube with one sphere in each corner
+// octant, centred at (+-1/4, +-1/4, +-1/4).
+Clump corner_spheres(double r_even, double r_odd) {
+    Clump clump;
+    for (int i = 0; i < 8; ++i) {
+        const bool odd = ((i & 1) + ((i >> 1) & 1) + ((i >> 2) & 1)) % 2 == 1;
+        clump.push_back(
+            {0.25 * Eigen::Vector3d(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1), odd ? r_odd : r_even});
+    }
+    return clump;
+}
+
+TEST(ClumpRest, EqualCornerSpheresRestFlat) {
+    // r = 1/4 touches all three faces of its octant: on every face four
+    // spheres touch at once, around the centre.
+    EXPECT_NEAR(rest_summary(unit_cube().mesh, Eigen::Vector3d::Zero(), corner_spheres(0.25, 0.25), 1.0).gap,
+                0.0, 1e-12);
+}
+
+TEST(ClumpRest, AlternatingCornerSpheresRockByTheirRadiusStep) {
+    // Radii alternate 0.25 / 0.2 over the corners (the optimised 8-sphere
+    // cube's pattern): on each face two diagonal spheres touch, the centre
+    // lies on the line through them, and a third still leaves it on an edge;
+    // only the fourth, 0.05 higher, surrounds it. Turning the whole unit
+    // changes nothing.
+    const Clump alternating = corner_spheres(0.25, 0.2);
+    EXPECT_NEAR(rest_summary(unit_cube().mesh, Eigen::Vector3d::Zero(), alternating, 1.0).gap, 0.05, 1e-12);
+    const Eigen::Matrix3d turn =
+        Eigen::AngleAxisd(0.7, Eigen::Vector3d(1.0, -2.0, 0.5).normalized()).toRotationMatrix();
+    TriangleMesh mesh = unit_cube().mesh;
+    for (Eigen::Vector3d &v : mesh.vertices)
+        v = turn * v;
+    Clump turned = alternating;
+    for (Sphere &s : turned)
+        s.center = turn * s.center;
+    EXPECT_NEAR(rest_summary(mesh, Eigen::Vector3d::Zero(), turned, 1.0).gap, 0.05, 1e-9);
+    // The quality report carries it as a fraction of Dn.
+    EXPECT_NEAR(evaluate_clump(unit_cube(), alternating).rest_gap, 0.05, 1e-12);
+}
+
+TEST(ClumpRest, TipsOffFacesItCannotStandOn) {
+    // Radii 0.25 / 0.1: the step, 0.15, is beyond rocking (kTippingGap = 0.1
+    // of Dn): the four big spheres sit on the corners of a tetrahedron, and
+    // the clump stands on three of them, tilted, not on any cube face.
+    const RestSummary tetrahedral =
+        rest_summary(unit_cube().mesh, Eigen::Vector3d::Zero(), corner_spheres(0.25, 0.1), 1.0);
+    EXPECT_EQ(tetrahedral.faces, 6);
+    EXPECT_EQ(tetrahedral.tipping_faces, 6);
+    EXPECT_TRUE(std::isinf(tetrahedral.gap));
+    // A single sphere rolls: no face, no finite gap.
+    const RestSummary ball =
+        rest_summary(unit_cube().mesh, Eigen::Vector3d::Zero(), {{Eigen::Vector3d::Zero(), 0.5}}, 1.0);
+    EXPECT_EQ(ball.tipping_faces, 6);
+    EXPECT_TRUE(std::isinf(ball.gap));
+    // The alternating clump of 0.25 / 0.2 stands on all six.
+    EXPECT_EQ(
+        rest_summary(unit_cube().mesh, Eigen::Vector3d::Zero(), corner_spheres(0.25, 0.2), 1.0).tipping_faces,
+        0);
 }
 
 TEST(ClumpBuilders, AreDeterministicForASeed) {

@@ -1,6 +1,9 @@
 // `armour run`: a scene runs end to end, and every bad scene stops with one
 // error line before anything is written (or, mid-run, keeps what was written).
 #include "cli.h"
+#include "clump_evaluator.h"
+#include "scene.h"
+#include "scene_setup.h"
 
 #include <gtest/gtest.h>
 #include <hdf5.h>
@@ -198,10 +201,10 @@ Rest rest_after(const fs::path &h5, double t_from) {
 
 TEST_F(Run, FewSphereCubeRestsOnAFaceOnlyWithRollingFriction) {
     // An 8-sphere cube (a = 0.2 m) lands on a plane from 1.5 cm. Its lowest
-    // spheres differ in height by ~4 mm, more than the 0.7 mm contact
+    // spheres differ in height by ~4 mm, more than the ~0.6 mm contact
     // overlap, so it stands on two of them and rocks about that line: a
     // rolling motion that sliding friction and the normal dashpot barely
-    // damp. A resting unit must stay put; the edge is the sphere count
+    // damp. A resting unit must stay put; the edge is the rest gap
     // (docs/dem.md). Between 0.5 and 1.5 s: without rolling friction it still
     // rocks (measured: tilt 1.9-3.2 deg, 2.2 mm wander; the run warns), with
     // rolling friction 0.05 it rests (0.015 mm). Bounds: 1 mm (0.5 % of a)
@@ -231,4 +234,50 @@ TEST_F(Run, FewSphereCubeRestsOnAFaceOnlyWithRollingFriction) {
     EXPECT_GT(rocking.wander, 1e-3);
     EXPECT_LT(resting.wander, 1e-4);
     EXPECT_LT(resting.tilt_max - resting.tilt_min, 0.05);
+}
+
+TEST_F(Run, RestGapTellsTheFacesAClumpRocksOn) {
+    // The optimised 27-sphere cube (a = 0.2 m) rests flat on some faces and
+    // not on others: its rest gap (clump_evaluator.h) is 0.40 mm on -z, under
+    // the ~0.57 mm its contacts absorb (resting_overlap), and 3.5 mm on +x.
+    // Placed on each face without rolling friction, it must rest on the one
+    // and rock on the other, and the run warns (it could land on +x).
+    // Bounds as in FewSphereCubeRestsOnAFaceOnlyWithRollingFriction
+    // (measured: 0.037 mm on -z, 1.5 mm on +x).
+    const auto scene = [](const std::string &orientation) {
+        return "name = \"rest\"\n[run]\nduration = 1.5\noutput_interval = 0.01\ndomain_min = [-1, -1, -0.5]\n"
+               "domain_max = [1, 1, 1.5]\n[[material]]\nname = \"concrete\"\nyoungs_modulus = 5e7\n"
+               "friction = 0.6\n[[unit]]\nname = \"cube\"\nshape = \"cube\"\nsize = 0.2\nspheres = 27\n"
+               "[[wall]]\nname = \"floor\"\ntype = \"plane\"\npoint = [0, 0, 0]\nnormal = [0, 0, 1]\nsize = "
+               "2\n"
+               "[[body]]\nunit = \"cube\"\nposition = [0, 0, 0.115]\norientation = " +
+               orientation + "\n";
+    };
+    // [w, x, y, z]: as placed (-z down), and turned 90 degrees about y (+x down).
+    ASSERT_EQ(run(scene("[1, 0, 0, 0]")), 0) << err_;
+    EXPECT_NE(err_.find("rocks without end"), std::string::npos) << err_;
+    const Rest on_minus_z = rest_after(out() / "bodies.h5", 0.5);
+    ASSERT_EQ(run(scene("[0.70710678118654752, 0, 0.70710678118654752, 0]")), 0) << err_;
+    const Rest on_plus_x = rest_after(out() / "bodies.h5", 0.5);
+
+    const armour::Scene parsed = armour::load_scene((dir_ / "scene.toml").string());
+    const armour::SceneSetup setup = armour::build_scene(parsed, cache_, false);
+    const armour::UnitTemplate &unit = setup.units[0];
+    double gap_minus_z = -1.0, gap_plus_x = -1.0;
+    for (const armour::FaceRest &face :
+         armour::rest_gaps(unit.mesh, Eigen::Vector3d::Zero(), unit.clump, setup.unit_Dn[0])) {
+        if (face.normal.isApprox(-Eigen::Vector3d::UnitZ(), 1e-9))
+            gap_minus_z = face.gap;
+        if (face.normal.isApprox(Eigen::Vector3d::UnitX(), 1e-9))
+            gap_plus_x = face.gap;
+    }
+    const double overlap = armour::resting_overlap(unit, setup.settings.materials[unit.material], 9.81);
+    std::printf(
+        "[ rest     ] 27-sphere cube: -z face gap %.3f mm, wander %.3g mm; +x face gap %.3f mm, wander "
+        "%.3g mm; contact overlap %.3f mm\n",
+        1e3 * gap_minus_z, 1e3 * on_minus_z.wander, 1e3 * gap_plus_x, 1e3 * on_plus_x.wander, 1e3 * overlap);
+    EXPECT_LT(gap_minus_z, overlap);
+    EXPECT_GT(gap_plus_x, overlap);
+    EXPECT_LT(on_minus_z.wander, 1e-4);
+    EXPECT_GT(on_plus_x.wander, 1e-3);
 }
