@@ -1028,6 +1028,14 @@ Scene load_scene(const std::string &path, const std::vector<std::string> &overri
     read_run(root, s);
     read_contact_and_analysis(root, s);
     read_fluid(root, s);
+#ifdef ARMOUR_HAVE_BULLET
+    // A coupled run without run.engine takes exact hulls: there interFoam
+    // takes 97-99 % of the time whichever engine runs, and sphere clumps
+    // change the answer (the platform case: 3 of 3 cubes washed off against
+    // 2 of 3 with exact cubes; bench/run_coupled_engines.sh, docs/comparison.md).
+    if (s.fluid && !root.section("run").has("engine"))
+        s.engine = "bullet";
+#endif
     read_materials(root, s);
     read_units(root, s);
     read_walls(root, s);

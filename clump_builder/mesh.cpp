@@ -129,32 +129,40 @@ double box_signed_distance(const Eigen::Vector3d &p, const Eigen::Vector3d &half
     return q.cwiseMax(0.0).norm() + std::min(q.maxCoeff(), 0.0);
 }
 
+namespace {
+
+// Sutherland-Hodgman: the part of a convex polygon where (x - point).n <= 0.
+std::vector<Eigen::Vector3d> clip_polygon(const std::vector<Eigen::Vector3d> &polygon,
+                                          const Eigen::Vector3d &point, const Eigen::Vector3d &n) {
+    std::vector<Eigen::Vector3d> kept;
+    for (std::size_t i = 0; i < polygon.size(); ++i) {
+        const Eigen::Vector3d &p = polygon[i], &q = polygon[(i + 1) % polygon.size()];
+        const double hp = (p - point).dot(n), hq = (q - point).dot(n);
+        if (hp <= 0.0)
+            kept.push_back(p);
+        if ((hp < 0.0 && hq > 0.0) || (hp > 0.0 && hq < 0.0))
+            kept.push_back(p + (hp / (hp - hq)) * (q - p));
+    }
+    return kept;
+}
+
+} // namespace
+
 PartBelowPlane part_below_plane(const TriangleMesh &mesh, const Eigen::Vector3d &point,
                                 const Eigen::Vector3d &up) {
     const Eigen::Vector3d n = up.normalized();
     double six_volume = 0.0;
     Eigen::Vector3d moment = Eigen::Vector3d::Zero(); // 24 x first moment about `point`
-    auto add = [&](const Eigen::Vector3d &a, const Eigen::Vector3d &b, const Eigen::Vector3d &c) {
-        const double v6 = a.dot(b.cross(c)); // tetrahedron (point, a, b, c), relative to point
-        six_volume += v6;
-        moment += v6 * (a + b + c);
-    };
     for (const auto &t : mesh.triangles) {
-        // Sutherland-Hodgman against the half-space h <= 0: a triangle gives
-        // a polygon of at most 4 corners, fanned into triangles.
-        std::array<Eigen::Vector3d, 4> kept;
-        int count = 0;
-        for (int i = 0; i < 3; ++i) {
-            const Eigen::Vector3d p = mesh.vertices[t[i]] - point;
-            const Eigen::Vector3d q = mesh.vertices[t[(i + 1) % 3]] - point;
-            const double hp = p.dot(n), hq = q.dot(n);
-            if (hp <= 0.0)
-                kept[count++] = p;
-            if ((hp < 0.0 && hq > 0.0) || (hp > 0.0 && hq < 0.0))
-                kept[count++] = p + (hp / (hp - hq)) * (q - p);
+        // Fanned from its first corner; tetrahedra (point, a, b, c).
+        const std::vector<Eigen::Vector3d> kept =
+            clip_polygon({mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]}, point, n);
+        for (std::size_t i = 2; i < kept.size(); ++i) {
+            const Eigen::Vector3d a = kept[0] - point, b = kept[i - 1] - point, c = kept[i] - point;
+            const double v6 = a.dot(b.cross(c));
+            six_volume += v6;
+            moment += v6 * (a + b + c);
         }
-        for (int i = 2; i < count; ++i)
-            add(kept[0], kept[i - 1], kept[i]);
     }
     PartBelowPlane part;
     part.volume = six_volume / 6.0;
@@ -162,6 +170,31 @@ PartBelowPlane part_below_plane(const TriangleMesh &mesh, const Eigen::Vector3d 
     if (part.volume > 0.0)
         part.centroid += moment / (4.0 * six_volume);
     return part;
+}
+
+TriangleMesh clipped_to_box(const TriangleMesh &mesh, const Eigen::Vector3d &lo, const Eigen::Vector3d &hi) {
+    TriangleMesh out;
+    const double scale = (hi - lo).norm();
+    for (const auto &t : mesh.triangles) {
+        std::vector<Eigen::Vector3d> kept = {mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]};
+        for (int axis = 0; axis < 3 && !kept.empty(); ++axis) {
+            const Eigen::Vector3d e = Eigen::Vector3d::Unit(axis);
+            kept = clip_polygon(kept, lo, -e);
+            if (!kept.empty())
+                kept = clip_polygon(kept, hi, e);
+        }
+        for (std::size_t i = 2; i < kept.size(); ++i) {
+            // Slivers where a corner only grazes a face carry no contact.
+            if ((kept[i - 1] - kept[0]).cross(kept[i] - kept[0]).norm() < 1e-12 * scale * scale)
+                continue;
+            const int base = static_cast<int>(out.vertices.size());
+            out.vertices.push_back(kept[0]);
+            out.vertices.push_back(kept[i - 1]);
+            out.vertices.push_back(kept[i]);
+            out.triangles.push_back({base, base + 1, base + 2});
+        }
+    }
+    return out;
 }
 
 } // namespace armour

@@ -66,4 +66,9 @@ struct PartBelowPlane {
 PartBelowPlane part_below_plane(const TriangleMesh &mesh, const Eigen::Vector3d &point,
                                 const Eigen::Vector3d &up);
 
+// The part of a surface inside the box [lo, hi] (m): each triangle clipped to
+// the box and fanned, orientation kept; triangles outside dropped. Vertices
+// are not shared between triangles.
+TriangleMesh clipped_to_box(const TriangleMesh &mesh, const Eigen::Vector3d &lo, const Eigen::Vector3d &hi);
+
 } // namespace armour

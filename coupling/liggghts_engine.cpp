@@ -306,7 +306,16 @@ class LiggghtsEngine final : public RigidBodyEngine {
         std::string wall_ids;
         for (std::size_t w = 0; w < walls_.size(); ++w) {
             const fs::path file = work_dir_ / ("wall" + std::to_string(w) + ".stl");
-            write_stl(walls_[w].surface, file.string(), false, walls_[w].name);
+            // LIGGGHTS drops (and then aborts on) mesh elements outside its
+            // box: a plane wall is a big square, an STL block may reach past
+            // the flume. Only the part inside the domain can be touched.
+            const Eigen::Vector3d inset = Eigen::Vector3d::Constant(1e-9 * (hi - lo).norm());
+            const TriangleMesh inside = clipped_to_box(walls_[w].surface, lo + inset, hi - inset);
+            if (inside.triangles.empty())
+                throw InputError(
+                    "wall '" + walls_[w].name +
+                    "': lies wholly outside run.domain_min/domain_max; move it or enlarge the domain");
+            write_stl(inside, file.string(), false, walls_[w].name);
             set("wall_id", "wall" + std::to_string(w));
             set("wall_file", file.string());
             set("wall_type", std::to_string(walls_[w].material + 1));

@@ -754,5 +754,32 @@ TEST(PartBelowPlane, TheTwoSidesOfAnyCutAddUpToTheDolos) {
     }
 }
 
+TEST(ClippedToBox, KeepsExactlyThePartInside) {
+    // A 10 m block whose top face is z = 0, clipped to a 2.4 x 0.18 m flume
+    // box reaching 1 cm below it: only the top face is inside, area 2.4 x
+    // 0.18, every triangle inside the box and still facing +z. A box above
+    // the block keeps nothing.
+    const TriangleMesh block = translated(make_cube_mesh(10.0), Eigen::Vector3d(0.0, 0.0, -5.0));
+    const Eigen::Vector3d lo(0.0, -0.09, -0.01), hi(2.4, 0.09, 0.42);
+    const TriangleMesh floor = clipped_to_box(block, lo, hi);
+    double area = 0.0;
+    for (const auto &t : floor.triangles) {
+        const Eigen::Vector3d &a = floor.vertices[t[0]];
+        const Eigen::Vector3d n = (floor.vertices[t[1]] - a).cross(floor.vertices[t[2]] - a);
+        area += 0.5 * n.norm();
+        EXPECT_GT(n.normalized().z(), 1.0 - 1e-12);
+        for (int c = 0; c < 3; ++c) {
+            const Eigen::Vector3d &v = floor.vertices[t[c]];
+            EXPECT_TRUE(((v - lo).array() >= -1e-12).all() && ((hi - v).array() >= -1e-12).all())
+                << v.transpose();
+        }
+    }
+    EXPECT_NEAR(area, 2.4 * 0.18, 1e-12);
+    EXPECT_TRUE(clipped_to_box(block, Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(1, 1, 2)).triangles.empty());
+    // A closed cube wholly inside keeps its surface area.
+    const TriangleMesh cube = translated(make_cube_mesh(0.1), Eigen::Vector3d(1.2, 0.0, 0.2));
+    EXPECT_NEAR(surface_area(clipped_to_box(cube, lo, hi)), surface_area(cube), 1e-15);
+}
+
 } // namespace
 } // namespace armour

@@ -236,6 +236,48 @@ TEST_F(Run, FewSphereCubeRestsOnAFaceOnlyWithRollingFriction) {
     EXPECT_LT(resting.tilt_max - resting.tilt_min, 0.05);
 }
 
+TEST_F(Run, LiggghtsTakesWallsReachingPastTheDomain) {
+    // A plane wall is a square of `size`; LIGGGHTS aborts on mesh elements
+    // outside its box ("All 2 mesh elements have been lost"), so the adapter
+    // hands it only the part inside the domain. A 10 m floor under a 2 m
+    // domain: the cube (a = 0.2 m, from 1.5 cm) lands and rests on it, its
+    // centre as high above the floor as its clump's lowest sphere reaches
+    // below the centre (the optimised spheres protrude past the faces),
+    // within 1 mm (the contact overlap, ~0.5 mm).
+    const std::string text =
+        "name = \"floor\"\n[run]\nduration = 0.3\noutput_interval = 0.01\n"
+        "domain_min = [-1, -1, -0.5]\ndomain_max = [1, 1, 1.5]\n[[material]]\nname = \"concrete\"\n"
+        "rolling_friction = 0.05\n[[unit]]\nname = \"cube\"\nshape = \"cube\"\nsize = 0.2\n"
+        "spheres = 8\n[[wall]]\nname = \"floor\"\ntype = \"plane\"\npoint = [0, 0, 0]\n"
+        "normal = [0, 0, 1]\nsize = 10\n[[body]]\nunit = \"cube\"\nposition = [0, 0, 0.115]\n";
+    ASSERT_EQ(run(text), 0) << err_;
+    std::ifstream in(out() / "summary.json");
+    ASSERT_TRUE(in);
+    const hid_t file = H5Fopen((out() / "bodies.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    ASSERT_GE(file, 0);
+    const hid_t set = H5Dopen2(file, "/bodies/position", H5P_DEFAULT);
+    const hid_t space = H5Dget_space(set);
+    hsize_t dims[3] = {0, 0, 0};
+    H5Sget_simple_extent_dims(space, dims, nullptr);
+    std::vector<double> p(dims[0] * dims[1] * dims[2]);
+    H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, p.data());
+    H5Sclose(space);
+    H5Dclose(set);
+    H5Fclose(file);
+    double reach = 0.0; // m, lowest sphere point below the centre, as placed
+    std::ifstream spheres(out() / "units" / "cube" / "clump.spheres");
+    for (std::string line; std::getline(spheres, line);) {
+        if (line.empty() || line[0] == '#')
+            continue;
+        std::istringstream row(line);
+        double x = 0, y = 0, z = 0, r = 0;
+        row >> x >> y >> z >> r;
+        reach = std::max(reach, r - z);
+    }
+    EXPECT_GT(reach, 0.1);
+    EXPECT_NEAR(p[p.size() - 1], reach, 1e-3);
+}
+
 TEST_F(Run, RestGapTellsTheFacesAClumpRocksOn) {
     // The optimised 27-sphere cube (a = 0.2 m) rests flat on some faces and
     // not on others: its rest gap (clump_evaluator.h) is 0.40 mm on -z, under

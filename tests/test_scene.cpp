@@ -833,6 +833,18 @@ TEST_F(SceneFile, FluidTableReadsEveryKey) {
     EXPECT_FALSE(load_scene(write(kMinimal)).fluid.has_value());
 }
 
+TEST_F(SceneFile, CoupledScenesDefaultToExactHulls) {
+    // Without run.engine a dry scene runs clumps, a coupled one exact hulls
+    // (where Bullet is built); a given engine is kept.
+    const std::string fluid = "[fluid]\nwater_level = 1\ncell_size = 0.5\n";
+    EXPECT_EQ(load_scene(write(kMinimal)).engine, "liggghts");
+#ifdef ARMOUR_HAVE_BULLET
+    EXPECT_EQ(load_scene(write(std::string(kMinimal) + fluid)).engine, "bullet");
+#endif
+    EXPECT_EQ(load_scene(write(std::string(kMinimal) + "[run]\nengine = \"liggghts\"\n" + fluid)).engine,
+              "liggghts");
+}
+
 TEST_F(SceneFile, FluidDefaultsAndCellSize) {
     // Domain 10 x 10 x 6 m (the [run] defaults) at 0.5 m cells.
     const Scene s = load_scene(write(std::string(kMinimal) + "[fluid]\nwater_level = 1\ncell_size = 0.5\n"));
