@@ -413,7 +413,7 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
 // overlap: a unit on two spheres puts half its weight on each, and a third
 // sphere touches when its gap is under that Hertz overlap. Measured on a
 // plane in the dry DEM (a = 0.2 m cube, E = 5e7 Pa, 0.5-1.5 s; overlap
-// estimate 0.4-0.5 mm): the optimised 8-sphere cube (gap 4.4 mm) wanders
+// estimate 0.57 mm): the optimised 8-sphere cube (gap 4.4 mm) wanders
 // 2-4 mm tilting 2-3 degrees; the 27-sphere cube rests on its -z face (gap
 // 0.40 mm, 0.037 mm wander) and rocks on its +x face (gap 3.5 mm, 1.5 mm).
 // Rolling friction 0.05 stops the rocking (8 spheres: 0.015 mm). In water
@@ -435,14 +435,16 @@ std::vector<std::string> rocking_clump_warnings(const Scene &scene, const SceneS
         const double gap = rest_summary(unit.mesh, Eigen::Vector3d::Zero(), unit.clump, setup.unit_Dn[k]).gap;
         const double overlap = resting_overlap(unit, st.materials[m], scene.gravity.norm());
         if (gap > overlap) {
-            char figures[160];
-            std::snprintf(figures, sizeof figures, "rest gap %.2f mm > %.2f mm", 1e3 * gap, 1e3 * overlap);
-            warnings.push_back("unit '" + unit.name + "': its " + std::to_string(setup.unit_spheres[k]) +
-                               "-sphere clump stands on two spheres on some faces (" +
-                               (std::isfinite(gap) ? std::string(figures) : std::string("it rolls")) +
-                               ", the contact overlap under half its weight) and rocks without end there; "
-                               "set rolling_friction = 0.05 on its material, or use a clump that rests "
-                               "flat (`armour clump` reports rest_gap; docs/dem.md)");
+            char figures[200];
+            std::snprintf(figures, sizeof figures,
+                          "rest gap %.2f mm > %.2f mm, the contact overlap under half its weight", 1e3 * gap,
+                          1e3 * overlap);
+            warnings.push_back(
+                "unit '" + unit.name + "': its " + std::to_string(setup.unit_spheres[k]) +
+                "-sphere clump stands on two spheres on some faces (" +
+                (std::isfinite(gap) ? std::string(figures) : std::string("it stands flat on none of them")) +
+                ") and rocks without end there; set rolling_friction = 0.05 on its material, "
+                "or use a clump that rests flat (`armour clump` reports rest_gap; docs/dem.md)");
         }
     }
     return warnings;
