@@ -187,16 +187,6 @@ SurfaceDeviation summarise(const std::vector<double> &d, double Dn) {
     return s;
 }
 
-} // namespace
-
-std::vector<double> distances_to_clump_surface(const Clump &clump, const std::vector<Eigen::Vector3d> &points,
-                                               int boundary_samples, std::uint64_t seed) {
-    const auto on_clump = sample_clump_surface(clump, boundary_samples, seed);
-    return distances_to_boundary(clump, PointGrid(on_clump), points);
-}
-
-namespace {
-
 // Counter-clockwise convex hull of 2-D points (Andrew's monotone chain).
 std::vector<Eigen::Vector2d> hull_2d(std::vector<Eigen::Vector2d> points) {
     std::sort(points.begin(), points.end(), [](const Eigen::Vector2d &a, const Eigen::Vector2d &b) {
@@ -238,6 +228,12 @@ double depth_inside(const std::vector<Eigen::Vector2d> &polygon, const Eigen::Ve
 }
 
 } // namespace
+
+std::vector<double> distances_to_clump_surface(const Clump &clump, const std::vector<Eigen::Vector3d> &points,
+                                               int boundary_samples, std::uint64_t seed) {
+    const auto on_clump = sample_clump_surface(clump, boundary_samples, seed);
+    return distances_to_boundary(clump, PointGrid(on_clump), points);
+}
 
 std::vector<FaceRest> rest_gaps(const TriangleMesh &mesh, const Eigen::Vector3d &centre_of_mass,
                                 const Clump &clump, double Dn) {

@@ -163,27 +163,37 @@ TEST_F(Run, TiltSceneSlidesAtTheFrictionAngle) {
 
 namespace {
 
-// Horizontal excursion (m) of body 0 from its position at t_from, over the
-// records from t_from on, and the range of its tilt (deg) over them.
+// Horizontal excursion (m) of the only body of a one-body run from its
+// position at t_from, over the records from t_from on, and the range of its
+// tilt (deg) over them.
 struct Rest {
     double wander = 0.0, tilt_min = HUGE_VAL, tilt_max = 0.0;
 };
-Rest rest_after(const fs::path &h5, double t_from) {
+// All values of dataset `name` of an HDF5 file, in storage order (for
+// /bodies/position: record, body, xyz); empty when the file cannot be opened.
+std::vector<double> read_dataset(const fs::path &h5, const char *name) {
     const hid_t file = H5Fopen(h5.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-    auto read = [&](const char *name, int width) {
-        const hid_t set = H5Dopen2(file, name, H5P_DEFAULT);
-        const hid_t space = H5Dget_space(set);
-        hsize_t dims[3] = {0, 0, 0};
-        H5Sget_simple_extent_dims(space, dims, nullptr);
-        std::vector<double> v(dims[0] * static_cast<std::size_t>(width));
-        H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
-        H5Sclose(space);
-        H5Dclose(set);
-        return v;
-    };
-    const std::vector<double> t = read("/time", 1), p = read("/bodies/position", 3),
-                              q = read("/bodies/orientation", 4);
+    if (file < 0)
+        return {};
+    const hid_t set = H5Dopen2(file, name, H5P_DEFAULT);
+    const hid_t space = H5Dget_space(set);
+    hsize_t dims[3] = {1, 1, 1};
+    H5Sget_simple_extent_dims(space, dims, nullptr);
+    const int rank = H5Sget_simple_extent_ndims(space);
+    std::size_t count = 1;
+    for (int d = 0; d < rank; ++d)
+        count *= dims[d];
+    std::vector<double> v(count);
+    H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+    H5Sclose(space);
+    H5Dclose(set);
     H5Fclose(file);
+    return v;
+}
+
+Rest rest_after(const fs::path &h5, double t_from) {
+    const std::vector<double> t = read_dataset(h5, "/time"), p = read_dataset(h5, "/bodies/position"),
+                              q = read_dataset(h5, "/bodies/orientation");
     Rest r;
     std::size_t from = 0;
     while (from < t.size() && t[from] < t_from)
@@ -253,17 +263,8 @@ TEST_F(Run, LiggghtsTakesWallsReachingPastTheDomain) {
     ASSERT_EQ(run(text), 0) << err_;
     std::ifstream in(out() / "summary.json");
     ASSERT_TRUE(in);
-    const hid_t file = H5Fopen((out() / "bodies.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-    ASSERT_GE(file, 0);
-    const hid_t set = H5Dopen2(file, "/bodies/position", H5P_DEFAULT);
-    const hid_t space = H5Dget_space(set);
-    hsize_t dims[3] = {0, 0, 0};
-    H5Sget_simple_extent_dims(space, dims, nullptr);
-    std::vector<double> p(dims[0] * dims[1] * dims[2]);
-    H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, p.data());
-    H5Sclose(space);
-    H5Dclose(set);
-    H5Fclose(file);
+    const std::vector<double> p = read_dataset(out() / "bodies.h5", "/bodies/position");
+    ASSERT_FALSE(p.empty());
     double reach = 0.0; // m, lowest sphere point below the centre, as placed
     std::ifstream spheres(out() / "units" / "cube" / "clump.spheres");
     for (std::string line; std::getline(spheres, line);) {
