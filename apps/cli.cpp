@@ -2,6 +2,7 @@
 
 #include "clump_command.h"
 #include "compare_command.h"
+#include "engine_registry.h"
 #include "mesh.h"
 #include "run_command.h"
 
@@ -85,7 +86,10 @@ int armour_main(int argc, const char *const *argv) {
         ->check(CLI::PositiveNumber);
     std::string run_engine;
     run_cmd->add_option("--engine", run_engine,
-                        "Engine, same as --set run.engine=\"NAME\": liggghts or bullet");
+                        "Engine, same as --set run.engine=\"NAME\" (`armour engines` lists them)");
+
+    CLI::App *engines_cmd = app.add_subcommand(
+        "engines", "List the rigid-body engines of this build, one per line, with their capabilities.");
 
     CompareRequest compare;
     CLI::App *compare_cmd = app.add_subcommand(
@@ -132,6 +136,10 @@ int armour_main(int argc, const char *const *argv) {
         }
         if (compare_cmd->parsed())
             return run_compare(compare);
+        if (engines_cmd->parsed()) {
+            std::cout << describe_engine_styles();
+            return 0;
+        }
     } catch (const InputError &e) {
         std::cerr << "armour: error: " << e.what() << '\n';
         return 2;

@@ -4,7 +4,7 @@
 // limit for both engines, and writes summary.json, charts and a report.
 #include "compare_command.h"
 
-#include "engine_factory.h"
+#include "engine_registry.h"
 #include "run_command.h"
 #include "scene.h"
 #include "staged_output.h"
@@ -88,8 +88,20 @@ int run_compare(const CompareRequest &r) {
     std::vector<std::uint64_t> seeds = r.seeds;
     if (seeds.empty())
         seeds = scene.drops.empty() ? std::vector<std::uint64_t>{1} : std::vector<std::uint64_t>{1, 2, 3};
-    const std::vector<std::string> engines = available_engines();
-    const bool have_exact = std::find(engines.begin(), engines.end(), "bullet") != engines.end();
+    // The two sides: sphere clumps, and exact hulls where this build has them.
+    const EngineStyle *clumps = find_engine_style([](const EngineCapabilities &c) {
+        return c.contacts != ContactKind::none && c.shape == ShapeModel::sphere_clumps;
+    });
+    const EngineStyle *hulls = find_engine_style([](const EngineCapabilities &c) {
+        return c.contacts != ContactKind::none && c.shape == ShapeModel::convex_hulls;
+    });
+    if (!clumps)
+        throw InputError("armour compare: this build has no sphere-clump contact engine");
+    const bool have_exact = hulls != nullptr;
+    const std::string clump_engine = clumps->name, exact_engine = have_exact ? hulls->name : "";
+    std::vector<std::string> engines = {clump_engine};
+    if (have_exact)
+        engines.push_back(exact_engine);
 
     StagedOutput out(r.out);
     const fs::path runs = out.dir() / "runs";
@@ -111,18 +123,18 @@ int run_compare(const CompareRequest &r) {
     for (std::uint64_t seed : seeds) {
         if (have_exact) {
             auto o = seed_overrides(seed);
-            o.push_back("run.engine=\"bullet\"");
+            o.push_back("run.engine=\"" + exact_engine + "\"");
             results.push_back(
-                execute(r, runs, Run("exact_seed" + std::to_string(seed), "bullet", 0, seed), o));
+                execute(r, runs, Run("exact_seed" + std::to_string(seed), exact_engine, 0, seed), o));
         }
         for (int n : r.spheres) {
             auto o = seed_overrides(seed);
             const auto s = spheres_overrides(n);
             o.insert(o.end(), s.begin(), s.end());
-            o.push_back("run.engine=\"liggghts\"");
+            o.push_back("run.engine=\"" + clump_engine + "\"");
             results.push_back(execute(
                 r, runs,
-                Run("clump" + std::to_string(n) + "_seed" + std::to_string(seed), "liggghts", n, seed), o));
+                Run("clump" + std::to_string(n) + "_seed" + std::to_string(seed), clump_engine, n, seed), o));
         }
     }
 
@@ -141,7 +153,7 @@ int run_compare(const CompareRequest &r) {
             continue;
         for (double f : r.dt_factors) {
             auto o = seed_overrides(seeds.front());
-            if (engine == "liggghts") {
+            if (engine == clump_engine) {
                 const auto s = spheres_overrides(r.dt_sweep_spheres);
                 o.insert(o.end(), s.begin(), s.end());
             }
@@ -153,7 +165,7 @@ int run_compare(const CompareRequest &r) {
             o.insert(o.end(), {"run.engine=\"" + engine + "\"", step, interval, "run.force_time_step=true"});
             char label[64];
             std::snprintf(label, sizeof label, "dt_%s_x%g", engine.c_str(), f);
-            Run run(label, engine, engine == "liggghts" ? r.dt_sweep_spheres : 0, seeds.front(), f);
+            Run run(label, engine, engine == clump_engine ? r.dt_sweep_spheres : 0, seeds.front(), f);
             sweep.push_back(execute(r, runs, run, o));
         }
     }
@@ -165,7 +177,7 @@ int run_compare(const CompareRequest &r) {
         double sum = 0.0;
         int n = 0;
         for (const Run &run : results)
-            if (run.engine == "bullet" && std::isfinite(number_or_nan(run.summary, key))) {
+            if (run.engine == exact_engine && std::isfinite(number_or_nan(run.summary, key))) {
                 sum += number_or_nan(run.summary, key);
                 ++n;
             }
@@ -214,7 +226,7 @@ int run_compare(const CompareRequest &r) {
         {"scene", scene.name},
         {"analysis", scene.analysis},
         {"headline_keys", keys},
-        {"exact_engine", have_exact ? json("bullet") : json(nullptr)},
+        {"exact_engine", have_exact ? json(exact_engine) : json(nullptr)},
         {"exact_mean", exact_mean},
         {"seeds", seeds},
         {"runs", entries},

@@ -2,7 +2,7 @@
 
 #include "body_recorder.h"
 #include "clump_io.h"
-#include "engine_factory.h"
+#include "engine_registry.h"
 #include "staged_output.h"
 #include "stl_io.h"
 
@@ -549,7 +549,7 @@ std::vector<std::string> check_coupled_scene(const Scene &scene, const SceneSetu
         // (bench_tank_cubes) stable at N = 0.42 over 0.5 s, but one cube
         // wedged against the tank wall went unstable at N = 1.67.
         // Rigid contacts (bullet) do not vibrate.
-        if (scene.engine == "liggghts") {
+        if (engine_style(scene.engine).capabilities.contacts == ContactKind::spring_dashpot) {
             const double unit_density = setup.units[k].props.mass / setup.units[k].props.volume;
             const double n = f.penalty * f.max_time_step * (f.fluid_density / unit_density) *
                              (h.maxCoeff() / setup.unit_Dn[k]);

@@ -4,7 +4,7 @@
 #include "body_recorder.h"
 #include "clump_io.h"
 #include "coupled_run.h"
-#include "engine_factory.h"
+#include "engine_registry.h"
 #include "materials.h"
 #include "mesh.h"
 #include "scene_setup.h"
@@ -311,17 +311,17 @@ int run_dem(const RunRequest &r, const Scene &scene, SceneSetup &setup, std::vec
             const double piece = std::max(dt.used, 0.1 / std::max(scene.tilt_rate, 1e-12));
             while (engine->time() < target - 0.5 * dt.used) {
                 set_tilt(engine->time());
-                engine->advance(std::min(piece, target - engine->time()));
+                engine->advance_to(std::min(engine->time() + piece, target));
             }
         } else if (water) {
             while (engine->time() < target - 0.5 * dt.used) {
                 for (int i = 0; i < engine->body_count(); ++i)
                     set_buoyancy(*engine, i, setup.units[setup.bodies[i].unit], engine->state(i), *water,
                                  scene.gravity);
-                engine->advance(std::min(water->update_interval, target - engine->time()));
+                engine->advance_to(std::min(engine->time() + std::max(water->update_interval, dt.used), target));
             }
         } else {
-            engine->advance(target - engine->time());
+            engine->advance_to(target);
         }
         record();
         if (scene.analysis == "tilt")

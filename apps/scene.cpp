@@ -1,5 +1,6 @@
 #include "scene.h"
 
+#include "engine_registry.h"
 #include "mesh.h"
 #include "shapes.h"
 
@@ -478,7 +479,10 @@ std::string vec_text(const Eigen::Ref<const Eigen::VectorXd> &v) {
 void read_run(const Table &root, Scene &s) {
     const Table run = root.section("run");
     run.only(section_keys().at("run"));
-    s.engine = run.choice("engine", s.engine, {"liggghts", "bullet", "free_body"});
+    std::vector<std::string> engines;
+    for (const EngineStyle &style : engine_styles())
+        engines.push_back(style.name);
+    s.engine = run.choice("engine", s.engine, engines);
     s.duration = run.num("duration", s.duration, "s");
     run.check(s.duration > 0, "duration", "must be > 0 s", s.duration);
     s.output_interval = run.num("output_interval", s.output_interval, "s");
@@ -817,9 +821,13 @@ void read_placements(const Table &root, Scene &s) {
         b.fixed_rotation = t.flags("fixed_rotation", b.fixed_rotation);
         if (t.has("pivot")) {
             b.pivot = t.vec3("pivot", Eigen::Vector3d::Zero(), "m");
-            if (s.engine != "free_body")
-                t.fail("pivot", "needs run.engine = \"free_body\" (got " + quote(s.engine) +
+            if (!engine_style(s.engine).capabilities.pivot) {
+                const EngineStyle *hinged =
+                    find_engine_style([](const EngineCapabilities &c) { return c.pivot; });
+                t.fail("pivot", "needs run.engine = " + quote(hinged ? hinged->name : "an engine with pivots") +
+                                    " (got " + quote(s.engine) +
                                     "): the contact engines hold locked axes at the centre of mass");
+            }
             if (std::none_of(b.fixed_translation.begin(), b.fixed_translation.end(),
                              [](bool f) { return f; }))
                 t.fail("pivot", "holds nothing without fixed_translation (the axes along which the pivot "
@@ -1028,14 +1036,17 @@ Scene load_scene(const std::string &path, const std::vector<std::string> &overri
     read_run(root, s);
     read_contact_and_analysis(root, s);
     read_fluid(root, s);
-#ifdef ARMOUR_HAVE_BULLET
-    // A coupled run without run.engine takes exact hulls: there interFoam
-    // takes 97-99 % of the time whichever engine runs, and sphere clumps
-    // change the answer (the platform case: 3 of 3 cubes washed off against
-    // 2 of 3 with exact cubes; bench/run_coupled_engines.sh, docs/comparison.md).
-    if (s.fluid && !root.section("run").has("engine"))
-        s.engine = "bullet";
-#endif
+    // A coupled run without run.engine takes exact hulls where the build has
+    // them: there interFoam takes 97-99 % of the time whichever engine runs,
+    // and sphere clumps change the answer (the platform case: 3 of 3 cubes
+    // washed off against 2 of 3 with exact cubes; bench/run_coupled_engines.sh,
+    // docs/comparison.md).
+    if (s.fluid && !root.section("run").has("engine")) {
+        if (const EngineStyle *exact = find_engine_style([](const EngineCapabilities &c) {
+                return c.contacts != ContactKind::none && c.shape == ShapeModel::convex_hulls;
+            }))
+            s.engine = exact->name;
+    }
     read_materials(root, s);
     read_units(root, s);
     read_walls(root, s);

@@ -1,6 +1,7 @@
 #include "scene_setup.h"
 
 #include "clump_evaluator.h"
+#include "engine_registry.h"
 #include "materials.h"
 #include "shapes.h"
 #include "stl_io.h"
@@ -420,7 +421,7 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
 // the rocking unit stirs the flow and drifts (docs/dem.md).
 std::vector<std::string> rocking_clump_warnings(const Scene &scene, const SceneSetup &setup) {
     std::vector<std::string> warnings;
-    if (scene.engine != "liggghts")
+    if (engine_style(scene.engine).capabilities.shape != ShapeModel::sphere_clumps)
         return warnings;
     const EngineSettings &st = setup.settings;
     for (std::size_t k = 0; k < setup.units.size(); ++k) {

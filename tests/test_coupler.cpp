@@ -1,5 +1,6 @@
 // The coupler core and the free-body test engine against analytic solutions.
 #include "coupler.h"
+#include "added_mass_problem.h"
 #include "free_body_engine.h"
 
 #include <gtest/gtest.h>

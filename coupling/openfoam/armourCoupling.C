@@ -16,7 +16,7 @@
 #include "body_recorder.h"
 #include "clump.h"
 #include "coupler.h"
-#include "engine_factory.h"
+#include "engine_registry.h"
 #include "free_body_engine.h"
 #include "liggghts_engine.h"
 #include "scene.h"

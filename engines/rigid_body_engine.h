@@ -14,8 +14,10 @@
 //     int body = engine->add_body({cube, pose, velocity, angular_velocity});
 //     engine->add_wall(wall);
 //     engine->set_external_load(body, force, torque);
-//     engine->advance(0.01);                       // s
+//     engine->advance(0.01);                       // s, any span: the clock keeps the remainder
 //     BodyState s = engine->state(body);
+//
+//     Engines are made by name through the registry (engine_registry.h).
 #pragma once
 
 #include "clump.h"
@@ -133,15 +135,32 @@ class RigidBodyEngine {
     virtual void set_external_load(int body, const Eigen::Vector3d &force, const Eigen::Vector3d &torque) = 0;
     virtual void set_gravity(const Eigen::Vector3d &gravity) = 0;
 
-    // Advances by `span` seconds in whole steps of time_step().
-    virtual void advance(double span) = 0;
+    // The clock. Engines move in whole steps of time_step(): a partial step
+    // would integrate contacts with a different step than the one their
+    // stiffness and damping (and LIGGGHTS' neighbour lists) were set for.
+    // So the requested time is kept apart from the engine's own, and each
+    // call runs the whole steps that bring time() nearest to it: after any
+    // sequence of spans, |time() - requested_time()| <= time_step() / 2,
+    // and a span shorter than half a step runs nothing now but counts later.
+    void advance(double span);                           // s, > 0 (0 allowed)
+    void advance_to(double t);                           // s, absolute; t >= requested_time()
+    double time() const;                                 // s, steps() x time_step()
+    double requested_time() const { return requested_; } // s, the sum of the spans asked for
+    long steps() const { return steps_; }
 
     virtual int body_count() const = 0;
     virtual BodyState state(int body) const = 0;
-    virtual double time() const = 0;      // s
     virtual double time_step() const = 0; // s, the step in use
     virtual TimeStepReport time_step_report() const = 0;
-    virtual long steps() const = 0;
+
+  protected:
+    // Runs `steps` (>= 1) steps of time_step(); steps() and time() already
+    // count them, so messages about the end of this call can use time().
+    virtual void run_steps(long steps) = 0;
+
+  private:
+    long steps_ = 0;
+    double requested_ = 0.0;
 };
 
 } // namespace armour

@@ -431,13 +431,12 @@ class BulletEngine final : public RigidBodyEngine {
         world_->setGravity(bt(gravity)); // every dynamic body's gravity too
     }
 
-    void advance(double span) override {
+    void run_steps(long n) override {
         if (!frozen_) {
             report_ = make_report();
             frozen_ = true;
         }
         const double dt = report_.used;
-        const long n = std::max(1L, std::lround(span / dt));
         for (long i = 0; i < n; ++i) {
             // Bullet clears applied forces after every stepSimulation call.
             for (auto &b : bodies_) {
@@ -445,7 +444,6 @@ class BulletEngine final : public RigidBodyEngine {
                 b->rb->applyTorque(bt(b->torque));
             }
             world_->stepSimulation(dt, 0, dt); // maxSubSteps = 0: exactly one step of dt
-            ++steps_;
         }
         collect_contact_forces(dt);
         for (std::size_t i = 0; i < bodies_.size(); ++i) {
@@ -475,10 +473,8 @@ class BulletEngine final : public RigidBodyEngine {
         return s;
     }
 
-    double time() const override { return static_cast<double>(steps_) * report().used; }
     double time_step() const override { return report().used; }
     TimeStepReport time_step_report() const override { return report(); }
-    long steps() const override { return steps_; }
 
     BulletBodyInfo info(int body) const {
         const Body &b = checked(body);
@@ -650,7 +646,6 @@ class BulletEngine final : public RigidBodyEngine {
     std::unique_ptr<World> world_;
     TimeStepReport report_;
     bool frozen_ = false;
-    long steps_ = 0;
 };
 
 const BulletEngine &as_bullet(const RigidBodyEngine &engine) {
@@ -661,6 +656,15 @@ const BulletEngine &as_bullet(const RigidBodyEngine &engine) {
 }
 
 } // namespace
+
+EngineStyle bullet_engine_style() {
+    EngineCapabilities c;
+    c.contacts = ContactKind::rigid_impulse;
+    c.shape = ShapeModel::convex_hulls;
+    c.replica_per_rank = true; // deterministic: replicas fed the same loads stay one run
+    return {"bullet", "Bullet 3.24 (double): exact convex hulls, rigid-contact impulses", c,
+            [](const EngineSettings &s) { return make_bullet_engine(s); }};
+}
 
 std::unique_ptr<RigidBodyEngine> make_bullet_engine(const EngineSettings &settings) {
     return std::make_unique<BulletEngine>(settings, BulletOptions{});

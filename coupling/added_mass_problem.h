@@ -1,36 +1,19 @@
-// An analytic rigid-body engine without contacts: the test double behind the
-// coupler's tests, and the added-mass model problem built on it.
+// The added-mass model problem: the coupler on a free body in a synthetic fluid.
 //
 // Description
-//     Each body moves under gravity and its held external load only; nothing
-//     collides. Translation is velocity Verlet (exact for a load held constant
-//     over advance()). Rotation integrates the world angular momentum
-//     (dL/dt = T, exact for a constant torque, and equivalent to Euler's
-//     equations in the unit frame) and the orientation quaternion with the
-//     implicit-midpoint angular velocity, so |L| is kept exactly without
-//     torque. Locked world axes are honoured: locked velocity components are
-//     zero, and the free angular velocity components solve the free rows of
-//     L = I_world omega (the constraint torque acts only about locked axes).
-//     Walls are accepted and ignored (no contacts). The step is
-//     settings.time_step, or 1e-4 s when that is 0; there is no stability
-//     limit (TimeStepReport::limit = 0).
+//     No CFD: the "measured" fluid load is what a partitioned coupling sees
+//     for a body in an ideal fluid, so the coupler's added-mass scheme can be
+//     checked against the analytic acceleration and its failure boundary
+//     charted (bench/run_density_ratio.sh, tests/test_coupler.cpp).
 //
 // Usage
-//     auto engine = make_free_body_engine(EngineSettings{});
-//     int cube = engine->add_template(unit);            // props: mass, inertia
-//     int body = engine->add_body({cube, pose});
-//     engine->set_external_load(body, force, torque);
-//     engine->advance(0.01);
+//     AddedMassProblem p;  p.density_ratio = 0.3;  p.coupler_added_mass_coefficient = 0.5;
+//     AddedMassResult r = run_added_mass_problem(p);   // r.diverged, r.max_relative_error
 #pragma once
 
-#include "rigid_body_engine.h"
-
-#include <memory>
 #include <vector>
 
 namespace armour {
-
-std::unique_ptr<RigidBodyEngine> make_free_body_engine(const EngineSettings &settings);
 
 // Added-mass model problem (no CFD): a cube released from rest in still
 // fluid whose measured load is buoyancy minus the added-mass reaction to the

@@ -117,14 +117,11 @@ class LiggghtsEngine final : public RigidBodyEngine {
 
     void set_gravity(const Eigen::Vector3d &gravity) override { settings_.gravity = gravity; }
 
-    void advance(double span) override {
+    void run_steps(long n) override {
         if (!lmp_)
             start();
-        const long n = std::max(1L, std::lround(span / report_.used));
         write_external_loads();
-        const std::string run = "run " + std::to_string(n) + " pre no post no";
-        command(run);
-        steps_ += n;
+        command("run " + std::to_string(n) + " pre no post no");
         read_states();
     }
 
@@ -136,9 +133,7 @@ class LiggghtsEngine final : public RigidBodyEngine {
         return bodies_.at(body).state;
     }
 
-    double time() const override { return static_cast<double>(steps_) * report_.used; }
     double time_step() const override { return report().used; }
-    long steps() const override { return steps_; }
 
     TimeStepReport time_step_report() const override { return report(); }
 
@@ -532,11 +527,20 @@ class LiggghtsEngine final : public RigidBodyEngine {
     mutable TimeStepReport report_;
     mutable bool report_ready_ = false;
     void *lmp_ = nullptr;
-    long steps_ = 0;
     std::ostringstream transcript_;
 };
 
 } // namespace
+
+EngineStyle liggghts_engine_style() {
+    EngineCapabilities c;
+    c.contacts = ContactKind::spring_dashpot;
+    c.contact_models = {ContactModel::hooke, ContactModel::hertz};
+    c.shape = ShapeModel::sphere_clumps;
+    c.replica_per_rank = true; // one serial LIGGGHTS on MPI_COMM_SELF per rank
+    return {"liggghts", "LIGGGHTS 3.8 multisphere: sphere clumps, spring-dashpot contacts", c,
+            [](const EngineSettings &s) { return make_liggghts_engine(s); }};
+}
 
 std::unique_ptr<RigidBodyEngine> make_liggghts_engine(const EngineSettings &settings) {
     return std::make_unique<LiggghtsEngine>(settings);

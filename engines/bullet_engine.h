@@ -46,6 +46,7 @@
 //     engine->advance(0.5);  BodyState s = engine->state(0);
 #pragma once
 
+#include "engine_registry.h"
 #include "rigid_body_engine.h"
 
 #include <memory>
@@ -64,6 +65,9 @@ constexpr double kBulletDefaultStep = 0.001;  // s
 constexpr double kBulletMaxStep = 1.0 / 60.0; // s, refused above unless force_time_step
 
 std::unique_ptr<RigidBodyEngine> make_bullet_engine(const EngineSettings &settings);
+
+// Name, capabilities and factory for the registry.
+EngineStyle bullet_engine_style();
 std::unique_ptr<RigidBodyEngine> make_bullet_engine(const EngineSettings &settings,
                                                     const BulletOptions &options);
 

@@ -22,6 +22,7 @@
 //     // add_template / add_body / add_wall, then advance(span) ...
 #pragma once
 
+#include "engine_registry.h"
 #include "rigid_body_engine.h"
 
 #include <memory>
@@ -29,5 +30,8 @@
 namespace armour {
 
 std::unique_ptr<RigidBodyEngine> make_liggghts_engine(const EngineSettings &settings);
+
+// Name, capabilities and factory for the registry.
+EngineStyle liggghts_engine_style();
 
 } // namespace armour
