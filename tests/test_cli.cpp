@@ -1,6 +1,7 @@
 // The `armour` command line: results on good input; one error line, a
 // non-zero exit and no output directory on bad input.
 #include "cli.h"
+#include "output_folder_rule.h"
 #include "shapes.h"
 #include "stl_io.h"
 
@@ -183,4 +184,43 @@ TEST_F(Cli, ReplacesAnEarlierResultWhole) {
     for ([[maybe_unused]] const auto &entry : fs::directory_iterator(dir_))
         ++entries;
     EXPECT_EQ(entries, 1); // no staging or backup directories left
+}
+
+TEST_F(Cli, ClumpKeepsTheUsersFiles) {
+    output_rule::check(
+        dir_, "armour clump",
+        [](const std::string &out, int variant) {
+            return output_rule::armour({"clump", "--shape", "cube", "--size", "1", "--spheres",
+                                        variant == 0 ? "4" : "6", "--out", out});
+        },
+        [](const nlohmann::json &s) { return s["spheres"] == 6 ? 1 : 0; });
+}
+
+TEST_F(Cli, ClumpRefusesTheFolderHoldingItsStl) {
+    const fs::path stl = dir_ / "block.stl";
+    armour::write_stl(armour::make_cube_mesh(1.0), stl.string(), false);
+    const std::string before = output_rule::read(stl);
+    EXPECT_EQ(run({"clump", "--stl", stl.string(), "--spheres", "4", "--out", dir_.string()}), 2) << err_;
+    EXPECT_NE(err_.find("holds 'block.stl'"), std::string::npos) << err_;
+    EXPECT_EQ(output_rule::names(dir_), std::set<std::string>{"block.stl"});
+    EXPECT_EQ(output_rule::read(stl), before);
+}
+
+TEST_F(Cli, AnotherCommandsResultIsRefused) {
+    const fs::path out = dir_ / "cube";
+    ASSERT_EQ(run({"clump", "--shape", "cube", "--size", "1", "--spheres", "4", "--out", out.string()}), 0);
+    const auto before = output_rule::names(out);
+    EXPECT_EQ(run({"demo", "--tol-volume", "0.3", "--tol-surface", "0.3", "--out", out.string()}), 2);
+    EXPECT_NE(err_.find("it is a result of 'armour clump'"), std::string::npos) << err_;
+    EXPECT_EQ(output_rule::names(out), before);
+}
+
+TEST_F(Cli, DemoKeepsTheUsersFiles) {
+    output_rule::check(
+        dir_, "armour demo",
+        [](const std::string &out, int variant) {
+            return output_rule::armour({"demo", "--tol-volume", variant == 0 ? "0.3" : "0.25",
+                                        "--tol-surface", "0.3", "--out", out});
+        },
+        [](const nlohmann::json &s) { return s["tolerance"]["volume"] == 0.25 ? 1 : 0; });
 }
