@@ -18,9 +18,12 @@ namespace {
 const std::string kMarker = ".armour-output";
 
 // Temporary files of a command that was killed: the marker's temporary copy
-// and a staging folder. They carry our names only, so they may go.
+// and a staging folder (.armour-partial-PID). They carry our names only, so they may go.
 bool own_leftover(const std::string &name) {
-    return name == kMarker + ".tmp" || name.rfind(".armour-partial-", 0) == 0;
+    const std::string partial = ".armour-partial-";
+    return name == kMarker + ".tmp" ||
+           (name.size() > partial.size() && name.rfind(partial, 0) == 0 &&
+            name.find_first_not_of("0123456789", partial.size()) == std::string::npos);
 }
 
 // A marker line names a top-level entry; anything that could reach outside

@@ -1,6 +1,8 @@
 // The `armour` command line: results on good input; one error line, a
 // non-zero exit and no output directory on bad input.
 #include "cli.h"
+#include "mesh.h"
+#include "output_folder.h"
 #include "output_folder_rule.h"
 #include "shapes.h"
 #include "stl_io.h"
@@ -223,4 +225,57 @@ TEST_F(Cli, DemoKeepsTheUsersFiles) {
                                         "--tol-surface", "0.3", "--out", out});
         },
         [](const nlohmann::json &s) { return s["tolerance"]["volume"] == 0.25 ? 1 : 0; });
+}
+
+// The folder rule's corners, on OutputFolder itself.
+TEST_F(Cli, OutputFolderReplacesWhatAKilledRunLeft) {
+    // A run killed after claiming summary.json but before writing it, and a
+    // staged command killed mid-way (its hidden staging folder, a marker copy).
+    const fs::path out = dir_ / "killed";
+    fs::create_directories(out / ".armour-partial-4242");
+    std::ofstream(out / ".armour-output") << "armour run\nbodies.h5\nsummary.json\n";
+    std::ofstream(out / ".armour-output.tmp") << "armour run\n";
+    std::ofstream(out / "bodies.h5") << "partial";
+    armour::OutputFolder folder(out, "armour run", armour::OutputFolder::Mode::streaming);
+    folder.open();
+    EXPECT_EQ(output_rule::names(out), std::set<std::string>{".armour-output"});
+    EXPECT_EQ(output_rule::read(out / ".armour-output"), "armour run\n");
+    armour::write_text_file(folder.claim("summary.json"), "{}\n");
+    EXPECT_EQ(output_rule::read(out / ".armour-output"), "armour run\nsummary.json\n");
+}
+
+TEST_F(Cli, OutputFolderMarkerNeverReachesOutside) {
+    const fs::path out = dir_ / "result";
+    fs::create_directories(out);
+    std::ofstream(dir_ / "keep.txt") << "mine";
+    std::ofstream(out / ".armour-output") << "armour run\n../keep.txt\n..\n.\n/\n";
+    armour::OutputFolder folder(out, "armour run", armour::OutputFolder::Mode::streaming);
+    folder.open();
+    EXPECT_EQ(output_rule::read(dir_ / "keep.txt"), "mine");
+    EXPECT_TRUE(fs::is_directory(out));
+}
+
+TEST_F(Cli, OutputFolderLooksLikeOursIsNotOurs) {
+    // Only .armour-partial-<digits> is a leftover of ours; a look-alike is the user's.
+    const fs::path out = dir_ / "result";
+    fs::create_directories(out);
+    std::ofstream(out / ".armour-partial-notes") << "mine";
+    EXPECT_THROW(armour::OutputFolder(out, "armour clump", armour::OutputFolder::Mode::staged),
+                 armour::InputError);
+    EXPECT_EQ(output_rule::read(out / ".armour-partial-notes"), "mine");
+}
+
+TEST_F(Cli, OutputFolderUncommittedLeavesTheEarlierResult) {
+    const fs::path out = dir_ / "cube";
+    ASSERT_EQ(run({"clump", "--shape", "cube", "--size", "1", "--spheres", "4", "--out", out.string()}), 0);
+    const auto before = output_rule::names(out);
+    const std::string summary = output_rule::read(out / "summary.json");
+    {
+        armour::OutputFolder folder(out, "armour clump", armour::OutputFolder::Mode::staged);
+        folder.open();
+        armour::write_text_file(folder.claim("summary.json"), "{}\n");
+        armour::write_text_file(folder.claim("extra.txt"), "x\n");
+    } // a command that fails before commit()
+    EXPECT_EQ(output_rule::names(out), before);
+    EXPECT_EQ(output_rule::read(out / "summary.json"), summary);
 }
