@@ -107,10 +107,14 @@ void OutputFolder::open() {
     const Earlier earlier = check();
     std::error_code ec;
     // Leftovers of a killed command (checked to carry only our names).
-    if (earlier.exists)
+    if (earlier.exists) {
+        std::vector<fs::path> leftovers;
         for (const auto &entry : fs::directory_iterator(target_, ec))
             if (own_leftover(entry.path().filename().string()))
-                fs::remove_all(entry.path(), ec);
+                leftovers.push_back(entry.path());
+        for (const fs::path &path : leftovers)
+            fs::remove_all(path, ec);
+    }
     if (mode_ == Mode::staged) {
         if (earlier.exists) {
             staging_ = target_ / (".armour-partial-" + pid_suffix());
