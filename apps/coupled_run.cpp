@@ -646,7 +646,7 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
     folder.open(); // an earlier result of this command is replaced
     const fs::path out = folder.target();
     for (const char *name : {"bodies.h5", "bodies.xdmf", "fluid.csv", "coupling_times.json"})
-        folder.claim(name); // the plugin writes these
+        folder.claim(name); // the plugin writes these (a new plugin file is listed here too)
     std::error_code ec;
     fs::create_directories(folder.claim("units"), ec);
     if (ec)
