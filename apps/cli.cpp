@@ -12,6 +12,10 @@
 
 namespace armour {
 
+// The output-folder rule (output_folder.h, docs/outputs.md), the same for every command.
+const char *const kOutHelp = "Output folder: new, empty, or an earlier result of the same command (whose "
+                             "files alone are replaced); any other folder is refused";
+
 int armour_main(int argc, const char *const *argv) {
     CLI::App app{"armour-fsi: breakwater armour units as sphere clumps, DEM and coupled with waves.\n"
                  "All quantities are SI: m, kg, s, N; densities in kg/m^3."};
@@ -51,14 +55,14 @@ int armour_main(int argc, const char *const *argv) {
     clump_cmd->add_option("--density", clump.density, "Unit density [kg/m^3]")->capture_default_str();
     clump_cmd->add_option("--seed", clump.seed, "Random seed (results are deterministic per seed)")
         ->capture_default_str();
-    clump_cmd->add_option("--out", clump.out, "Output directory (written atomically)")->required();
+    clump_cmd->add_option("--out", clump.out, kOutHelp)->required();
 
     DemoRequest demo;
     CLI::App *demo_cmd = app.add_subcommand(
         "demo",
         "Default job: clumps of a 1 m cube and a 2 m dolos (2400 kg/m^3) with the fewest spheres meeting "
         "the tolerances, both methods, and their error table.");
-    demo_cmd->add_option("--out", demo.out, "Output directory (written atomically)")->capture_default_str();
+    demo_cmd->add_option("--out", demo.out, kOutHelp)->capture_default_str();
     demo_cmd->add_option("--tol-volume", demo.tol_volume, "Max |volume error| as a fraction [-]")
         ->capture_default_str();
     demo_cmd
@@ -73,8 +77,7 @@ int armour_main(int argc, const char *const *argv) {
         "when it has [fluid]: writes summary.json, bodies.h5 (+ bodies.xdmf for ParaView) and the resolved "
         "scene to --out (and the OpenFOAM case to --out/case).");
     run_cmd->add_option("scene", run.scene, "Scene file (.toml)")->required();
-    run_cmd->add_option("--out", run.out, "Output directory (replaced if it holds an earlier run)")
-        ->required();
+    run_cmd->add_option("--out", run.out, kOutHelp)->required();
     run_cmd->add_option("--set", run.overrides,
                         "Override a scene key, TOML syntax: --set run.duration=0.5 --set unit.0.spheres=20");
     run_cmd->add_option("--cache", run.cache,
@@ -98,7 +101,7 @@ int armour_main(int argc, const char *const *argv) {
         "the time step past the stability limit, and write summary.json, pareto.png, stability_dt.png, "
         "bumpiness.png and report.md to --out.");
     compare_cmd->add_option("scene", compare.scene, "Scene file (.toml)")->required();
-    compare_cmd->add_option("--out", compare.out, "Output directory (written atomically)")->required();
+    compare_cmd->add_option("--out", compare.out, kOutHelp)->required();
     compare_cmd->add_option("--spheres", compare.spheres, "Sphere counts per unit, e.g. 5,10,20,50,100")
         ->delimiter(',')
         ->capture_default_str();

@@ -2,12 +2,13 @@
 
 #include "clump_evaluator.h"
 #include "clump_io.h"
-#include "staged_output.h"
+#include "output_folder.h"
 #include "stl_io.h"
 
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -65,16 +66,19 @@ json matrix_json(const Eigen::Matrix3d &m) {
         {{m(0, 0), m(0, 1), m(0, 2)}, {m(1, 0), m(1, 1), m(1, 2)}, {m(2, 0), m(2, 1), m(2, 2)}});
 }
 
-// Writes the clump's files into `dir` and returns its summary.
-json write_clump_files(const std::filesystem::path &dir, const std::filesystem::path &final_dir,
-                       const Shape &shape, const Clump &clump, const ClumpQuality &q,
-                       const std::string &method, std::uint64_t seed) {
-    write_sphere_file(clump, (dir / "clump.spheres").string(),
+// Where a file of the result is written, by its name.
+using FilePlace = std::function<std::filesystem::path(const std::string &)>;
+
+// Writes the clump's files (at `place(name)`, to end up in `final_dir`) and returns its summary.
+json write_clump_files(const FilePlace &place, const std::filesystem::path &final_dir, const Shape &shape,
+                       const Clump &clump, const ClumpQuality &q, const std::string &method,
+                       std::uint64_t seed) {
+    write_sphere_file(clump, place("clump.spheres").string(),
                       shape.description + ", " + std::to_string(clump.size()) + " spheres, method " + method);
-    write_text_file(dir / "template.liggghts",
+    write_text_file(place("template.liggghts"),
                     liggghts_template_snippet(shape, clump, (final_dir / "clump.spheres").string()));
-    write_stl(shape.mesh, (dir / "shape.stl").string(), true, "exact " + shape.description);
-    write_stl(clump_surface_mesh(clump), (dir / "clump.stl").string(), true, "clump " + shape.description);
+    write_stl(shape.mesh, place("shape.stl").string(), true, "exact " + shape.description);
+    write_stl(clump_surface_mesh(clump), place("clump.stl").string(), true, "clump " + shape.description);
     const MassProperties &p = shape.props;
     json s = quality_json(q);
     s["method"] = method;
@@ -177,13 +181,15 @@ int run_clump(const ClumpRequest &r) {
     if (r.max_spheres < 1)
         throw InputError("--max-spheres: must be >= 1 (got " + std::to_string(r.max_spheres) + ")");
     const Shape shape = make_requested_shape(r);
-    StagedOutput out(r.out);
+    OutputFolder out(r.out, "armour clump", OutputFolder::Mode::staged);
     const Built b = build_requested(shape, method, r.fixed_count ? r.spheres : 0, r.tol_volume, r.tol_surface,
                                     r.max_spheres, r.seed, shape.kind);
-    json summary = write_clump_files(out.dir(), out.target(), shape, b.clump, b.quality, r.method, r.seed);
+    out.open();
+    json summary = write_clump_files([&](const std::string &name) { return out.claim(name); }, out.target(),
+                                     shape, b.clump, b.quality, r.method, r.seed);
     summary["command"] = "clump";
     summary["tolerance"] = b.tolerance;
-    write_text_file(out.file("summary.json"), summary.dump(2) + "\n");
+    write_text_file(out.claim("summary.json"), summary.dump(2) + "\n");
     out.commit();
     std::printf(
         "%s: %d spheres (%s), volume error %+.3f %%, surface RMS %.3f %% Dn, max %.3f %% Dn, "
@@ -200,7 +206,8 @@ int run_demo(const DemoRequest &r) {
     const double density = 2400.0;
     const Shape shapes[] = {make_cube_shape(1.0, 0.0, density),
                             make_dolos_shape(2.0, kDolosWaistDefault, density)};
-    StagedOutput out(r.out);
+    OutputFolder out(r.out, "armour demo", OutputFolder::Mode::staged);
+    out.open();
     json rows = json::array();
     struct Row {
         std::string unit, method;
@@ -212,11 +219,13 @@ int run_demo(const DemoRequest &r) {
         const Built best = build_requested(shape, ClumpMethod::optimised, 0, r.tol_volume, r.tol_surface, 200,
                                            1, shape.kind);
         const Built base = build_requested(shape, ClumpMethod::greedy, best.quality.spheres, 0, 0, 0, 1, "");
-        std::filesystem::create_directory(out.dir() / shape.kind);
-        json s = write_clump_files(out.dir() / shape.kind, out.target() / shape.kind, shape, best.clump,
-                                   best.quality, "optimised", 1);
+        const std::filesystem::path dir = out.claim(shape.kind);
+        std::filesystem::create_directory(dir);
+        json s =
+            write_clump_files([&](const std::string &name) { return dir / name; }, out.target() / shape.kind,
+                              shape, best.clump, best.quality, "optimised", 1);
         s["tolerance"] = best.tolerance;
-        write_text_file(out.dir() / shape.kind / "summary.json", s.dump(2) + "\n");
+        write_text_file(dir / "summary.json", s.dump(2) + "\n");
         for (const auto &[method, built] : {std::pair<std::string, const Built &>{"optimised", best},
                                             std::pair<std::string, const Built &>{"greedy", base}}) {
             json row = quality_json(built.quality);
@@ -237,7 +246,7 @@ int run_demo(const DemoRequest &r) {
                       {"Dn", "m"},
                       {"volume_exact", "m^3"}}},
                     {"rows", rows}};
-    write_text_file(out.file("summary.json"), summary.dump(2) + "\n");
+    write_text_file(out.claim("summary.json"), summary.dump(2) + "\n");
     out.commit();
 
     std::printf("\nClump error table (errors in %%; surface, centroid and rest gap in %% of Dn)\n");

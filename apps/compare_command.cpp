@@ -5,9 +5,9 @@
 #include "compare_command.h"
 
 #include "engine_registry.h"
+#include "output_folder.h"
 #include "run_command.h"
 #include "scene.h"
-#include "staged_output.h"
 
 #include <algorithm>
 #include <cmath>
@@ -103,8 +103,9 @@ int run_compare(const CompareRequest &r) {
     if (have_exact)
         engines.push_back(exact_engine);
 
-    StagedOutput out(r.out);
-    const fs::path runs = out.dir() / "runs";
+    OutputFolder out(r.out, "armour compare", OutputFolder::Mode::staged);
+    out.open();
+    const fs::path runs = out.claim("runs");
     fs::create_directories(runs);
     auto seed_overrides = [&](std::uint64_t seed) {
         std::vector<std::string> o;
@@ -237,7 +238,7 @@ int run_compare(const CompareRequest &r) {
           {"dt", "s"},
           {"energy", "J"},
           {"errors", "in the figure's own unit (deg, -), run minus exact mean / minus analytic"}}}};
-    write_text_file(out.file("summary.json"), summary.dump(2) + "\n");
+    write_text_file(out.claim("summary.json"), summary.dump(2) + "\n");
     const std::string plot = std::string("/usr/bin/python3 '") + ARMOUR_SOURCE_DIR +
                              "/comparison/compare_report.py' '" + out.dir().string() + "'";
     if (std::system(plot.c_str()) != 0)

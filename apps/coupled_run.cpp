@@ -3,7 +3,7 @@
 #include "body_recorder.h"
 #include "clump_io.h"
 #include "engine_registry.h"
-#include "staged_output.h"
+#include "output_folder.h"
 #include "stl_io.h"
 
 #include <hdf5.h>
@@ -630,7 +630,7 @@ std::vector<std::string> check_coupled_scene(const Scene &scene, const SceneSetu
     return warnings;
 }
 
-int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &setup) {
+int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &setup, OutputFolder &folder) {
     const auto start = std::chrono::steady_clock::now();
     Scene scene = scene_in;
     SceneFluid &f = *scene.fluid;
@@ -643,15 +643,15 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
     for (const auto &w : warnings)
         std::fprintf(stderr, "armour: warning: %s\n", w.c_str());
 
-    const fs::path out = fs::absolute(r.out);
+    folder.open(); // an earlier result of this command is replaced
+    const fs::path out = folder.target();
+    for (const char *name : {"bodies.h5", "bodies.xdmf", "fluid.csv", "coupling_times.json"})
+        folder.claim(name); // the plugin writes these (a new plugin file is listed here too)
     std::error_code ec;
-    if (fs::exists(out / "summary.json", ec) || fs::exists(out / "bodies.h5", ec) ||
-        fs::exists(out / "case", ec))
-        fs::remove_all(out, ec); // an earlier result of this command is replaced
-    fs::create_directories(out / "units", ec);
+    fs::create_directories(folder.claim("units"), ec);
     if (ec)
         throw InputError("--out: cannot create " + out.string() + ": " + ec.message());
-    const fs::path resolved = out / "scene.resolved.toml";
+    const fs::path resolved = folder.claim("scene.resolved.toml");
     write_text_file(resolved, resolved_scene_toml(scene));
     for (const auto &u : setup.units) {
         const fs::path dir = out / "units" / u.name;
@@ -661,7 +661,7 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
     }
 
     // The case: template copy with its tokens filled from the scene.
-    const fs::path case_dir = out / "case";
+    const fs::path case_dir = folder.claim("case");
     fs::copy(source_dir() / "foam_cases" / f.case_name, case_dir, fs::copy_options::recursive);
     const std::string used = template_text(case_dir);
     const Eigen::Vector3d &lo = scene.domain_min, &hi = scene.domain_max;
@@ -1053,7 +1053,7 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
                                           times.value("mask_seconds", 0.0);
         }
     }
-    write_text_file(out / "summary.json", summary.dump(2) + "\n");
+    write_text_file(folder.claim("summary.json"), summary.dump(2) + "\n");
     std::printf("%s: %d units, %.4g s coupled in %.1f s wall%s%s -> %s\n", scene.name.c_str(),
                 static_cast<int>(setup.bodies.size()), simulated, wall_seconds, result.empty() ? "" : ", ",
                 result.c_str(), out.c_str());

@@ -12,6 +12,7 @@
 //     far stays in OUT.
 #pragma once
 
+#include "output_folder.h"
 #include "run_command.h"
 #include "scene.h"
 #include "scene_setup.h"
@@ -25,7 +26,8 @@ namespace armour {
 // than 4 cells across a unit); throws InputError for one that cannot.
 std::vector<std::string> check_coupled_scene(const Scene &scene, const SceneSetup &setup, int np);
 
-// Returns the exit status; `request.np` > 0 overrides fluid.np.
-int run_coupled(const RunRequest &request, const Scene &scene, const SceneSetup &setup);
+// Returns the exit status; `request.np` > 0 overrides fluid.np. Writes into
+// `out` (an `armour run` folder; opened here if not yet).
+int run_coupled(const RunRequest &request, const Scene &scene, const SceneSetup &setup, OutputFolder &out);
 
 } // namespace armour

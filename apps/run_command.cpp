@@ -7,8 +7,8 @@
 #include "engine_registry.h"
 #include "materials.h"
 #include "mesh.h"
+#include "output_folder.h"
 #include "scene_setup.h"
-#include "staged_output.h"
 #include "stl_io.h"
 
 #include <Eigen/Geometry>
@@ -206,13 +206,13 @@ void set_buoyancy(RigidBodyEngine &engine, int body, const UnitTemplate &unit, c
 }
 
 // The DEM run of a scene without [fluid], dry or (`water`, a settle run)
-// under still water's buoyancy; `final_states` (optional) receives every
-// body's state at the end.
-int run_dem(const RunRequest &r, const Scene &scene, SceneSetup &setup, std::vector<BodyState> *final_states,
+// under still water's buoyancy, into `folder`; `final_states` (optional)
+// receives every body's state at the end.
+int run_dem(OutputFolder &folder, const Scene &scene, SceneSetup &setup, std::vector<BodyState> *final_states,
             const StillWater *water = nullptr) {
     const bool terminal = ::isatty(STDERR_FILENO) != 0;
     // Everything is checked before the output folder is touched.
-    const fs::path out = fs::absolute(r.out);
+    const fs::path out = folder.target();
     setup.settings.work_dir = (out / scene.engine).string();
     std::unique_ptr<RigidBodyEngine> engine = make_engine(scene.engine, setup.settings);
     for (const auto &u : setup.units)
@@ -223,13 +223,13 @@ int run_dem(const RunRequest &r, const Scene &scene, SceneSetup &setup, std::vec
         engine->add_body(b);
     const TimeStepReport dt = engine->time_step_report();
 
+    folder.open();              // an earlier result of this command is replaced
+    folder.claim(scene.engine); // the engine's own files (work_dir), if it writes any
     std::error_code ec;
-    if (fs::exists(out / "summary.json", ec) || fs::exists(out / "bodies.h5", ec))
-        fs::remove_all(out, ec); // an earlier result of this command is replaced
-    fs::create_directories(out / "units", ec);
+    fs::create_directories(folder.claim("units"), ec);
     if (ec)
         throw InputError("--out: cannot create " + out.string() + ": " + ec.message());
-    write_text_file(out / "scene.resolved.toml", resolved_scene_toml(scene));
+    write_text_file(folder.claim("scene.resolved.toml"), resolved_scene_toml(scene));
     std::vector<RecorderUnit> recorder_units;
     for (const auto &u : setup.units) {
         const fs::path dir = out / "units" / u.name;
@@ -245,7 +245,7 @@ int run_dem(const RunRequest &r, const Scene &scene, SceneSetup &setup, std::vec
     // fork a helper that would inherit (and keep locked) any file open then.
     engine->state(0);
     BodyRecorder recorder(
-        (out / "bodies.h5").string(), (out / "bodies.xdmf").string(), recorder_units, body_unit,
+        folder.claim("bodies.h5").string(), folder.claim("bodies.xdmf").string(), recorder_units, body_unit,
         {{"scene", scene.name}, {"engine", engine->name()}, {"dt", std::to_string(dt.used)}});
 
     std::vector<BodyState> states(setup.bodies.size());
@@ -383,7 +383,7 @@ int run_dem(const RunRequest &r, const Scene &scene, SceneSetup &setup, std::vec
     }
     if (scene.analysis == "slope")
         summary.update(slope_layer_figures(scene, setup, states));
-    write_text_file(out / "summary.json", summary.dump(2) + "\n");
+    write_text_file(folder.claim("summary.json"), summary.dump(2) + "\n");
     std::printf("%s: %d units, %ld steps of %.3g s, %.1f s wall -> %s\n", scene.name.c_str(),
                 static_cast<int>(setup.bodies.size()), engine->steps(), dt.used, wall_seconds, out.c_str());
     if (final_states)
@@ -400,9 +400,10 @@ int run_dem(const RunRequest &r, const Scene &scene, SceneSetup &setup, std::vec
 // in this process would leave it unable to launch interFoam under mpirun.
 // The child writes OUT/settle (a normal `armour run` output), OUT/settle/scene.settled.toml
 // (rerunnable on its own) and OUT/settle/settled.json (how still it got).
-Scene settle_before_coupling(const RunRequest &r, const Scene &scene, SceneSetup &setup, json &report) {
+Scene settle_before_coupling(const RunRequest &r, OutputFolder &folder, const Scene &scene, SceneSetup &setup,
+                             json &report) {
     const SceneFluid &fluid = *scene.fluid;
-    const fs::path dir = fs::absolute(r.out) / "settle";
+    const fs::path dir = folder.claim("settle");
     const fs::path settled_file = dir / "scene.settled.toml";
     std::fprintf(stderr,
                  "run: settling %zu units in the DEM under still water (level %g m) for %g s "
@@ -420,15 +421,13 @@ Scene settle_before_coupling(const RunRequest &r, const Scene &scene, SceneSetup
             dry.duration = fluid.settle_time;
             dry.output_interval = std::min(scene.output_interval, fluid.settle_time);
             dry.analysis = "none";
-            RunRequest request = r;
-            request.out = dir.string();
-            request.np = 0;
+            OutputFolder settle_folder(dir, "armour run", OutputFolder::Mode::streaming);
             std::vector<BodyState> states;
             StillWater water;
             water.level = fluid.water_level;
             water.density = fluid.fluid_density;
             water.update_interval = std::min(fluid.max_time_step, dry.output_interval);
-            run_dem(request, dry, setup, &states, &water);
+            run_dem(settle_folder, dry, setup, &states, &water);
 
             Scene settled = scene;
             settled.fluid->settle_time = 0.0;
@@ -451,9 +450,10 @@ Scene settle_before_coupling(const RunRequest &r, const Scene &scene, SceneSetup
                 speed = std::max(speed, states[i].velocity.norm());
                 displacement = std::max(displacement, (states[i].pose.position - init.pose.position).norm());
             }
-            write_text_file(settled_file, resolved_scene_toml(settled));
+            write_text_file(settle_folder.claim(settled_file.filename().string()),
+                            resolved_scene_toml(settled));
             write_text_file(
-                dir / "settled.json",
+                settle_folder.claim("settled.json"),
                 json{{"settle_time", fluid.settle_time},
                      {"water_level", water.level},
                      {"water_density", water.density},
@@ -503,32 +503,27 @@ Scene settle_before_coupling(const RunRequest &r, const Scene &scene, SceneSetup
 
 int run_scene(const RunRequest &r) {
     const Scene scene = load_scene(r.scene, r.overrides);
+    OutputFolder folder(r.out, "armour run", OutputFolder::Mode::streaming); // refused before any work
     SceneSetup setup = build_scene(scene, r.cache.empty() ? default_cache_dir() : r.cache, true);
-    if (r.out.empty())
-        throw InputError("--out: an output directory is required");
     if (!scene.fluid) {
         if (r.np != 0)
             throw InputError("--np: only for scenes with a [fluid] table (MPI ranks of interFoam)");
         for (const std::string &w : rocking_clump_warnings(scene, setup))
             std::fprintf(stderr, "armour: warning: %s\n", w.c_str());
-        return run_dem(r, scene, setup, nullptr);
+        return run_dem(folder, scene, setup, nullptr);
     }
     if (scene.fluid->settle_time <= 0.0)
-        return run_coupled(r, scene, setup);
+        return run_coupled(r, scene, setup, folder);
 
     // The placed scene is checked before anything is written; the settled
     // one again by run_coupled.
     check_coupled_scene(scene, setup, r.np > 0 ? r.np : scene.fluid->np);
-    const fs::path out = fs::absolute(r.out);
-    std::error_code ec;
-    if (fs::exists(out / "summary.json", ec) || fs::exists(out / "bodies.h5", ec) ||
-        fs::exists(out / "case", ec) || fs::exists(out / "settle", ec))
-        fs::remove_all(out, ec); // an earlier result of this command is replaced
+    folder.open(); // an earlier result of this command is replaced
     json report;
-    const Scene settled = settle_before_coupling(r, scene, setup, report);
-    const int status = run_coupled(r, settled, setup);
+    const Scene settled = settle_before_coupling(r, folder, scene, setup, report);
+    const int status = run_coupled(r, settled, setup, folder);
     // The coupled summary says where its start came from.
-    const fs::path summary_file = out / "summary.json";
+    const fs::path summary_file = folder.claim("summary.json");
     std::ifstream in(summary_file);
     if (status == 0 && in) {
         json summary = json::parse(in);

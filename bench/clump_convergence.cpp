@@ -1,9 +1,9 @@
 // Clump error and build cost against sphere count, for both methods.
 //
 // Usage
-//     bench_clump_convergence OUT_DIR [N,N,...]
-// Prints a table and writes OUT_DIR/clump_convergence.json (and summary.json);
-// bench/plot_clump_convergence.py turns it into OUT_DIR/clump_convergence.png.
+//     bench_clump_convergence [--out] OUT_DIR [N,N,...]
+// Run by bench/run_clump_bench.sh. Prints a table and writes OUT_DIR/clump_convergence.json (and
+// summary.json); bench/plot_clump_convergence.py turns it into OUT_DIR/clump_convergence.png.
 #include "clump_evaluator.h"
 
 #include <chrono>
@@ -13,19 +13,23 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <vector>
 
 using namespace armour;
 
 int main(int argc, char **argv) {
-    if (argc < 2) {
-        std::fprintf(stderr, "usage: %s OUT_DIR [N,N,...]\n", argv[0]);
+    std::vector<std::string> args(argv + 1, argv + argc);
+    if (!args.empty() && args[0] == "--out")
+        args.erase(args.begin());
+    if (args.empty() || args[0].rfind("-", 0) == 0) {
+        std::fprintf(stderr, "usage: %s [--out] OUT_DIR [N,N,...]\n", argv[0]);
         return 1;
     }
-    const std::filesystem::path out = argv[1];
+    const std::filesystem::path out = args[0];
     std::vector<int> counts = {5, 10, 15, 20, 30, 40, 50, 60, 80, 100, 150, 200};
-    if (argc > 2) {
+    if (args.size() > 1) {
         counts.clear();
-        std::stringstream list(argv[2]);
+        std::stringstream list(args[1]);
         for (std::string item; std::getline(list, item, ',');)
             counts.push_back(std::stoi(item));
     }

@@ -1,7 +1,7 @@
 // Our LIGGGHTS driver against a bare LIGGGHTS script of the same scene.
 //
 // Usage
-//     bench_dem_overhead OUT_DIR [seconds]
+//     bench_dem_overhead [--out] OUT_DIR [seconds]   (run by bench/run_dem_bench.sh)
 // For 50, 100 and 200 cubes (20-sphere clumps) falling into a box and
 // settling, runs (a) the armour engine, advancing in 0.01 s chunks and
 // reading every body's state after each, as `armour run` does, and (b) the
@@ -21,6 +21,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <string>
+#include <vector>
 
 using namespace armour;
 namespace fs = std::filesystem;
@@ -52,12 +54,15 @@ Wall box_floor(double half, double height) {
 } // namespace
 
 int main(int argc, char **argv) {
-    if (argc < 2) {
-        std::fprintf(stderr, "usage: %s OUT_DIR [simulated seconds, default 0.5]\n", argv[0]);
+    std::vector<std::string> args(argv + 1, argv + argc);
+    if (!args.empty() && args[0] == "--out")
+        args.erase(args.begin());
+    if (args.empty() || args[0].rfind("-", 0) == 0) {
+        std::fprintf(stderr, "usage: %s [--out] OUT_DIR [simulated seconds, default 0.5]\n", argv[0]);
         return 1;
     }
-    const fs::path out = fs::absolute(argv[1]);
-    const double duration = argc > 2 ? std::atof(argv[2]) : 0.5;
+    const fs::path out = fs::absolute(args[0]);
+    const double duration = args.size() > 1 ? std::atof(args[1].c_str()) : 0.5;
     fs::create_directories(out);
     const Shape cube = make_cube_shape(0.2, 0.0, 2400.0);
     UnitTemplate unit;

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Chart of clump error against sphere count from clump_convergence.json.
 
-Usage: plot_clump_convergence.py OUT_DIR   (reads and writes in OUT_DIR)
+Usage: plot_clump_convergence.py [--out] OUT_DIR   (reads and writes in OUT_DIR; run by run_clump_bench.sh)
 """
 import json
 import sys
@@ -11,7 +11,10 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-out = sys.argv[1]
+args = [a for a in sys.argv[1:] if a != "--out"]
+if len(args) != 1:
+    sys.exit("usage: plot_clump_convergence.py [--out] OUT_DIR")
+out = args[0]
 with open(f"{out}/clump_convergence.json") as f:
     rows = json.load(f)["rows"]
 

@@ -6,18 +6,19 @@
 # (its ExecutionTime from the first step to the last: start-up left out)
 # (target: overhead <= 10 %) and the share of the solver's time spent in the
 # engine's sub-steps (dem_seconds, timed by the plugin). Writes
-# OUT/summary.json. Each pair runs REPEATS times (default 3), coupled and
-# frozen alternating, and the fastest run of each counts: on a shared machine
-# noise only ever adds time, so the minimum is the estimate least polluted by it.
-# Usage: bash bench/run_coupled_bench.sh [OUT_DIR]   ARMOUR_BUILD=DIR uses a build.
+# OUT/summary.json (nothing in the source tree). Each pair runs REPEATS times
+# (default 3), coupled and frozen alternating, and the fastest run of each
+# counts: on a shared machine noise only ever adds time, so the minimum is the
+# estimate least polluted by it.
+# Usage: bash bench/run_coupled_bench.sh [--build DIR] [--out DIR]
+#   --build  default the repo's build/ (bash scripts/build.sh armour armourFoamCoupling)
+#   --out    default ${TMPDIR:-/tmp}/armour-bench/coupled
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-out="$(mkdir -p "${1:-$root/out/bench_coupled}" && cd "${1:-$root/out/bench_coupled}" && pwd)"
-if [ -z "${ARMOUR_BUILD:-}" ]; then
-  bash "$root/scripts/build.sh" armour armourFoamCoupling
-  ARMOUR_BUILD="$root/build"
-fi
-armour="$ARMOUR_BUILD/apps/armour"
+bench_name=coupled bench_targets="armour armourFoamCoupling" bench_options=""
+source "$root/bench/common.sh"
+bench_args "$@"
+armour="$build/apps/armour"
 repeats="${REPEATS:-3}"
 for n in 10 100; do
   for r in $(seq 1 "$repeats"); do

@@ -17,17 +17,18 @@
 # the time it starts to move (> 0.1 Dn) and the units displaced (> Dn), and
 # against the hulls the difference of each cube's final position and largest
 # displacement, in Dn. Writes OUT/summary.json,
-# OUT/coupled_engines.png (accuracy against cost, and the cubes' x(t)).
-# Usage: bash bench/run_coupled_engines.sh [OUT_DIR]   ARMOUR_BUILD=DIR uses a build.
+# OUT/coupled_engines.png (accuracy against cost, and the cubes' x(t)),
+# nothing in the source tree (docs/images figures are copied there by hand).
+# Usage: bash bench/run_coupled_engines.sh [--build DIR] [--out DIR]
+#   --build  default the repo's build/ (bash scripts/build.sh armour armourFoamCoupling armourWaves)
+#   --out    default ${TMPDIR:-/tmp}/armour-bench/coupled_engines
 # One run per model, one after the other (about 1.5 min each on 2 cores).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-out="$(mkdir -p "${1:-$root/out/bench_coupled_engines}" && cd "${1:-$root/out/bench_coupled_engines}" && pwd)"
-if [ -z "${ARMOUR_BUILD:-}" ]; then
-  bash "$root/scripts/build.sh" armour armourFoamCoupling
-  ARMOUR_BUILD="$root/build"
-fi
-armour="$ARMOUR_BUILD/apps/armour"
+bench_name=coupled_engines bench_targets="armour armourFoamCoupling armourWaves" bench_options=""
+source "$root/bench/common.sh"
+bench_args "$@"
+armour="$build/apps/armour"
 export WM_PROJECT_DIR="${WM_PROJECT_DIR:-/usr/share/openfoam}"
 scene="$root/scenes/solitary_cubes_platform.toml"
 common=(--set fluid.penalty=700 --set fluid.settle_time=0.3

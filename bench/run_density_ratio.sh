@@ -11,20 +11,22 @@
 # less), judged while the cube is still one cell below the surface (breaching
 # it shakes a light cube without any instability). A run that passes but
 # keeps a sawtooth above 0.2 g is "marginal". Writes OUT/density_ratio.png
-# and OUT/summary.json.
+# and OUT/summary.json, nothing in the source tree (docs/images figures are
+# copied there by hand).
 # ANALYSE_ONLY=1 re-reads the runs already in OUT.
-# Usage: bash bench/run_density_ratio.sh [OUT_DIR] [CA]
-#   RATIOS="0.1 0.2 ..." overrides the ratios; ARMOUR_BUILD=DIR uses a build.
+# Usage: bash bench/run_density_ratio.sh [--build DIR] [--out DIR] [--added-mass CA]
+#   --build       default the repo's build/ (bash scripts/build.sh armour armourFoamCoupling)
+#   --out         default ${TMPDIR:-/tmp}/armour-bench/density_ratio
+#   --added-mass  C_a of the stabilised runs, default 0.5
+#   RATIOS="0.1 0.2 ..." overrides the ratios.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-out="$(mkdir -p "${1:-$root/out/bench_density_ratio}" && cd "${1:-$root/out/bench_density_ratio}" && pwd)"
-ca="${2:-0.5}"
+bench_name=density_ratio bench_targets="armour armourFoamCoupling" bench_options="added-mass"
+source "$root/bench/common.sh"
+bench_args "$@"
+ca="${opt_added_mass:-0.5}"
 ratios="${RATIOS:-0.1 0.2 0.3 0.5 0.8 1.2 2.0}"
-if [ -z "${ARMOUR_BUILD:-}" ]; then
-  bash "$root/scripts/build.sh" armour armourFoamCoupling
-  ARMOUR_BUILD="$root/build"
-fi
-armour="$ARMOUR_BUILD/apps/armour"
+armour="$build/apps/armour"
 for r in $ratios; do
   [ -n "${ANALYSE_ONLY:-}" ] && break
   for c in 0 "$ca"; do
@@ -33,7 +35,7 @@ for r in $ratios; do
     status=0
     "$armour" run "$root/scenes/released_cube.toml" --out "$d" --set "unit.0.density=$rho" \
       --set "fluid.added_mass=$c" >"$out/r${r}_ca${c}.log" 2>&1 || status=$?
-    mkdir -p "$d" && echo "$status" >"$d/exit_status"
+    echo "$status" >"$d.exit_status" # beside the run: its folder holds armour's files only
     echo "ratio $r C_a $c: exit $status"
   done
 done
@@ -53,7 +55,7 @@ for r in ratios:
         d = f"{out}/r{r:g}_ca{c}"
         if not os.path.isdir(d):
             d = f"{out}/r{[s for s in sys.argv[3].split() if float(s) == r][0]}_ca{c}"
-        row = {"ratio": r, "added_mass": float(c), "exit_status": int(open(f"{d}/exit_status").read())}
+        row = {"ratio": r, "added_mass": float(c), "exit_status": int(open(f"{d}.exit_status").read())}
         why = []
         if row["exit_status"] != 0 or not os.path.exists(f"{d}/summary.json"):
             why.append("solver stopped (exit %d)" % row["exit_status"])

@@ -1,13 +1,16 @@
 #!/usr/bin/env bash
 # Cost per unit-step of exact hulls (Bullet) against sphere clumps of 10 and 50
 # spheres (LIGGGHTS), on the slope scenes, in one run; printed as ratios.
-# Usage: bash bench/run_engine_cost.sh [OUT_DIR]   (default out/bench_engine_cost)
+# Writes OUT/summary.json and the runs, nothing in the source tree.
+# Usage: bash bench/run_engine_cost.sh [--build DIR] [--out DIR]
+#   --build  default the repo's build/ (bash scripts/build.sh armour)
+#   --out    default ${TMPDIR:-/tmp}/armour-bench/engine_cost
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-out="${1:-$root/out/bench_engine_cost}"
-bash "$root/scripts/build.sh" armour
-armour="$root/build/apps/armour"
-mkdir -p "$out"
+bench_name=engine_cost bench_targets=armour bench_options=""
+source "$root/bench/common.sh"
+bench_args "$@"
+armour="$build/apps/armour"
 for scene in slope_cubes slope_dolosse; do
   "$armour" run "$root/scenes/$scene.toml" --out "$out/$scene/hulls" --set 'run.engine="bullet"' 2>/dev/null
   for n in 10 50; do

@@ -10,24 +10,24 @@
 # The tutorial is copied at run time from Debian's openfoam-examples; its
 # mass and inertia are written as numbers (no #codeStream without headers).
 # Writes OUT/floating_box.png (sway, surge, heave, pitch histories) and
-# OUT/summary.json (RMS and max differences, wall times).
-# Usage: bash bench/run_floating_box.sh [OUT_DIR] [END_TIME]
-#   (default out/bench_floating_box, 0.36 s: Debian's v1912 interFoam stops
+# OUT/summary.json (RMS and max differences, wall times), nothing in the
+# source tree (docs/images figures are copied there by hand).
+# Usage: bash bench/run_floating_box.sh [--build DIR] [--out DIR] [--end-time T]
+#   --build     default the repo's build/ (bash scripts/build.sh armour armourFoamCoupling)
+#   --out       default ${TMPDIR:-/tmp}/armour-bench/floating_box
+#   --end-time  simulated seconds, default 0.36: Debian's v1912 interFoam stops
 #   the tutorial with a floating point exception at t = 0.375 s, in both the
 #   rigidBodyMotion and the sixDoF variant; see docs/openfoam.md. A stock run
-#   that fails is recorded, and compared up to its last sane step.)
-#   ARMOUR_BUILD=DIR uses an existing build (else scripts/build.sh builds build/).
+#   that fails is recorded, and compared up to its last sane step.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-out="$(mkdir -p "${1:-$root/out/bench_floating_box}" && cd "${1:-$root/out/bench_floating_box}" && pwd)"
-end="${2:-0.36}"
+bench_name=floating_box bench_targets="armour armourFoamCoupling" bench_options="end-time"
+source "$root/bench/common.sh"
+bench_args "$@"
+end="${opt_end_time:-0.36}"
 tutorial=/usr/share/doc/openfoam-examples/examples/multiphase/interFoam/RAS/floatingObject
 [ -d "$tutorial" ] || { echo "run_floating_box.sh: $tutorial missing: apt-get install openfoam-examples" >&2; exit 1; }
-if [ -z "${ARMOUR_BUILD:-}" ]; then
-  bash "$root/scripts/build.sh" armour armourFoamCoupling
-  ARMOUR_BUILD="$root/build"
-fi
-armour="$ARMOUR_BUILD/apps/armour"
+armour="$build/apps/armour"
 export WM_PROJECT_DIR=/usr/share/openfoam
 py=/usr/bin/python3
 

@@ -1,6 +1,9 @@
 // The `armour` command line: results on good input; one error line, a
 // non-zero exit and no output directory on bad input.
 #include "cli.h"
+#include "mesh.h"
+#include "output_folder.h"
+#include "output_folder_rule.h"
 #include "shapes.h"
 #include "stl_io.h"
 
@@ -183,4 +186,96 @@ TEST_F(Cli, ReplacesAnEarlierResultWhole) {
     for ([[maybe_unused]] const auto &entry : fs::directory_iterator(dir_))
         ++entries;
     EXPECT_EQ(entries, 1); // no staging or backup directories left
+}
+
+TEST_F(Cli, ClumpKeepsTheUsersFiles) {
+    output_rule::check(
+        dir_, "armour clump",
+        [](const std::string &out, int variant) {
+            return output_rule::armour({"clump", "--shape", "cube", "--size", "1", "--spheres",
+                                        variant == 0 ? "4" : "6", "--out", out});
+        },
+        [](const nlohmann::json &s) { return s["spheres"] == 6 ? 1 : 0; });
+}
+
+TEST_F(Cli, ClumpRefusesTheFolderHoldingItsStl) {
+    const fs::path stl = dir_ / "block.stl";
+    armour::write_stl(armour::make_cube_mesh(1.0), stl.string(), false);
+    const std::string before = output_rule::read(stl);
+    EXPECT_EQ(run({"clump", "--stl", stl.string(), "--spheres", "4", "--out", dir_.string()}), 2) << err_;
+    EXPECT_NE(err_.find("holds 'block.stl'"), std::string::npos) << err_;
+    EXPECT_EQ(output_rule::names(dir_), std::set<std::string>{"block.stl"});
+    EXPECT_EQ(output_rule::read(stl), before);
+}
+
+TEST_F(Cli, AnotherCommandsResultIsRefused) {
+    const fs::path out = dir_ / "cube";
+    ASSERT_EQ(run({"clump", "--shape", "cube", "--size", "1", "--spheres", "4", "--out", out.string()}), 0);
+    const auto before = output_rule::names(out);
+    EXPECT_EQ(run({"demo", "--tol-volume", "0.3", "--tol-surface", "0.3", "--out", out.string()}), 2);
+    EXPECT_NE(err_.find("it is a result of 'armour clump'"), std::string::npos) << err_;
+    EXPECT_EQ(output_rule::names(out), before);
+}
+
+TEST_F(Cli, DemoKeepsTheUsersFiles) {
+    output_rule::check(
+        dir_, "armour demo",
+        [](const std::string &out, int variant) {
+            return output_rule::armour({"demo", "--tol-volume", variant == 0 ? "0.3" : "0.25",
+                                        "--tol-surface", "0.3", "--out", out});
+        },
+        [](const nlohmann::json &s) { return s["tolerance"]["volume"] == 0.25 ? 1 : 0; });
+}
+
+// The folder rule's corners, on OutputFolder itself.
+TEST_F(Cli, OutputFolderReplacesWhatAKilledRunLeft) {
+    // A run killed after claiming summary.json but before writing it, and a
+    // staged command killed mid-way (its hidden staging folder, a marker copy).
+    const fs::path out = dir_ / "killed";
+    fs::create_directories(out / ".armour-partial-4242");
+    std::ofstream(out / ".armour-output") << "armour run\nbodies.h5\nsummary.json\n";
+    std::ofstream(out / ".armour-output.tmp") << "armour run\n";
+    std::ofstream(out / "bodies.h5") << "partial";
+    armour::OutputFolder folder(out, "armour run", armour::OutputFolder::Mode::streaming);
+    folder.open();
+    EXPECT_EQ(output_rule::names(out), std::set<std::string>{".armour-output"});
+    EXPECT_EQ(output_rule::read(out / ".armour-output"), "armour run\n");
+    armour::write_text_file(folder.claim("summary.json"), "{}\n");
+    EXPECT_EQ(output_rule::read(out / ".armour-output"), "armour run\nsummary.json\n");
+}
+
+TEST_F(Cli, OutputFolderMarkerNeverReachesOutside) {
+    const fs::path out = dir_ / "result";
+    fs::create_directories(out);
+    std::ofstream(dir_ / "keep.txt") << "mine";
+    std::ofstream(out / ".armour-output") << "armour run\n../keep.txt\n..\n.\n/\n";
+    armour::OutputFolder folder(out, "armour run", armour::OutputFolder::Mode::streaming);
+    folder.open();
+    EXPECT_EQ(output_rule::read(dir_ / "keep.txt"), "mine");
+    EXPECT_TRUE(fs::is_directory(out));
+}
+
+TEST_F(Cli, OutputFolderLooksLikeOursIsNotOurs) {
+    // Only .armour-partial-<digits> is a leftover of ours; a look-alike is the user's.
+    const fs::path out = dir_ / "result";
+    fs::create_directories(out);
+    std::ofstream(out / ".armour-partial-notes") << "mine";
+    EXPECT_THROW(armour::OutputFolder(out, "armour clump", armour::OutputFolder::Mode::staged),
+                 armour::InputError);
+    EXPECT_EQ(output_rule::read(out / ".armour-partial-notes"), "mine");
+}
+
+TEST_F(Cli, OutputFolderUncommittedLeavesTheEarlierResult) {
+    const fs::path out = dir_ / "cube";
+    ASSERT_EQ(run({"clump", "--shape", "cube", "--size", "1", "--spheres", "4", "--out", out.string()}), 0);
+    const auto before = output_rule::names(out);
+    const std::string summary = output_rule::read(out / "summary.json");
+    {
+        armour::OutputFolder folder(out, "armour clump", armour::OutputFolder::Mode::staged);
+        folder.open();
+        armour::write_text_file(folder.claim("summary.json"), "{}\n");
+        armour::write_text_file(folder.claim("extra.txt"), "x\n");
+    } // a command that fails before commit()
+    EXPECT_EQ(output_rule::names(out), before);
+    EXPECT_EQ(output_rule::read(out / "summary.json"), summary);
 }

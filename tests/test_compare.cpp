@@ -1,6 +1,7 @@
 // `armour compare` on a tiny scene: every file, consistent entries.
 #include "cli.h"
 #include "engine_registry.h"
+#include "output_folder_rule.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -64,4 +65,31 @@ TEST(Compare, TinySceneProducesAllFilesWithConsistentEntries) {
     for (const auto &run : s["dt_sweep"])
         EXPECT_TRUE(run["status"] == "ok" || run.contains("failure")) << run.dump();
     fs::remove_all(dir);
+}
+
+TEST(Compare, KeepsTheUsersFiles) {
+    const fs::path dir = fs::temp_directory_path() / "armour_compare_output_rule";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const std::string scene = (dir / "scene.toml").string(), cache = (dir / "cache").string();
+    std::ofstream(scene)
+        << "name = \"tiny\"\n[run]\nduration = 0.05\noutput_interval = 0.01\ndomain_min = [-1, -1, -0.5]\n"
+           "domain_max = [1, 1, 1.5]\n[analysis]\nkind = \"bounce\"\n[[material]]\nname = \"concrete\"\n"
+           "[[unit]]\nname = \"cube\"\nshape = \"cube\"\nsize = 0.2\nspheres = 8\n"
+           "[[wall]]\nname = \"floor\"\ntype = \"plane\"\npoint = [0, 0, 0]\nnormal = [0, 0, 1]\nsize = 2\n"
+           "[[body]]\nunit = \"cube\"\nposition = [0, 0, 0.4]\n";
+    output_rule::check(
+        dir, "armour compare",
+        [&](const std::string &out, int variant) {
+            return output_rule::armour({"compare", scene, "--spheres", variant == 0 ? "4" : "6",
+                                        "--dt-factors", "1", "--out", out, "--cache", cache});
+        },
+        [](const nlohmann::json &s) {
+            for (const auto &run : s["runs"])
+                if (run["spheres"] == 6)
+                    return 1;
+            return 0;
+        });
+    if (!::testing::Test::HasFailure())
+        fs::remove_all(dir);
 }

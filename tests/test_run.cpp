@@ -2,6 +2,7 @@
 // error line before anything is written (or, mid-run, keeps what was written).
 #include "cli.h"
 #include "clump_evaluator.h"
+#include "output_folder_rule.h"
 #include "scene.h"
 #include "scene_setup.h"
 
@@ -323,4 +324,44 @@ TEST_F(Run, RestGapTellsTheFacesAClumpRocksOn) {
     EXPECT_GT(gap_plus_x, overlap);
     EXPECT_LT(on_minus_z.wander, 1e-4);
     EXPECT_GT(on_plus_x.wander, 1e-3);
+}
+
+TEST_F(Run, KeepsTheUsersFiles) {
+    const std::string scene = (dir_ / "scene.toml").string();
+    std::ofstream(scene) << scene_text("[0, 0, 0.3]");
+    output_rule::check(
+        dir_, "armour run",
+        [&](const std::string &out, int variant) {
+            return output_rule::armour({"run", scene, "--out", out, "--cache", cache_, "--set",
+                                        variant == 0 ? "run.duration=0.02" : "run.duration=0.03"});
+        },
+        [](const nlohmann::json &s) { return s["simulated_seconds"].get<double>() > 0.025 ? 1 : 0; });
+}
+
+// A scene with [fluid] meets the same rule before anything needs interFoam,
+// with and without the settle run in the DEM.
+TEST_F(Run, CoupledRunKeepsTheUsersFiles) {
+    const std::string dry = (dir_ / "scene.toml").string(), scene = (dir_ / "coupled.toml").string();
+    std::ofstream(dry) << scene_text("[0, 0, 0.3]");
+    std::ofstream(scene) << scene_text("[0, 0, 0.3]")
+                         << "[fluid]\ncase = \"tank\"\nwater_level = 0.7\ncell_size = 0.05\n";
+    const std::string text = "a user's notes\n";
+    const fs::path work = dir_ / "work";
+    fs::create_directories(work);
+    std::ofstream(work / "notes.txt") << text;
+    for (const char *settle : {"fluid.settle_time=0", "fluid.settle_time=0.1"}) {
+        const auto coupled = [&](const std::string &out) {
+            return output_rule::armour({"run", scene, "--out", out, "--cache", cache_, "--set", settle});
+        };
+        output_rule::expect_refused(output_rule::inside(work, [&] { return coupled("."); }), work,
+                                    {"notes.txt"}, "notes.txt", text);
+        output_rule::expect_refused(coupled(work.string()), work, {"notes.txt"}, "notes.txt", text);
+        // An earlier result of `armour run` (dry) with a user's file added.
+        const fs::path earlier = dir_ / "earlier";
+        fs::remove_all(earlier);
+        ASSERT_EQ(output_rule::armour({"run", dry, "--out", earlier.string(), "--cache", cache_}).code, 0);
+        std::ofstream(earlier / "later.txt") << text;
+        const auto before = output_rule::names(earlier);
+        output_rule::expect_refused(coupled(earlier.string()), earlier, before, "later.txt", text);
+    }
 }

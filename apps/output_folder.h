@@ -1,0 +1,85 @@
+// The folder a command writes its results into (--out), safe for the user's files.
+//
+// Description
+//     A command writes into DIR only when DIR does not exist, is an empty
+//     folder, or is an earlier result of the same command. An earlier result
+//     is known by its marker file DIR/.armour-output: the first line names the
+//     command ("armour run"), each further line is one top-level entry the
+//     command wrote, listed before the entry is created, so even a killed
+//     run's marker lists what it made. Any other DIR (a working folder, the
+//     folder holding the input STL, a result with a file added later) is
+//     refused with one InputError before any work. Replacing an earlier
+//     result removes only the entries its marker lists; DIR itself is never
+//     removed or renamed, so `--out .` works and the shell's folder survives.
+//
+//     Two ways of writing:
+//     - staged: the result appears whole or not at all. A new DIR is staged in
+//       the sibling DIR.partial-PID and renamed into place; an existing DIR in
+//       its hidden DIR/.armour-partial-PID, whose entries then replace the
+//       listed old ones one by one, summary.json last. A failure before
+//       commit() leaves DIR as it was.
+//     - streaming: entries are written straight into DIR as the command goes
+//       (a long run that stops keeps what it wrote); open() removes the
+//       earlier result's entries.
+//
+// Usage
+//     OutputFolder out(request.out, "armour clump", OutputFolder::Mode::staged); // checks DIR
+//     ... the work ...
+//     out.open();
+//     write_text_file(out.claim("summary.json"), text); // every top-level entry through claim()
+//     out.commit();                                       // staged only
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace armour {
+
+class OutputFolder {
+  public:
+    enum class Mode { staged, streaming };
+
+    // Throws InputError when `target` may not be written by `command`.
+    OutputFolder(const std::filesystem::path &target, std::string command, Mode mode);
+    ~OutputFolder();
+    OutputFolder(const OutputFolder &) = delete;
+    OutputFolder &operator=(const OutputFolder &) = delete;
+
+    // Checks the folder again and makes it writable: staged, creates the
+    // staging folder; streaming, removes the earlier result's entries and
+    // writes a fresh marker. Calling it again does nothing.
+    void open();
+    // The path of top-level entry `name`; streaming, it is listed in the
+    // marker first. Needs open().
+    std::filesystem::path claim(const std::string &name);
+    // Staged: moves the staged entries into place and lists them in the marker.
+    void commit();
+
+    const std::filesystem::path &target() const { return target_; } // the final place
+    // Where entries are written until commit(): the staging folder, or DIR
+    // when streaming (for a tool that writes its own files there; staged, all
+    // it leaves is committed). Needs open().
+    const std::filesystem::path &dir() const { return mode_ == Mode::staged ? staging_ : target_; }
+
+  private:
+    struct Earlier {
+        bool exists = false;              // the folder exists
+        std::vector<std::string> entries; // what its marker lists (empty folder: none)
+    };
+    Earlier check() const;
+    void write_marker(const std::filesystem::path &dir, const std::vector<std::string> &entries) const;
+    void remove_entries(const std::vector<std::string> &entries) const;
+
+    std::filesystem::path target_;
+    std::string command_;
+    Mode mode_;
+    bool opened_ = false, committed_ = false;
+    std::filesystem::path staging_;    // staged: where entries are written until commit()
+    std::vector<std::string> claimed_; // streaming: entries listed in the marker
+};
+
+// Writes text to path through a temporary file and a rename.
+void write_text_file(const std::filesystem::path &path, const std::string &text);
+
+} // namespace armour

@@ -1,0 +1,84 @@
+# Sourced by every bench script: one way to take the build folder, the
+# output folder and the script's own options. Benchmarks never write into the
+# source tree: results go to --out (default ${TMPDIR:-/tmp}/armour-bench/NAME);
+# figures that docs/ shows are copied there by hand.
+#
+# Usage, in a script (after `root=...`):
+#   bench_name=clump                           # default output folder's name
+#   bench_targets="bench_clump_convergence"    # CMake targets the bench runs
+#   bench_options="seconds"                    # its own options: --seconds S sets $opt_seconds
+#   source "$root/bench/common.sh"
+#   bench_args "$@"                            # sets $build, $out (absolute, created) and $opt_*
+# Options: --build DIR (default $ARMOUR_BUILD or the repo's build/, made by
+# scripts/build.sh), --out DIR, -h/--help. The older form `script OUT_DIR
+# [VALUE...]` still works: OUT_DIR, then the script's options in order.
+
+# The build output of a CMake target, relative to the build folder.
+bench_target_file() {
+  case "$1" in
+    armour) echo apps/armour ;;
+    armourFoamCoupling) echo coupling/openfoam/libarmourFoamCoupling.so ;;
+    armourWaves) echo coupling/openfoam/waves/libarmourWaves.so ;;
+    *) echo "bench/$1" ;;
+  esac
+}
+
+bench_usage() {
+  # The script's header comment, without the shebang.
+  sed -n '2,/^[^#]/{/^#/s/^# \{0,1\}//p}' "$0"
+}
+
+bench_fail() {
+  echo "$(basename "$0"): $*" >&2
+  exit 2
+}
+
+bench_args() {
+  build="${ARMOUR_BUILD:-$root/build}"
+  out="${TMPDIR:-/tmp}/armour-bench/$bench_name"
+  local positional=() name
+  while [ $# -gt 0 ]; do
+    case "$1" in
+      -h | --help) bench_usage; exit 0 ;;
+      --build | --out)
+        [ $# -ge 2 ] || bench_fail "$1: needs a folder"
+        if [ "$1" = --build ]; then build="$2"; else out="$2"; fi
+        shift 2 ;;
+      --build=*) build="${1#--build=}"; shift ;;
+      --out=*) out="${1#--out=}"; shift ;;
+      --*)
+        name="${1#--}"; name="${name%%=*}"
+        case " $bench_options " in
+          *" $name "*) ;;
+          *) bench_fail "$1: unknown option (see --help)" ;;
+        esac
+        if [[ "$1" == *=* ]]; then
+          printf -v "opt_${name//-/_}" '%s' "${1#*=}"; shift
+        else
+          [ $# -ge 2 ] || bench_fail "$1: needs a value"
+          printf -v "opt_${name//-/_}" '%s' "$2"; shift 2
+        fi ;;
+      *) positional+=("$1"); shift ;;
+    esac
+  done
+  # The older positional form: OUT_DIR, then the options in order.
+  if [ ${#positional[@]} -gt 0 ]; then
+    out="${positional[0]}"
+    local i=1
+    for name in $bench_options; do
+      [ $i -lt ${#positional[@]} ] || break
+      printf -v "opt_${name//-/_}" '%s' "${positional[$i]}"
+      i=$((i + 1))
+    done
+    [ $i -ge ${#positional[@]} ] || bench_fail "${positional[$i]}: unexpected argument (see --help)"
+  fi
+  [ -d "$build" ] || bench_fail "--build $build: no build folder; make it with: bash scripts/build.sh $bench_targets"
+  build="$(cd "$build" && pwd)"
+  local target
+  for target in $bench_targets; do
+    [ -e "$build/$(bench_target_file "$target")" ] ||
+      bench_fail "$build/$(bench_target_file "$target") missing; build it with: bash scripts/build.sh $bench_targets (or pass --build DIR)"
+  done
+  mkdir -p "$out"
+  out="$(cd "$out" && pwd)"
+}
