@@ -3,12 +3,15 @@
 // like the file, and the resolved scene reloading to the same Scene.
 #include "mesh.h"
 #include "scene.h"
+#include "scene_keys.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <set>
 #include <sstream>
 #include <string>
 #include <tuple>
@@ -913,4 +916,115 @@ TEST_F(SceneFile, FluidRoundTripsAndOverrides) {
     EXPECT_EQ(load_scene(write(kMinimal), {"fluid.water_level=1", "fluid.cells=[2, 2, 2]"}).fluid->cells[0],
               2);
     EXPECT_EQ(load_scene(write(kMinimal), {"run.engine=\"free_body\""}).engine, "free_body");
+}
+
+// ---------------------------------------------------------------- the key table
+
+namespace {
+
+const fs::path kSourceDir = fs::path(__FILE__).parent_path().parent_path();
+
+std::string file_text(const fs::path &p) {
+    std::ifstream in(p, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+} // namespace
+
+// docs/scenes.md's key reference is the table's: regenerate it with
+// `build/scene/scene_keys --update docs/scenes.md` when this fails.
+TEST(SceneKeyTable, DocsReferenceIsTheTable) {
+    const std::string doc = file_text(kSourceDir / "docs" / "scenes.md");
+    ASSERT_FALSE(doc.empty());
+    EXPECT_EQ(armour::with_generated_key_reference(doc), doc)
+        << "docs/scenes.md differs from the key table: run scene_keys --update docs/scenes.md";
+    for (const auto &section : armour::scene_sections()) {
+        const std::string name = *section.name ? section.name : "top";
+        EXPECT_NE(doc.find("<!-- scene-keys " + name + " -->"), std::string::npos) << name << ": no block";
+        for (const auto &k : section.keys()) // every key has its row
+            EXPECT_NE(doc.find("| `" + k.name + "` | " + k.type + " |"), std::string::npos) << k.dotted;
+    }
+}
+
+// A key in the table that the reader ignored would accept any value: give
+// each a value of the wrong type (a table) and expect it refused under its name.
+TEST_F(SceneFile, EveryTableKeyIsRead) {
+    const std::vector<std::string> bases = {
+        write(std::string(kFull) + "\n[fluid]\nwater_level = 0.5\ncells = [4, 4, 4]\n"
+                                   "water_box_min = [-1, -1, -1]\nwater_box_max = [0, 0, 0]\n",
+              "cells.toml"),
+        write(std::string(kFull) + "\n[fluid]\nwater_level = 0.5\ncell_size = 0.5\n", "cell_size.toml")};
+    for (const auto &base : bases)
+        ASSERT_EQ(error_of(base), "") << base;
+    // kFull's entries by shape and wall type.
+    const std::map<std::string, int> variant_index = {{"cube", 0},  {"dolos", 1}, {"stl", 2},
+                                                      {"plane", 0}, {"slope", 1}, {"box", 2}};
+    int keys = 0;
+    for (const auto &section : armour::scene_sections())
+        for (const auto &k : section.keys()) {
+            std::string path = k.name;
+            if (section.kind == armour::SectionKind::Table)
+                path = k.section + "." + k.name;
+            if (section.kind == armour::SectionKind::ArrayOfTables) {
+                int index = k.when.empty() ? 0 : variant_index.at(k.when);
+                if (k.section == "wall" && k.when == "stl")
+                    index = 3;
+                path = k.section + "." + std::to_string(index) + "." + k.name;
+            }
+            bool refused = false;
+            std::string errors;
+            for (const auto &base : bases) {
+                const std::string e = error_of(base, {path + "={}"});
+                refused = refused || (e.rfind("--set: key '" + path + "': ", 0) == 0 &&
+                                      e.find("(got a table)") != std::string::npos);
+                errors += "\n  " + e;
+            }
+            EXPECT_TRUE(refused) << path << " was not read:" << errors;
+            ++keys;
+        }
+    EXPECT_GT(keys, 80);
+}
+
+TEST(SceneKeyTable, KeysAreUniqueAndDocumented) {
+    for (const auto &section : armour::scene_sections()) {
+        std::set<std::pair<std::string, std::string>> seen;
+        for (const auto &k : section.keys()) {
+            EXPECT_TRUE(seen.insert({k.name, k.when}).second) << k.dotted << " declared twice";
+            EXPECT_FALSE(k.doc.empty()) << k.dotted;
+            EXPECT_FALSE(k.type.empty()) << k.dotted;
+        }
+    }
+    // The defaults live in the scene structs; the table reports them.
+    const auto run = armour::find_section("run")->keys();
+    const auto gravity =
+        std::find_if(run.begin(), run.end(), [](const auto &k) { return k.name == "gravity"; });
+    ASSERT_NE(gravity, run.end());
+    EXPECT_EQ(gravity->default_text, "[0, 0, -9.81]");
+    EXPECT_EQ(gravity->unit, "m/s^2");
+}
+
+// The example: a misspelt key is refused naming file, line and key.
+TEST_F(SceneFile, MisspeltKeyNamesFileLineAndKey) {
+    const std::string p = write(std::string(kMinimal) + "\n[run]\nduration = 2\nduraton = 3\n");
+    expect_error(p, 17, "run.duraton", "unknown key (did you mean 'duration'?)");
+    const std::string e = error_of(p);
+    EXPECT_EQ(e, p + ":17: key 'run.duraton': unknown key (did you mean 'duration'?)");
+}
+
+// Every shipped example loads, and its resolved scene reloads to the same scene.
+TEST_F(SceneFile, EveryShippedSceneParses) {
+    int scenes = 0;
+    for (const auto &entry : fs::directory_iterator(kSourceDir / "scenes")) {
+        if (entry.path().extension() != ".toml")
+            continue;
+        ++scenes;
+        SCOPED_TRACE(entry.path().filename().string());
+        Scene a;
+        ASSERT_NO_THROW(a = load_scene(entry.path().string()));
+        const Scene b = load_scene(write(armour::resolved_scene_toml(a), "resolved.toml"));
+        expect_same(a, b);
+    }
+    EXPECT_GE(scenes, 13);
 }
