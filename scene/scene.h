@@ -13,7 +13,7 @@
 //
 // Usage
 //     Scene scene = load_scene("scenes/drop_bounce.toml", {"run.duration=0.5"});
-//     write_resolved_scene(scene, "OUT/scene.resolved.toml");
+//     std::string resolved = resolved_scene_toml(scene); // OUT/scene.resolved.toml
 #pragma once
 
 #include "shapes.h"
