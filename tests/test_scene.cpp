@@ -4,12 +4,15 @@
 #include "engine_registry.h"
 #include "mesh.h"
 #include "scene.h"
+#include "scene_keys.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <set>
 #include <sstream>
 #include <string>
 #include <tuple>
@@ -229,126 +232,37 @@ class SceneFile : public ::testing::Test {
     fs::path dir_;
 };
 
+// Every key of the table compares equal (the table names every field).
+template <class S>
+void expect_same_keys(const S &a, const S &b, const std::vector<armour::Key<S>> &keys,
+                      const std::string &where) {
+    for (const auto &k : keys)
+        std::visit([&](auto S::*field) { EXPECT_EQ(a.*field, b.*field) << where << k.name; }, k.field);
+}
+
+template <class S>
+void expect_same_entries(const std::vector<S> &a, const std::vector<S> &b,
+                         const std::vector<armour::Key<S>> &keys, const std::string &section) {
+    ASSERT_EQ(a.size(), b.size()) << section;
+    for (std::size_t i = 0; i < a.size(); ++i)
+        expect_same_keys(a[i], b[i], keys, section + "." + std::to_string(i) + ".");
+}
+
 void expect_same(const Scene &a, const Scene &b) {
-    EXPECT_EQ(a.name, b.name);
-    EXPECT_EQ(a.engine, b.engine);
-    EXPECT_EQ(a.duration, b.duration);
-    EXPECT_EQ(a.output_interval, b.output_interval);
-    EXPECT_EQ(a.time_step, b.time_step);
-    EXPECT_EQ(a.force_time_step, b.force_time_step);
-    EXPECT_EQ(a.gravity, b.gravity);
-    EXPECT_EQ(a.domain_min, b.domain_min);
-    EXPECT_EQ(a.domain_max, b.domain_max);
-    EXPECT_EQ(a.contact_model, b.contact_model);
-    EXPECT_EQ(a.characteristic_velocity, b.characteristic_velocity);
-    EXPECT_EQ(a.analysis, b.analysis);
-    EXPECT_EQ(a.tilt_rate, b.tilt_rate);
-    EXPECT_EQ(a.tilt_max, b.tilt_max);
-    ASSERT_EQ(a.materials.size(), b.materials.size());
-    for (std::size_t i = 0; i < a.materials.size(); ++i) {
-        const auto &x = a.materials[i], &y = b.materials[i];
-        EXPECT_EQ(x.name, y.name);
-        EXPECT_EQ(x.youngs_modulus, y.youngs_modulus);
-        EXPECT_EQ(x.poisson_ratio, y.poisson_ratio);
-        EXPECT_EQ(x.restitution, y.restitution);
-        EXPECT_EQ(x.friction, y.friction);
-        EXPECT_EQ(x.rolling_friction, y.rolling_friction);
-    }
-    ASSERT_EQ(a.material_pairs.size(), b.material_pairs.size());
-    for (std::size_t i = 0; i < a.material_pairs.size(); ++i) {
-        const auto &x = a.material_pairs[i], &y = b.material_pairs[i];
-        EXPECT_EQ(x.a, y.a);
-        EXPECT_EQ(x.b, y.b);
-        EXPECT_EQ(x.restitution, y.restitution);
-        EXPECT_EQ(x.friction, y.friction);
-        EXPECT_EQ(x.rolling_friction, y.rolling_friction);
-    }
-    ASSERT_EQ(a.units.size(), b.units.size());
-    for (std::size_t i = 0; i < a.units.size(); ++i) {
-        const auto &x = a.units[i], &y = b.units[i];
-        EXPECT_EQ(x.name, y.name);
-        EXPECT_EQ(x.shape, y.shape);
-        EXPECT_EQ(x.size, y.size);
-        EXPECT_EQ(x.chamfer, y.chamfer);
-        EXPECT_EQ(x.height, y.height);
-        EXPECT_EQ(x.waist, y.waist);
-        EXPECT_EQ(x.stl, y.stl);
-        EXPECT_EQ(x.density, y.density);
-        EXPECT_EQ(x.spheres, y.spheres);
-        EXPECT_EQ(x.tol_volume, y.tol_volume);
-        EXPECT_EQ(x.tol_surface, y.tol_surface);
-        EXPECT_EQ(x.method, y.method);
-        EXPECT_EQ(x.material, y.material);
-    }
-    ASSERT_EQ(a.walls.size(), b.walls.size());
-    for (std::size_t i = 0; i < a.walls.size(); ++i) {
-        const auto &x = a.walls[i], &y = b.walls[i];
-        EXPECT_EQ(x.name, y.name);
-        EXPECT_EQ(x.type, y.type);
-        EXPECT_EQ(x.point, y.point);
-        EXPECT_EQ(x.normal, y.normal);
-        EXPECT_EQ(x.size, y.size);
-        EXPECT_EQ(x.toe_x, y.toe_x);
-        EXPECT_EQ(x.floor_z, y.floor_z);
-        EXPECT_EQ(x.cot, y.cot);
-        EXPECT_EQ(x.height, y.height);
-        EXPECT_EQ(x.width, y.width);
-        EXPECT_EQ(x.toe_height, y.toe_height);
-        EXPECT_EQ(x.min, y.min);
-        EXPECT_EQ(x.max, y.max);
-        EXPECT_EQ(x.file, y.file);
-        EXPECT_EQ(x.material, y.material);
-    }
-    ASSERT_EQ(a.bodies.size(), b.bodies.size());
-    for (std::size_t i = 0; i < a.bodies.size(); ++i) {
-        const auto &x = a.bodies[i], &y = b.bodies[i];
-        EXPECT_EQ(x.unit, y.unit);
-        EXPECT_EQ(x.position, y.position);
-        EXPECT_EQ(x.orientation, y.orientation);
-        EXPECT_EQ(x.velocity, y.velocity);
-        EXPECT_EQ(x.angular_velocity, y.angular_velocity);
-        EXPECT_EQ(x.fixed_translation, y.fixed_translation);
-        EXPECT_EQ(x.fixed_rotation, y.fixed_rotation);
-        EXPECT_EQ(x.pivot, y.pivot);
-    }
-    ASSERT_EQ(a.drops.size(), b.drops.size());
-    for (std::size_t i = 0; i < a.drops.size(); ++i) {
-        const auto &x = a.drops[i], &y = b.drops[i];
-        EXPECT_EQ(x.unit, y.unit);
-        EXPECT_EQ(x.count, y.count);
-        EXPECT_EQ(x.min, y.min);
-        EXPECT_EQ(x.max, y.max);
-        EXPECT_EQ(x.seed, y.seed);
-    }
-    ASSERT_EQ(a.patterns.size(), b.patterns.size());
-    for (std::size_t i = 0; i < a.patterns.size(); ++i) {
-        const auto &x = a.patterns[i], &y = b.patterns[i];
-        EXPECT_EQ(x.unit, y.unit);
-        EXPECT_EQ(x.wall, y.wall);
-        EXPECT_EQ(x.rows, y.rows);
-        EXPECT_EQ(x.columns, y.columns);
-        EXPECT_EQ(x.spacing, y.spacing);
-        EXPECT_EQ(x.gap, y.gap);
-    }
+    for (const auto *keys :
+         {&armour::root_keys(), &armour::run_keys(), &armour::contact_keys(), &armour::analysis_keys()})
+        expect_same_keys(a, b, *keys, "");
+    expect_same_entries(a.materials, b.materials, armour::material_keys(), "material");
+    expect_same_entries(a.material_pairs, b.material_pairs, armour::material_pair_keys(), "material_pair");
+    expect_same_entries(a.units, b.units, armour::unit_keys(), "unit");
+    expect_same_entries(a.walls, b.walls, armour::wall_keys(), "wall");
+    expect_same_entries(a.bodies, b.bodies, armour::body_keys(), "body");
+    expect_same_entries(a.drops, b.drops, armour::drop_keys(), "drop");
+    expect_same_entries(a.patterns, b.patterns, armour::pattern_keys(), "pattern");
     ASSERT_EQ(a.fluid.has_value(), b.fluid.has_value());
     if (a.fluid) {
-        const auto &x = *a.fluid, &y = *b.fluid;
-        EXPECT_EQ(x.case_name, y.case_name);
-        EXPECT_EQ(x.water_level, y.water_level);
-        EXPECT_EQ(x.cells, y.cells);
-        EXPECT_EQ(x.cell_size, y.cell_size);
-        EXPECT_EQ(x.penalty, y.penalty);
-        EXPECT_EQ(x.mask, y.mask);
-        EXPECT_EQ(x.smoothing_cells, y.smoothing_cells);
-        EXPECT_EQ(x.added_mass, y.added_mass);
-        EXPECT_EQ(x.np, y.np);
-        EXPECT_EQ(x.fluid_density, y.fluid_density);
-        EXPECT_EQ(x.air_density, y.air_density);
-        EXPECT_EQ(x.viscosity, y.viscosity);
-        EXPECT_EQ(x.air_viscosity, y.air_viscosity);
-        EXPECT_EQ(x.max_courant, y.max_courant);
-        EXPECT_EQ(x.max_time_step, y.max_time_step);
-        EXPECT_EQ(x.write_interval, y.write_interval);
+        expect_same_keys(*a.fluid, *b.fluid, armour::fluid_keys(), "fluid.");
+        EXPECT_EQ(a.fluid->has_water_box, b.fluid->has_water_box);
     }
 }
 
@@ -916,4 +830,115 @@ TEST_F(SceneFile, FluidRoundTripsAndOverrides) {
     EXPECT_EQ(load_scene(write(kMinimal), {"fluid.water_level=1", "fluid.cells=[2, 2, 2]"}).fluid->cells[0],
               2);
     EXPECT_EQ(load_scene(write(kMinimal), {"run.engine=\"free_body\""}).engine, "free_body");
+}
+
+// ---------------------------------------------------------------- the key table
+
+namespace {
+
+const fs::path kSourceDir = fs::path(__FILE__).parent_path().parent_path();
+
+std::string file_text(const fs::path &p) {
+    std::ifstream in(p, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+} // namespace
+
+// docs/scenes.md's key reference is the table's: regenerate it with
+// `build/scene/scene_keys --update docs/scenes.md` when this fails.
+TEST(SceneKeyTable, DocsReferenceIsTheTable) {
+    const std::string doc = file_text(kSourceDir / "docs" / "scenes.md");
+    ASSERT_FALSE(doc.empty());
+    EXPECT_EQ(armour::with_generated_key_reference(doc), doc)
+        << "docs/scenes.md differs from the key table: run scene_keys --update docs/scenes.md";
+    for (const auto &section : armour::scene_sections()) {
+        const std::string name = *section.name ? section.name : "top";
+        EXPECT_NE(doc.find("<!-- scene-keys " + name + " -->"), std::string::npos) << name << ": no block";
+        for (const auto &k : section.keys()) // every key has its row
+            EXPECT_NE(doc.find("| `" + k.name + "` | " + k.type + " |"), std::string::npos) << k.dotted;
+    }
+}
+
+// A key in the table that the reader ignored would accept any value: give
+// each a value of the wrong type (a table) and expect it refused under its name.
+TEST_F(SceneFile, EveryTableKeyIsRead) {
+    const std::vector<std::string> bases = {
+        write(std::string(kFull) + "\n[fluid]\nwater_level = 0.5\ncells = [4, 4, 4]\n"
+                                   "water_box_min = [-1, -1, -1]\nwater_box_max = [0, 0, 0]\n",
+              "cells.toml"),
+        write(std::string(kFull) + "\n[fluid]\nwater_level = 0.5\ncell_size = 0.5\n", "cell_size.toml")};
+    for (const auto &base : bases)
+        ASSERT_EQ(error_of(base), "") << base;
+    // kFull's entries by shape and wall type.
+    const std::map<std::string, int> variant_index = {{"cube", 0},  {"dolos", 1}, {"stl", 2},
+                                                      {"plane", 0}, {"slope", 1}, {"box", 2}};
+    int keys = 0;
+    for (const auto &section : armour::scene_sections())
+        for (const auto &k : section.keys()) {
+            std::string path = k.name;
+            if (section.kind == armour::SectionKind::Table)
+                path = k.section + "." + k.name;
+            if (section.kind == armour::SectionKind::ArrayOfTables) {
+                int index = k.when.empty() ? 0 : variant_index.at(k.when);
+                if (k.section == "wall" && k.when == "stl")
+                    index = 3;
+                path = k.section + "." + std::to_string(index) + "." + k.name;
+            }
+            bool refused = false;
+            std::string errors;
+            for (const auto &base : bases) {
+                const std::string e = error_of(base, {path + "={}"});
+                refused = refused || (e.rfind("--set: key '" + path + "': ", 0) == 0 &&
+                                      e.find("(got a table)") != std::string::npos);
+                errors += "\n  " + e;
+            }
+            EXPECT_TRUE(refused) << path << " was not read:" << errors;
+            ++keys;
+        }
+    EXPECT_GT(keys, 80);
+}
+
+TEST(SceneKeyTable, KeysAreUniqueAndDocumented) {
+    for (const auto &section : armour::scene_sections()) {
+        std::set<std::pair<std::string, std::string>> seen;
+        for (const auto &k : section.keys()) {
+            EXPECT_TRUE(seen.insert({k.name, k.when}).second) << k.dotted << " declared twice";
+            EXPECT_FALSE(k.doc.empty()) << k.dotted;
+            EXPECT_FALSE(k.type.empty()) << k.dotted;
+        }
+    }
+    // The defaults live in the scene structs; the table reports them.
+    const auto run = armour::find_section("run")->keys();
+    const auto gravity =
+        std::find_if(run.begin(), run.end(), [](const auto &k) { return k.name == "gravity"; });
+    ASSERT_NE(gravity, run.end());
+    EXPECT_EQ(gravity->default_text, "[0, 0, -9.81]");
+    EXPECT_EQ(gravity->unit, "m/s^2");
+}
+
+// The example: a misspelt key is refused naming file, line and key.
+TEST_F(SceneFile, MisspeltKeyNamesFileLineAndKey) {
+    const std::string p = write(std::string(kMinimal) + "\n[run]\nduration = 2\nduraton = 3\n");
+    expect_error(p, 17, "run.duraton", "unknown key (did you mean 'duration'?)");
+    const std::string e = error_of(p);
+    EXPECT_EQ(e, p + ":17: key 'run.duraton': unknown key (did you mean 'duration'?)");
+}
+
+// Every shipped example loads, and its resolved scene reloads to the same scene.
+TEST_F(SceneFile, EveryShippedSceneParses) {
+    int scenes = 0;
+    for (const auto &entry : fs::directory_iterator(kSourceDir / "scenes")) {
+        if (entry.path().extension() != ".toml")
+            continue;
+        ++scenes;
+        SCOPED_TRACE(entry.path().filename().string());
+        Scene a;
+        ASSERT_NO_THROW(a = load_scene(entry.path().string()));
+        const Scene b = load_scene(write(armour::resolved_scene_toml(a), "resolved.toml"));
+        expect_same(a, b);
+    }
+    EXPECT_GE(scenes, 13);
 }

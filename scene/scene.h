@@ -1,8 +1,10 @@
 // A scene file: the single source of truth for one `armour run`.
 //
 // Description
-//     TOML (toml++), SI units. Every key below is documented in docs/scenes.md
-//     and every example lives in scenes/. load_scene() checks every key and
+//     TOML (toml++), SI units. Every key is declared once in the key table
+//     (scene_keys.h: unit, range, doc; the member initialisers below are the
+//     defaults), from which docs/scenes.md's key reference is generated; the
+//     examples live in scenes/. load_scene() checks every key and
 //     value before anything runs: an unknown key, a missing key or a bad value
 //     throws InputError "FILE:LINE: key 'a.b': reason". Overrides given as
 //     --set key=value (dotted path, TOML value syntax; arrays of tables by
@@ -11,8 +13,10 @@
 //
 // Usage
 //     Scene scene = load_scene("scenes/drop_bounce.toml", {"run.duration=0.5"});
-//     write_resolved_scene(scene, "OUT/scene.resolved.toml");
+//     std::string resolved = resolved_scene_toml(scene); // OUT/scene.resolved.toml
 #pragma once
+
+#include "shapes.h"
 
 #include <Eigen/Core>
 #include <array>
@@ -25,14 +29,14 @@ namespace armour {
 
 struct SceneUnit {
     std::string name;
-    std::string shape;       // "cube" | "dolos" | "stl"
-    double size = 0.0;       // cube edge, m
-    double chamfer = 0.0;    // m
-    double height = 0.0;     // dolos H, m
-    double waist = 0.33;     // dolos waist ratio
-    std::string stl;         // path, resolved relative to the scene file
-    double density = 2400.0; // kg/m^3
-    int spheres = 0;         // > 0: fixed count; 0: tolerance mode
+    std::string shape;                 // "cube" | "dolos" | "stl"
+    double size = 0.0;                 // cube edge, m
+    double chamfer = 0.0;              // m
+    double height = 0.0;               // dolos H, m
+    double waist = kDolosWaistDefault; // dolos waist ratio
+    std::string stl;                   // path, resolved relative to the scene file
+    double density = 2400.0;           // kg/m^3
+    int spheres = 0;                   // > 0: fixed count; 0: tolerance mode
     double tol_volume = 0.01;
     double tol_surface = 0.02;
     std::string method = "optimised";

@@ -1,0 +1,575 @@
+#include "scene_keys.h"
+
+#include "engine_registry.h"
+#include "mesh.h"
+#include "shapes.h"
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <type_traits>
+
+namespace armour {
+
+namespace {
+
+using V3 = Eigen::Vector3d;
+// The engines of this build, as the registry lists them.
+std::vector<std::string> engine_names() {
+    std::vector<std::string> names;
+    for (const EngineStyle &style : engine_styles())
+        names.push_back(style.name);
+    return names;
+}
+const std::vector<std::string> kAnalyses = {"none",  "tilt",  "slope",    "bounce",   "buoyancy",
+                                            "float", "still", "dambreak", "platform", "slope_waves"};
+
+} // namespace
+
+// ---------------------------------------------------------------- the table
+
+const std::vector<Key<Scene>> &root_keys() {
+    static const std::vector<Key<Scene>> keys = {
+        key("name", &Scene::name, "", "names the run").required(),
+    };
+    return keys;
+}
+
+const std::vector<Key<Scene>> &run_keys() {
+    static const std::vector<Key<Scene>> keys = {
+        key("engine", &Scene::engine, "",
+            "rigid-body engine; free_body has no contacts (gravity and the fluid load only); coupled "
+            "scenes default to exact hulls, which changed the platform case's outcome (comparison.md)")
+            .one_of(engine_names())
+            .defaults("`\"liggghts\"`; `\"bullet\"` with `[fluid]`"),
+        key("duration", &Scene::duration, "s", "simulated time").in(Range::above(0)),
+        key("output_interval", &Scene::output_interval, "s", "time between saved frames; <= duration")
+            .in(Range::above(0)),
+        key("time_step", &Scene::time_step, "s",
+            "engine step; <= output_interval; 0 = from the contact stiffness")
+            .in(Range::at_least(0)),
+        key("force_time_step", &Scene::force_time_step, "", "true: use time_step even above the stable step"),
+        key("gravity", &Scene::gravity, "m/s^2", "gravitational acceleration"),
+        key("domain_min", &Scene::domain_min, "m",
+            "a corner of the simulated region (with [fluid]: the fluid mesh box)"),
+        key("domain_max", &Scene::domain_max, "m", "the opposite corner; each component > domain_min's"),
+    };
+    return keys;
+}
+
+const std::vector<Key<Scene>> &contact_keys() {
+    static const std::vector<Key<Scene>> keys = {
+        key("model", &Scene::contact_model, "", "hertz: stiffness grows with overlap; hooke: linear spring")
+            .one_of({"hertz", "hooke"}),
+        key("characteristic_velocity", &Scene::characteristic_velocity, "m/s",
+            "typical impact speed, sets the Hooke stiffness")
+            .in(Range::above(0)),
+    };
+    return keys;
+}
+
+const std::vector<Key<Scene>> &analysis_keys() {
+    static const std::vector<Key<Scene>> keys = {
+        key("kind", &Scene::analysis, "",
+            "what the summary reports; buoyancy, float, still, dambreak, platform and slope_waves need "
+            "[fluid] (below)")
+            .one_of(kAnalyses),
+        key("tilt_rate", &Scene::tilt_rate, "deg/s",
+            "tilt: gravity turns about +y at this rate; required and > 0 for tilt")
+            .in(Range::at_least(0)),
+        key("tilt_max", &Scene::tilt_max, "deg", "tilt: tilting stops here").in(Range::open_closed(0, 90)),
+    };
+    return keys;
+}
+
+const std::vector<Key<SceneFluid>> &fluid_keys() {
+    using F = SceneFluid;
+    static const std::vector<Key<F>> keys = {
+        key("case", &F::case_name, "", "case template folder in foam_cases/"),
+        key("water_level", &F::water_level, "m",
+            "z of the still-water surface, strictly inside run.domain_min.z .. run.domain_max.z; with a "
+            "water column it may be left out (no water outside the column)")
+            .custom("required (without a water column)"),
+        key("water_box_min", &F::water_box_min, "m",
+            "a water column (dam break) filled at the start besides the water below water_level; both "
+            "or neither; used by the dambreak template")
+            .custom("none")
+            .written_if([](const F &f) { return f.has_water_box; }),
+        key("water_box_max", &F::water_box_max, "m", "the column's opposite corner; > water_box_min")
+            .custom("none")
+            .written_if([](const F &f) { return f.has_water_box; }),
+        key("wave_height", &F::wave_height, "m",
+            "solitary wave H of a wave template's inlet (solitary_platform, slope_waves: required > 0); "
+            "< the depth water_level - run.domain_min.z")
+            .in(Range::at_least(0)),
+        key("cells", &F::cells, "", "blockMesh cells along x, y, z, each >= 1; give this or cell_size")
+            .in(Range::at_least(1))
+            .custom("–")
+            .written_if([](const F &f) { return f.cell_size == 0; }),
+        key("cell_size", &F::cell_size, "m",
+            "cells = round(extent / cell_size) per axis; <= the domain's smallest extent")
+            .in(Range::above(0))
+            .custom("–")
+            .written_if([](const F &f) { return f.cell_size > 0; }),
+        key("penalty", &F::penalty, "1/s",
+            "K of the penalisation -rho K chi (U - U_body); implicit, any K is stable")
+            .in(Range::above(0)),
+        key("mask", &F::mask, "", "solid fraction from the exact shape or from the clump's spheres")
+            .one_of({"exact", "spheres"}),
+        key("smoothing_cells", &F::smoothing_cells, "cells", "width of the solid-fraction ramp")
+            .in(Range::open_closed(0, 4)),
+        key("added_mass", &F::added_mass, "", "C_a of the added-mass correction (light units, coupling.md)")
+            .in(Range::at_least(0)),
+        key("np", &F::np, "", "MPI ranks of interFoam (--np overrides); each rank runs the engine")
+            .in(Range::at_least(1)),
+        key("fluid_density", &F::fluid_density, "kg/m^3", "water").in(Range::above(0)),
+        key("air_density", &F::air_density, "kg/m^3", "air; < fluid_density").in(Range::above(0)),
+        key("viscosity", &F::viscosity, "m^2/s", "water, kinematic").in(Range::above(0)),
+        key("air_viscosity", &F::air_viscosity, "m^2/s", "air, kinematic").in(Range::above(0)),
+        key("max_courant", &F::max_courant, "", "interFoam's maxCo and maxAlphaCo (the step adapts to it)")
+            .in(Range::open_closed(0, 1)),
+        key("max_time_step", &F::max_time_step, "s", "largest fluid step; <= run.output_interval")
+            .in(Range::above(0))
+            .defaults("min(0.005, `run.output_interval`)"),
+        key("write_interval", &F::write_interval, "s",
+            "time between OpenFOAM field writes in OUT/case; <= run.duration")
+            .in(Range::above(0))
+            .defaults("`run.duration`"),
+        key("frozen", &F::frozen, "",
+            "benchmark reference: units held, mask imposed once, no loads, no engine advance"),
+        key("settle_time", &F::settle_time, "s",
+            "settle the units in the DEM under the still water this long before coupling (below)")
+            .in(Range::at_least(0)),
+    };
+    return keys;
+}
+
+const std::vector<Key<SceneMaterial>> &material_keys() {
+    using M = SceneMaterial;
+    static const std::vector<Key<M>> keys = {
+        key("name", &M::name, "", "unique among materials").required(),
+        key("youngs_modulus", &M::youngs_modulus, "Pa", "Young's modulus (DEM-softened, below)")
+            .in(Range::above(0)),
+        key("poisson_ratio", &M::poisson_ratio, "", "Poisson's ratio").in(Range::open(-1, 0.5)),
+        key("restitution", &M::restitution, "", "rebound speed / impact speed").in(Range::open_closed(0, 1)),
+        key("friction", &M::friction, "", "Coulomb sliding coefficient").in(Range::at_least(0)),
+        key("rolling_friction", &M::rolling_friction, "",
+            "~0.05 lets LIGGGHTS clumps that do not rest flat on every face rest instead of rocking "
+            "(a warning says so; dem.md)")
+            .in(Range::at_least(0)),
+    };
+    return keys;
+}
+
+const std::vector<Key<SceneMaterialPair>> &material_pair_keys() {
+    using P = SceneMaterialPair;
+    static const std::vector<Key<P>> keys = {
+        key("a", &P::a, "", "a [[material]]").required(),
+        key("b", &P::b, "", "another (or the same) [[material]]; each unordered pair at most once")
+            .required(),
+        key("restitution", &P::restitution, "", "rebound speed / impact speed")
+            .in(Range::open_closed(0, 1))
+            .defaults("from the materials"),
+        key("friction", &P::friction, "", "Coulomb sliding coefficient")
+            .in(Range::at_least(0))
+            .defaults("from the materials"),
+        key("rolling_friction", &P::rolling_friction, "", "rolling resistance coefficient")
+            .in(Range::at_least(0))
+            .defaults("from the materials"),
+    };
+    return keys;
+}
+
+const std::vector<Key<SceneUnit>> &unit_keys() {
+    using U = SceneUnit;
+    static const std::vector<Key<U>> keys = {
+        key("name", &U::name, "", "unique among units").required(),
+        key("shape", &U::shape, "", "the exact shape the clump approximates")
+            .one_of({"cube", "dolos", "stl"})
+            .required(),
+        key("size", &U::size, "m", "cube edge")
+            .in(Range::above(0))
+            .required(" for shape \"cube\" (edge length, m)")
+            .only_for("cube"),
+        key("chamfer", &U::chamfer, "m", "edge chamfer; < size/2").in(Range::at_least(0)).only_for("cube"),
+        key("height", &U::height, "m", "overall height H (dolos.md)")
+            .in(Range::above(0))
+            .required(" for shape \"dolos\" (overall height, m)")
+            .only_for("dolos"),
+        key("waist", &U::waist, "", "shank across-flats / height")
+            .in(Range::closed(kDolosWaistMin, kDolosWaistMax))
+            .only_for("dolos"),
+        key("stl", &U::stl, "", "closed STL mesh in metres, relative to the scene file's folder; must exist")
+            .file()
+            .required()
+            .only_for("stl"),
+        key("density", &U::density, "kg/m^3", "unit density").in(Range::above(0)),
+        key("spheres", &U::spheres, "",
+            "exactly this many spheres; absent: the fewest spheres meeting both tolerances")
+            .in(Range::at_least(1))
+            .defaults("absent")
+            .written_if([](const U &u) { return u.spheres > 0; }),
+        key("tol_volume", &U::tol_volume, "", "tolerance mode: allowed relative volume error")
+            .in(Range::open(0, 1)),
+        key("tol_surface", &U::tol_surface, "", "tolerance mode: allowed surface RMS distance / Dn")
+            .in(Range::open(0, 1)),
+        key("method", &U::method, "", "clump method (clump_builder.md)").one_of({"greedy", "optimised"}),
+        key("material", &U::material, "", "a [[material]]; required when there are several")
+            .custom("the only material"),
+    };
+    return keys;
+}
+
+const std::vector<Key<SceneWall>> &wall_keys() {
+    using W = SceneWall;
+    static const std::vector<Key<W>> keys = {
+        key("name", &W::name, "", "unique among walls; needed only for a [[pattern]] to name it")
+            .defaults("`TYPE_INDEX` (e.g. `plane_0`)"),
+        key("type", &W::type, "", "the kind of wall").one_of({"plane", "slope", "box", "stl"}).required(),
+        key("material", &W::material, "", "a [[material]]; required when there are several")
+            .custom("the only material"),
+        key("point", &W::point, "m", "the patch's centre").required(" for type \"plane\"").only_for("plane"),
+        key("normal", &W::normal, "", "not all 0, normalised on load; points to the units' side")
+            .required(" for type \"plane\"")
+            .only_for("plane"),
+        key("size", &W::size, "m", "edge of the square patch").in(Range::above(0)).only_for("plane"),
+        key("toe_x", &W::toe_x, "m", "x of the toe").only_for("slope"),
+        key("floor_z", &W::floor_z, "m", "z of the floor").only_for("slope"),
+        key("cot", &W::cot, "", "horizontal per vertical (1.5 for a 1:1.5 slope)")
+            .in(Range::above(0))
+            .required(" for type \"slope\"")
+            .only_for("slope"),
+        key("height", &W::height, "m", "toe to crest")
+            .in(Range::above(0))
+            .required(" for type \"slope\"")
+            .only_for("slope"),
+        key("width", &W::width, "m", "extent along y")
+            .in(Range::above(0))
+            .required(" for type \"slope\"")
+            .only_for("slope"),
+        key("toe_height", &W::toe_height, "m", "vertical step at the toe (0 = none); < height")
+            .in(Range::at_least(0))
+            .only_for("slope"),
+        key("min", &W::min, "m", "lower corner").required(" for type \"box\"").only_for("box"),
+        key("max", &W::max, "m", "upper corner; > min").required(" for type \"box\"").only_for("box"),
+        key("file", &W::file, "", "STL in metres, relative to the scene file's folder; must exist")
+            .file()
+            .required()
+            .only_for("stl"),
+    };
+    return keys;
+}
+
+const std::vector<Key<SceneBody>> &body_keys() {
+    using B = SceneBody;
+    static const std::vector<Key<B>> keys = {
+        key("unit", &B::unit, "", "a [[unit]]").required(),
+        key("position", &B::position, "m", "centre of mass; inside the run domain").required(),
+        key("orientation", &B::orientation, "", "quaternion, not all 0; normalised on load"),
+        key("velocity", &B::velocity, "m/s", "initial velocity"),
+        key("angular_velocity", &B::angular_velocity, "rad/s", "initial angular velocity"),
+        key("fixed_translation", &B::fixed_translation, "", "hold the x, y, z position"),
+        key("fixed_rotation", &B::fixed_rotation, "", "hold the rotation about x, y, z"),
+        key("pivot", &B::pivot, "m",
+            "world point, at the initial pose, whose held coordinates fixed_translation keeps (a hinge; "
+            "OpenFOAM's centreOfRotation); needs run.engine = \"free_body\" and a held translation")
+            .defaults("centre of mass"),
+    };
+    return keys;
+}
+
+const std::vector<Key<SceneDrop>> &drop_keys() {
+    using D = SceneDrop;
+    static const std::vector<Key<D>> keys = {
+        key("unit", &D::unit, "", "a [[unit]]").required(),
+        key("count", &D::count, "", "how many units").in(Range::at_least(1)).required(),
+        key("min", &D::min, "m", "lower corner of the region of centres; inside the run domain").required(),
+        key("max", &D::max, "m", "upper corner; > min; inside the run domain").required(),
+        key("seed", &D::seed, "", "the same seed gives the same poses").in(Range::at_least(0)),
+    };
+    return keys;
+}
+
+const std::vector<Key<ScenePattern>> &pattern_keys() {
+    using P = ScenePattern;
+    static const std::vector<Key<P>> keys = {
+        key("unit", &P::unit, "", "a [[unit]]").required(),
+        key("wall", &P::wall, "", "a [[wall]] of type \"slope\"").required(),
+        key("rows", &P::rows, "", "units up the slope").in(Range::at_least(1)),
+        key("columns", &P::columns, "", "units along y").in(Range::at_least(1)),
+        key("spacing", &P::spacing, "m", "between centres; 0 = 1.05 x the unit's bounding size")
+            .in(Range::at_least(0)),
+        key("gap", &P::gap, "m", "between each unit and the slope surface").in(Range::at_least(0)),
+    };
+    return keys;
+}
+
+// ---------------------------------------------------------------- text
+
+std::string number_text(double v) {
+    char buf[64];
+    const auto result = std::to_chars(buf, buf + sizeof buf, v);
+    return std::string(buf, result.ptr);
+}
+
+std::string toml_string(const std::string &s) {
+    std::string out = "\"";
+    for (const char c : s) {
+        const auto u = static_cast<unsigned char>(c);
+        if (c == '"' || c == '\\') {
+            out += '\\';
+            out += c;
+        } else if (u < 0x20 || u == 0x7f) {
+            char buf[8];
+            std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(u));
+            out += buf;
+        } else {
+            out += c;
+        }
+    }
+    return out + "\"";
+}
+
+bool Range::bounded() const {
+    return std::isfinite(lo) || std::isfinite(hi);
+}
+
+bool Range::contains(double v) const {
+    return (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
+}
+
+std::string Range::text() const {
+    if (std::isfinite(lo) && std::isfinite(hi))
+        return "in " + std::string(lo_open ? "(" : "[") + number_text(lo) + ", " + number_text(hi) +
+               (hi_open ? ")" : "]");
+    if (std::isfinite(lo))
+        return (lo_open ? "> " : ">= ") + number_text(lo);
+    if (std::isfinite(hi))
+        return (hi_open ? "< " : "<= ") + number_text(hi);
+    return "";
+}
+
+namespace {
+
+// 5e+07 -> 5e7, 1e-06 -> 1e-6: the way the examples write them.
+std::string doc_number(double v) {
+    std::string s = number_text(v);
+    const auto e = s.find('e');
+    if (e == std::string::npos)
+        return s;
+    std::string mantissa = s.substr(0, e), exponent = s.substr(e + 1);
+    const bool negative = exponent[0] == '-';
+    exponent.erase(0, exponent.find_first_not_of("+-0"));
+    return mantissa + "e" + (negative ? "-" : "") + exponent;
+}
+
+std::string doc_vector(const Eigen::Ref<const Eigen::VectorXd> &v) {
+    std::string s = "[";
+    for (Eigen::Index i = 0; i < v.size(); ++i)
+        s += (i ? ", " : "") + doc_number(v[i]);
+    return s + "]";
+}
+
+template <class S> KeyInfo describe(const char *section, const Key<S> &k) {
+    KeyInfo info;
+    info.section = section;
+    info.name = k.name;
+    info.dotted = info.section.empty() ? info.name : info.section + "." + info.name;
+    info.unit = k.unit;
+    info.doc = k.doc;
+    info.when = k.when;
+    const S defaults{};
+    std::string value;
+    std::visit(overloaded{
+                   [&](std::string S::*f) {
+                       info.type = k.path ? "path" : "string";
+                       value = (defaults.*f).empty() ? "" : "`" + toml_string(defaults.*f) + "`";
+                   },
+                   [&](double S::*f) {
+                       info.type = "number";
+                       value = doc_number(defaults.*f);
+                   },
+                   [&](int S::*f) {
+                       info.type = "integer";
+                       value = std::to_string(defaults.*f);
+                   },
+                   [&](std::uint64_t S::*f) {
+                       info.type = "integer";
+                       value = std::to_string(defaults.*f);
+                   },
+                   [&](bool S::*f) {
+                       info.type = "boolean";
+                       value = defaults.*f ? "true" : "false";
+                   },
+                   [&](Eigen::Vector3d S::*f) {
+                       info.type = "[x, y, z]";
+                       value = doc_vector(defaults.*f);
+                   },
+                   [&](Eigen::Vector4d S::*f) {
+                       info.type = "[w, x, y, z]";
+                       value = doc_vector(defaults.*f);
+                   },
+                   [&](std::array<bool, 3> S::*f) {
+                       info.type = "3 booleans";
+                       const auto &b = defaults.*f;
+                       value = std::string("[") + (b[0] ? "true" : "false") + ", " +
+                               (b[1] ? "true" : "false") + ", " + (b[2] ? "true" : "false") + "]";
+                   },
+                   [&](std::array<int, 3> S::*) { info.type = "3 integers"; },
+                   [&](std::optional<double> S::*) { info.type = "number"; },
+                   [&](std::optional<Eigen::Vector3d> S::*) { info.type = "[x, y, z]"; },
+               },
+               k.field);
+    if (*k.default_doc)
+        value = k.default_doc;
+    else if (k.need == Need::Required)
+        value = *k.when ? "required for " + std::string(k.when) : "required";
+    info.default_text = value;
+    if (!k.choices.empty()) {
+        for (const auto &c : k.choices)
+            info.allowed += (info.allowed.empty() ? "" : ", ") + std::string("`") + toml_string(c) + "`";
+    } else {
+        info.allowed = k.range.text();
+    }
+    return info;
+}
+
+template <class S> std::vector<KeyInfo> describe_all(const char *section, const std::vector<Key<S>> &keys) {
+    std::vector<KeyInfo> out;
+    for (const auto &k : keys)
+        out.push_back(describe(section, k));
+    return out;
+}
+
+} // namespace
+
+const std::vector<SceneSection> &scene_sections() {
+    static const std::vector<SceneSection> sections = {
+        {"", SectionKind::Root, "", {}, [] { return describe_all("", root_keys()); }},
+        {"run", SectionKind::Table, "", {}, [] { return describe_all("run", run_keys()); }},
+        {"contact", SectionKind::Table, "", {}, [] { return describe_all("contact", contact_keys()); }},
+        {"analysis", SectionKind::Table, "", {}, [] { return describe_all("analysis", analysis_keys()); }},
+        {"fluid", SectionKind::Table, "", {}, [] { return describe_all("fluid", fluid_keys()); }},
+        {"material",
+         SectionKind::ArrayOfTables,
+         "",
+         {},
+         [] { return describe_all("material", material_keys()); }},
+        {"material_pair",
+         SectionKind::ArrayOfTables,
+         "",
+         {},
+         [] { return describe_all("material_pair", material_pair_keys()); }},
+        {"unit",
+         SectionKind::ArrayOfTables,
+         "shape",
+         {{"cube", "a cube, optionally chamfered"},
+          {"dolos", "a dolos (dolos.md)"},
+          {"stl", "any closed triangle mesh"}},
+         [] { return describe_all("unit", unit_keys()); }},
+        {"wall",
+         SectionKind::ArrayOfTables,
+         "type",
+         {{"plane", "a square patch"},
+          {"slope", "a 1:`cot` slope rising in +x, with its floor"},
+          {"box", "a floor and four side walls, open at the top"},
+          {"stl", "a triangle mesh"}},
+         [] { return describe_all("wall", wall_keys()); }},
+        {"body", SectionKind::ArrayOfTables, "", {}, [] { return describe_all("body", body_keys()); }},
+        {"drop", SectionKind::ArrayOfTables, "", {}, [] { return describe_all("drop", drop_keys()); }},
+        {"pattern",
+         SectionKind::ArrayOfTables,
+         "",
+         {},
+         [] { return describe_all("pattern", pattern_keys()); }},
+    };
+    return sections;
+}
+
+const SceneSection *find_section(const std::string &name) {
+    for (const auto &s : scene_sections())
+        if (name == s.name)
+            return &s;
+    return nullptr;
+}
+
+std::vector<std::string> key_names(const SceneSection &section) {
+    std::vector<std::string> names;
+    for (const auto &k : section.keys())
+        names.push_back(k.name);
+    return names;
+}
+
+// ---------------------------------------------------------------- Markdown
+
+namespace {
+
+std::string doc_unit(const std::string &unit) {
+    if (unit.empty())
+        return "–";
+    std::string s = unit;
+    for (const auto &[from, to] : {std::pair<std::string, std::string>{"^2", "²"}, {"^3", "³"}})
+        for (auto at = s.find(from); at != std::string::npos; at = s.find(from))
+            s.replace(at, from.size(), to);
+    return s;
+}
+
+std::string table_of(const std::vector<KeyInfo> &keys) {
+    std::string out = "| key | type | unit | default | allowed | meaning |\n|---|---|---|---|---|---|\n";
+    for (const auto &k : keys)
+        out += "| `" + k.name + "` | " + k.type + " | " + doc_unit(k.unit) + " | " +
+               (k.default_text.empty() ? "–" : k.default_text) + " | " +
+               (k.allowed.empty() ? "any" : k.allowed) + " | " + k.doc + " |\n";
+    return out;
+}
+
+const std::string kBegin = "<!-- scene-keys ";
+const std::string kEnd = "<!-- end scene-keys -->";
+
+} // namespace
+
+std::string scene_keys_markdown(const std::string &name) {
+    const SceneSection *section = find_section(name);
+    if (!section)
+        throw InputError("scene-keys: '" + name + "': no such section");
+    const std::vector<KeyInfo> keys = section->keys();
+    if (!*section->selector)
+        return table_of(keys);
+    std::vector<KeyInfo> common;
+    for (const auto &k : keys)
+        if (k.when.empty())
+            common.push_back(k);
+    std::string out = table_of(common);
+    for (const auto &[variant, doc] : section->variants) {
+        std::vector<KeyInfo> own;
+        for (const auto &k : keys)
+            if (k.when == variant)
+                own.push_back(k);
+        out += "\n`" + std::string(section->selector) + " = \"" + variant + "\"`: " + doc + ".\n\n" +
+               table_of(own);
+    }
+    return out;
+}
+
+// Blocks read "<!-- scene-keys SECTION -->\n...\n<!-- end scene-keys -->"
+// (SECTION "top" for the top level).
+std::string with_generated_key_reference(const std::string &document) {
+    std::string out;
+    std::size_t at = 0;
+    for (;;) {
+        const auto begin = document.find(kBegin, at);
+        if (begin == std::string::npos)
+            break;
+        const auto close = document.find("-->", begin);
+        const auto end = document.find(kEnd, begin);
+        if (close == std::string::npos || end == std::string::npos)
+            throw InputError("scene-keys: unterminated block marker at offset " + std::to_string(begin));
+        std::string name = document.substr(begin + kBegin.size(), close - begin - kBegin.size());
+        name.erase(name.find_last_not_of(' ') + 1);
+        out += document.substr(at, close + 3 - at) + "\n" + scene_keys_markdown(name == "top" ? "" : name);
+        at = end;
+    }
+    return out + document.substr(at);
+}
+
+} // namespace armour

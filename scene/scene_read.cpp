@@ -1,0 +1,526 @@
+// Reading a scene file: the key table (scene_keys.h) checks each key's type
+// and range; this file adds what ties keys together (references by name,
+// one bound given by another key, defaults taken from other sections) and
+// the --set overrides.
+#include "scene.h"
+
+#include "engine_registry.h"
+#include "mesh.h"
+#include "scene_keys.h"
+#include "toml_table.h"
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string_view>
+
+namespace armour {
+
+using namespace scene_detail;
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Analyses that measure the fluid's load or its effect: they need a [fluid].
+bool measures_fluid(const std::string &kind) {
+    for (const char *k : {"buoyancy", "float", "still", "dambreak", "platform", "slope_waves"})
+        if (kind == k)
+            return true;
+    return false;
+}
+
+// Unit vectors are stored normalised; a vector already normalised is kept
+// bit for bit so that the resolved scene reloads unchanged.
+template <typename V> V normalised(const V &v) {
+    const double n2 = v.squaredNorm();
+    return std::abs(n2 - 1.0) <= 1e-14 ? v : V(v / std::sqrt(n2));
+}
+
+std::string material_of(const Table &t, const std::vector<SceneMaterial> &materials) {
+    std::vector<std::string> names;
+    for (const auto &m : materials)
+        names.push_back(m.name);
+    if (!t.has("material")) {
+        if (materials.size() == 1)
+            return materials[0].name;
+        t.fail("material", "missing required key: there are " + std::to_string(materials.size()) +
+                               " materials, name one of " + choices(names));
+    }
+    const std::string m = t.str("material", "");
+    if (std::find(names.begin(), names.end(), m) == names.end())
+        t.fail("material", "no [[material]] named " + toml_string(m) + " (known: " + choices(names) + ")");
+    return m;
+}
+
+bool inside(const Eigen::Vector3d &p, const Eigen::Vector3d &lo, const Eigen::Vector3d &hi) {
+    return (p.array() >= lo.array()).all() && (p.array() <= hi.array()).all();
+}
+
+std::string vec_text(const Eigen::Ref<const Eigen::VectorXd> &v) {
+    std::vector<std::string> parts;
+    for (Eigen::Index i = 0; i < v.size(); ++i)
+        parts.push_back(toml_float(v[i]));
+    return "[" + join(parts, ", ") + "]";
+}
+
+// A single table ([run]) read into the scene itself.
+void read_table(const Table &root, const char *name, const std::vector<Key<Scene>> &keys, Scene &s) {
+    const Table t = root.section(name);
+    t.only(names_of(keys));
+    read_keys(t, keys, s);
+}
+
+void read_run(const Table &root, Scene &s) {
+    read_table(root, "run", run_keys(), s);
+    const Table run = root.section("run");
+    run.check(s.output_interval <= s.duration, "output_interval",
+              "must be <= run.duration = " + number_text(s.duration) + " s", s.output_interval);
+    run.check(s.time_step <= s.output_interval, "time_step",
+              "must be <= run.output_interval = " + number_text(s.output_interval) + " s", s.time_step);
+    if (!(s.domain_max.array() > s.domain_min.array()).all())
+        run.fail("domain_max", "must exceed run.domain_min " + vec_text(s.domain_min) +
+                                   " m in every component (got " + vec_text(s.domain_max) + ")");
+}
+
+void read_contact_and_analysis(const Table &root, Scene &s) {
+    read_table(root, "contact", contact_keys(), s);
+    read_table(root, "analysis", analysis_keys(), s);
+    const Table analysis = root.section("analysis");
+    if (measures_fluid(s.analysis) && !root.has("fluid"))
+        analysis.fail("kind", "kind " + toml_string(s.analysis) +
+                                  " measures the fluid: the scene needs a [fluid] table");
+    if (s.analysis == "tilt") {
+        analysis.require("tilt_rate", " for kind \"tilt\"");
+        analysis.check(s.tilt_rate > 0, "tilt_rate", "must be > 0 deg/s for kind \"tilt\"", s.tilt_rate);
+    }
+}
+
+void read_materials(const Table &root, Scene &s) {
+    for (const Table &t : root.entries("material")) {
+        t.only(names_of(material_keys()));
+        SceneMaterial m;
+        read_keys(t, material_keys(), m);
+        for (const auto &other : s.materials)
+            if (other.name == m.name)
+                t.fail("name", "duplicate material name " + toml_string(m.name));
+        s.materials.push_back(m);
+    }
+    if (s.materials.empty())
+        root.fail("material", "at least one [[material]] is required");
+
+    std::vector<std::string> names;
+    for (const auto &m : s.materials)
+        names.push_back(m.name);
+    for (const Table &t : root.entries("material_pair")) {
+        t.only(names_of(material_pair_keys()));
+        SceneMaterialPair p;
+        read_keys(t, material_pair_keys(), p);
+        for (const auto &[key, m] : {std::pair<const char *, std::string>{"a", p.a}, {"b", p.b}})
+            if (std::find(names.begin(), names.end(), m) == names.end())
+                t.fail(key, "no [[material]] named " + toml_string(m) + " (known: " + choices(names) + ")");
+        for (const auto &other : s.material_pairs)
+            if ((other.a == p.a && other.b == p.b) || (other.a == p.b && other.b == p.a))
+                t.fail("b", "duplicate pair " + toml_string(p.a) + " / " + toml_string(p.b));
+        s.material_pairs.push_back(p);
+    }
+}
+
+// Keys that belong to another shape or wall type are mistakes, not noise.
+template <class S>
+void forbid_other_variants(const Table &t, const std::vector<Key<S>> &keys, const std::string &variant,
+                           const std::string &what) {
+    std::vector<std::string> own;
+    for (const auto &k : keys)
+        if (variant == k.when)
+            own.push_back(k.name);
+    t.forbid_others(names_of(keys, variant.c_str()),
+                    what + " " + toml_string(variant) + " (its keys: " + join(own, ", ") + ")");
+}
+
+void read_units(const Table &root, Scene &s) {
+    const auto &keys = unit_keys();
+    for (const Table &t : root.entries("unit")) {
+        t.only(names_of(keys));
+        SceneUnit u;
+        read_value(t, key_named(keys, "name"), u);
+        t.require("name");
+        for (const auto &other : s.units)
+            if (other.name == u.name)
+                t.fail("name", "duplicate unit name " + toml_string(u.name));
+        t.require("shape");
+        read_value(t, key_named(keys, "shape"), u);
+        forbid_other_variants(t, keys, u.shape, "shape");
+        read_keys(t, keys, u, u.shape);
+        t.check(u.shape != "cube" || u.chamfer < 0.5 * u.size, "chamfer",
+                "must be in [0, size/2) = [0, " + number_text(0.5 * u.size) + ") m", u.chamfer);
+        u.material = material_of(t, s.materials);
+        s.units.push_back(u);
+    }
+}
+
+void read_walls(const Table &root, Scene &s) {
+    const auto &keys = wall_keys();
+    const auto entries = root.entries("wall");
+    for (std::size_t i = 0; i < entries.size(); ++i) {
+        const Table &t = entries[i];
+        t.only(names_of(keys));
+        SceneWall w;
+        t.require("type");
+        read_value(t, key_named(keys, "type"), w);
+        forbid_other_variants(t, keys, w.type, "wall type");
+        read_keys(t, keys, w, w.type);
+        // Walls need a name only when a [[pattern]] refers to them.
+        if (w.name.empty())
+            w.name = w.type + "_" + std::to_string(i);
+        for (const auto &other : s.walls)
+            if (other.name == w.name)
+                t.fail("name", "duplicate wall name " + toml_string(w.name));
+        if (w.type == "plane") {
+            if (w.normal.norm() < 1e-12)
+                t.fail("normal", "must be a non-zero vector (got " + vec_text(w.normal) + ")");
+            w.normal = normalised(w.normal);
+        } else if (w.type == "slope") {
+            t.check(w.toe_height < w.height, "toe_height",
+                    "must be in [0, height) = [0, " + number_text(w.height) + ") m", w.toe_height);
+        } else if (w.type == "box") {
+            if (!(w.max.array() > w.min.array()).all())
+                t.fail("max", "must exceed min " + vec_text(w.min) + " m in every component (got " +
+                                  vec_text(w.max) + ")");
+        }
+        w.material = material_of(t, s.materials);
+        s.walls.push_back(w);
+    }
+}
+
+void read_fluid(const Table &root, Scene &s) {
+    if (!root.has("fluid"))
+        return;
+    const Table t = root.section("fluid");
+    const auto &keys = fluid_keys();
+    t.only(names_of(keys));
+    SceneFluid f;
+    // Defaults that follow [run].
+    f.max_time_step = std::min(f.max_time_step, s.output_interval);
+    f.write_interval = s.duration;
+    read_keys(t, keys, f);
+    if (f.case_name.find('/') != std::string::npos || f.case_name[0] == '.')
+        t.fail("case", "must name a template folder in foam_cases/, e.g. \"tank\" (got " +
+                           toml_string(f.case_name) + ")");
+    // A water column (water_box_min/max) may replace the level: the level
+    // then defaults to the mesh's bottom (no water outside the column).
+    if (t.has("water_box_min") != t.has("water_box_max"))
+        t.fail(t.has("water_box_min") ? "water_box_max" : "water_box_min",
+               "missing: give both water_box_min and water_box_max (m)");
+    f.has_water_box = t.has("water_box_min");
+    if (f.has_water_box) {
+        read_value(t, key_named(keys, "water_box_min"), f);
+        read_value(t, key_named(keys, "water_box_max"), f);
+        if (!(f.water_box_max.array() > f.water_box_min.array()).all())
+            t.fail("water_box_max", "must exceed fluid.water_box_min " + vec_text(f.water_box_min) +
+                                        " m in every component (got " + vec_text(f.water_box_max) + ")");
+    } else {
+        t.require("water_level", " (z of the still-water surface, m)");
+    }
+    f.water_level = s.domain_min.z();
+    read_value(t, key_named(keys, "water_level"), f);
+    t.check((f.water_level > s.domain_min.z() || (f.has_water_box && f.water_level == s.domain_min.z())) &&
+                f.water_level < s.domain_max.z(),
+            "water_level",
+            "must lie inside run.domain_min.z .. run.domain_max.z = (" + number_text(s.domain_min.z()) +
+                ", " + number_text(s.domain_max.z()) + ") m",
+            f.water_level);
+    t.check(f.wave_height == 0 || f.wave_height < f.water_level - s.domain_min.z(), "wave_height",
+            "must be in [0, the still-water depth water_level - run.domain_min.z) m", f.wave_height);
+    if (t.has("cells") == t.has("cell_size"))
+        t.fail(t.has("cells") ? "cell_size" : "cells",
+               t.has("cells") ? "give either cells or cell_size, not both"
+                              : "missing required key: give cells = [nx, ny, nz] or cell_size (m)");
+    const Eigen::Vector3d extent = s.domain_max - s.domain_min;
+    if (t.has("cells")) {
+        read_value(t, key_named(keys, "cells"), f);
+    } else {
+        read_value(t, key_named(keys, "cell_size"), f);
+        t.check(f.cell_size > 0 && f.cell_size <= extent.minCoeff(), "cell_size",
+                "must be in (0, " + number_text(extent.minCoeff()) + "] m (the run domain's smallest extent)",
+                f.cell_size);
+        for (int i = 0; i < 3; ++i)
+            f.cells[i] = std::max(1, static_cast<int>(std::lround(extent[i] / f.cell_size)));
+    }
+    t.check(f.air_density < f.fluid_density, "air_density",
+            "must be in (0, fluid_density = " + number_text(f.fluid_density) + ") kg/m^3", f.air_density);
+    t.check(f.max_time_step <= s.output_interval, "max_time_step",
+            "must be in (0, run.output_interval = " + number_text(s.output_interval) + "] s",
+            f.max_time_step);
+    t.check(f.write_interval <= s.duration, "write_interval",
+            "must be in (0, run.duration = " + number_text(s.duration) + "] s", f.write_interval);
+    s.fluid = f;
+}
+
+std::string unit_of(const Table &t, const Scene &s, const std::string &u) {
+    std::vector<std::string> names;
+    for (const auto &unit : s.units)
+        names.push_back(unit.name);
+    if (std::find(names.begin(), names.end(), u) == names.end())
+        t.fail("unit",
+               "no [[unit]] named " + toml_string(u) +
+                   (names.empty() ? " (the scene has no [[unit]])" : " (known: " + choices(names) + ")"));
+    return u;
+}
+
+void read_placements(const Table &root, Scene &s) {
+    const std::string domain =
+        "run.domain_min " + vec_text(s.domain_min) + " .. run.domain_max " + vec_text(s.domain_max) + " m";
+    for (const Table &t : root.entries("body")) {
+        t.only(names_of(body_keys()));
+        SceneBody b;
+        read_keys(t, body_keys(), b);
+        unit_of(t, s, b.unit);
+        if (!inside(b.position, s.domain_min, s.domain_max))
+            t.fail("position", "must lie inside " + domain + " (got " + vec_text(b.position) + ")");
+        if (b.orientation.norm() < 1e-12)
+            t.fail("orientation",
+                   "must be a non-zero quaternion [w, x, y, z] (got " + vec_text(b.orientation) + ")");
+        b.orientation = normalised(b.orientation);
+        if (b.pivot) {
+            if (!engine_style(s.engine).capabilities.pivot) {
+                const EngineStyle *hinged =
+                    find_engine_style([](const EngineCapabilities &c) { return c.pivot; });
+                t.fail("pivot", "needs run.engine = " +
+                                    toml_string(hinged ? hinged->name : "an engine with pivots") + " (got " +
+                                    toml_string(s.engine) +
+                                    "): the contact engines hold locked axes at the centre of mass");
+            }
+            if (std::none_of(b.fixed_translation.begin(), b.fixed_translation.end(),
+                             [](bool held) { return held; }))
+                t.fail("pivot", "holds nothing without fixed_translation (the axes along which the pivot "
+                                "point stays put)");
+        }
+        s.bodies.push_back(b);
+    }
+    for (const Table &t : root.entries("drop")) {
+        t.only(names_of(drop_keys()));
+        SceneDrop d;
+        read_keys(t, drop_keys(), d);
+        unit_of(t, s, d.unit);
+        if (!(d.max.array() > d.min.array()).all())
+            t.fail("max", "must exceed min " + vec_text(d.min) + " m in every component (got " +
+                              vec_text(d.max) + ")");
+        if (!inside(d.min, s.domain_min, s.domain_max))
+            t.fail("min", "must lie inside " + domain + " (got " + vec_text(d.min) + ")");
+        if (!inside(d.max, s.domain_min, s.domain_max))
+            t.fail("max", "must lie inside " + domain + " (got " + vec_text(d.max) + ")");
+        s.drops.push_back(d);
+    }
+    for (const Table &t : root.entries("pattern")) {
+        t.only(names_of(pattern_keys()));
+        ScenePattern p;
+        read_keys(t, pattern_keys(), p);
+        unit_of(t, s, p.unit);
+        const auto wall = std::find_if(s.walls.begin(), s.walls.end(),
+                                       [&](const SceneWall &w) { return w.name == p.wall; });
+        if (wall == s.walls.end())
+            t.fail("wall", "no [[wall]] named " + toml_string(p.wall));
+        if (wall->type != "slope")
+            t.fail("wall", "wall " + toml_string(p.wall) + " is of type " + toml_string(wall->type) +
+                               "; a pattern needs a \"slope\" wall");
+        s.patterns.push_back(p);
+    }
+    if (s.bodies.empty() && s.drops.empty() && s.patterns.empty())
+        root.fail("body", "the scene places no units: add a [[body]], [[drop]] or [[pattern]]");
+}
+
+// ---------------------------------------------------------------- overrides
+
+bool is_index(const std::string &s) {
+    return !s.empty() && s.size() < 10 &&
+           std::all_of(s.begin(), s.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
+std::string trimmed(const std::string &s) {
+    const auto b = s.find_first_not_of(" \t");
+    if (b == std::string::npos)
+        return "";
+    return s.substr(b, s.find_last_not_of(" \t") - b + 1);
+}
+
+// The names the top level may hold: its own keys and the sections.
+std::vector<std::string> top_level_names() {
+    std::vector<std::string> names = names_of(root_keys());
+    for (const auto &section : scene_sections())
+        if (section.kind != SectionKind::Root)
+            names.push_back(section.name);
+    return names;
+}
+
+bool is_single_table(const std::string &name) {
+    const SceneSection *section = find_section(name);
+    return section && section->kind == SectionKind::Table;
+}
+
+// The keys a table at `parents` (the path segments leading to it) may hold;
+// empty when the path leads to no table of the key table.
+std::vector<std::string> known_keys(const std::vector<std::string> &parents) {
+    if (parents.empty())
+        return top_level_names();
+    const SceneSection *section = find_section(parents[0]);
+    if (!section || section->kind == SectionKind::Root)
+        return {};
+    const bool single = section->kind == SectionKind::Table;
+    if ((single && parents.size() == 1) || (!single && parents.size() == 2 && is_index(parents[1])))
+        return key_names(*section);
+    return {};
+}
+
+void apply_override(toml::table &root, const std::string &text) {
+    const auto bad = [&](const std::string &reason) { return InputError("--set '" + text + "': " + reason); };
+    const auto eq = text.find('=');
+    if (eq == std::string::npos)
+        throw bad("expected KEY=VALUE, e.g. run.duration=0.5");
+    const std::string key = trimmed(text.substr(0, eq));
+    const std::string value = trimmed(text.substr(eq + 1));
+    if (key.empty())
+        throw bad("empty key");
+    if (value.empty())
+        throw bad("empty value (strings need quotes: name=\"x\")");
+    std::vector<std::string> segments;
+    for (std::size_t start = 0;;) {
+        const auto dot = key.find('.', start);
+        segments.push_back(
+            trimmed(key.substr(start, dot == std::string::npos ? std::string::npos : dot - start)));
+        if (segments.back().empty())
+            throw bad("empty segment in key '" + key + "'");
+        if (dot == std::string::npos)
+            break;
+        start = dot + 1;
+    }
+
+    toml::table parsed;
+    try {
+        parsed = toml::parse("v = " + value + "\n", kSetSource);
+    } catch (const toml::parse_error &e) {
+        std::string description(e.description());
+        std::replace(description.begin(), description.end(), '\n', ' ');
+        throw bad("bad TOML value " + value + ": " + description + " (strings need quotes, arrays brackets)");
+    }
+    if (parsed.size() != 1)
+        throw bad("the value must be a single TOML value");
+
+    toml::node *cur = &root;
+    std::string at;
+    for (std::size_t i = 0; i + 1 < segments.size(); ++i) {
+        const std::string &seg = segments[i];
+        const std::string here = at.empty() ? seg : at + "." + seg;
+        if (toml::table *t = cur->as_table()) {
+            toml::node *child = t->get(seg);
+            if (!child && cur == &root && is_single_table(seg)) {
+                // Sections with all-default values may be absent from the file.
+                toml::table created = toml::parse("t = {}", kSetSource);
+                t->insert_or_assign(seg, std::move(*created.get("t")));
+                child = t->get(seg);
+            }
+            if (!child)
+                throw bad("'" + here + "' does not exist in the scene");
+            cur = child;
+        } else if (toml::array *a = cur->as_array()) {
+            if (!is_index(seg))
+                throw bad("'" + at + "' is an array: index it, e.g. " + at + ".0");
+            const std::size_t index = std::stoul(seg);
+            if (index >= a->size())
+                throw bad("index " + seg + " out of range: '" + at + "' has " + std::to_string(a->size()) +
+                          " entries");
+            cur = a->get(index);
+        } else {
+            throw bad("'" + at + "' is a single value, not a table");
+        }
+        at = here;
+    }
+
+    const std::string &last = segments.back();
+    toml::node &v = *parsed.get("v");
+    if (toml::table *t = cur->as_table()) {
+        if (!t->contains(last)) {
+            const std::vector<std::string> parents(segments.begin(), segments.end() - 1);
+            const std::vector<std::string> known = known_keys(parents);
+            if (std::find(known.begin(), known.end(), last) == known.end())
+                throw bad("unknown key '" + key + "'" + (known.empty() ? std::string() : hint(last, known)));
+        }
+        t->insert_or_assign(last, std::move(v));
+    } else if (toml::array *a = cur->as_array()) {
+        if (!is_index(last))
+            throw bad("'" + at + "' is an array: index it, e.g. " + at + ".0");
+        const std::size_t index = std::stoul(last);
+        if (index >= a->size())
+            throw bad("index " + last + " out of range: '" + at + "' has " + std::to_string(a->size()) +
+                      " entries");
+        a->replace(a->cbegin() + static_cast<std::ptrdiff_t>(index), std::move(v));
+    } else {
+        throw bad("'" + at + "' is a single value, not a table");
+    }
+}
+
+std::string read_text(const std::string &path) {
+    std::error_code ec;
+    if (fs::is_directory(path, ec))
+        throw InputError(path + ": cannot read: is a directory");
+    errno = 0;
+    std::ifstream in(path, std::ios::binary);
+    if (!in)
+        throw InputError(path + ": cannot read: " + (errno ? std::strerror(errno) : "open failed"));
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (in.bad())
+        throw InputError(path + ": cannot read: read error");
+    return text.str();
+}
+
+} // namespace
+
+Scene load_scene(const std::string &path, const std::vector<std::string> &overrides) {
+    const std::string text = read_text(path);
+    toml::table doc;
+    try {
+        doc = toml::parse(text, std::string_view(path));
+    } catch (const toml::parse_error &e) {
+        // toml++ descriptions are single-line; keep the message one line regardless.
+        std::string description(e.description());
+        std::replace(description.begin(), description.end(), '\n', ' ');
+        throw InputError(path + ":" + std::to_string(e.source().begin.line) +
+                         ": invalid TOML: " + description);
+    }
+    for (const auto &o : overrides)
+        apply_override(doc, o);
+
+    Scene s;
+    s.file = path;
+    const Table root(path, doc, "");
+    root.only(top_level_names());
+    read_keys(root, root_keys(), s);
+    read_run(root, s);
+    read_contact_and_analysis(root, s);
+    read_fluid(root, s);
+    // A coupled run without run.engine takes exact hulls where the build has
+    // them: there interFoam takes 97-99 % of the time whichever engine runs,
+    // and sphere clumps change the answer (the platform case: 3 of 3 cubes
+    // washed off against 2 of 3 with exact cubes; bench/run_coupled_engines.sh,
+    // docs/comparison.md).
+    if (s.fluid && !root.section("run").has("engine")) {
+        if (const EngineStyle *exact = find_engine_style([](const EngineCapabilities &c) {
+                return c.contacts != ContactKind::none && c.shape == ShapeModel::convex_hulls;
+            }))
+            s.engine = exact->name;
+    }
+    read_materials(root, s);
+    read_units(root, s);
+    read_walls(root, s);
+    read_placements(root, s);
+    return s;
+}
+
+} // namespace armour
