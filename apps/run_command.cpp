@@ -185,7 +185,7 @@ json slope_layer_figures(const Scene &scene, const SceneSetup &setup, const std:
 // under its submerged weight, as in a flume filled slowly.
 struct StillWater {
     double level = 0.0;           // m, z of the surface
-    double density = 1000.0;      // kg/m^3
+    double density = kFreshWaterDensity; // kg/m^3
     double update_interval = 0.0; // s between buoyancy updates
 };
 

@@ -11,6 +11,8 @@
 //     AddedMassResult r = run_added_mass_problem(p);   // r.diverged, r.max_relative_error
 #pragma once
 
+#include "standard_conditions.h"
+
 #include <vector>
 
 namespace armour {
@@ -27,7 +29,7 @@ struct AddedMassProblem {
     double density_ratio = 1.0;                // rho_s / rho_f
     double true_added_mass_coefficient = 0.5;  // of the synthetic fluid (0.5: sphere)
     double coupler_added_mass_coefficient = 0; // C_a given to the coupler; 0 = plain explicit
-    double fluid_density = 1000.0;             // kg/m^3
+    double fluid_density = kFreshWaterDensity; // kg/m^3
     double edge = 1.0;                         // m, cube edge
     double dt_fluid = 1e-3;                    // s
     int steps = 40;                            // fluid steps

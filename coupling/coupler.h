@@ -45,14 +45,14 @@ enum class MaskSource { exact_shape, clump_spheres };
 
 struct CouplerSettings {
     MaskSource mask = MaskSource::exact_shape;
-    double smoothing_cells = 1.0;        // width of the chi ramp, in cell sizes (V^(1/3))
-    double fluid_density = 1000.0;       // kg/m^3, for the added mass
-    double added_mass_coefficient = 0.0; // C_a >= 0; 0 = plain explicit coupling
+    double smoothing_cells = 1.0;              // width of the chi ramp, in cell sizes (V^(1/3))
+    double fluid_density = kFreshWaterDensity; // kg/m^3, for the added mass
+    double added_mass_coefficient = 0.0;       // C_a >= 0; 0 = plain explicit coupling
     // m/s^2: the gravity the ENGINE applies. The added-mass correction must
     // take the engine's own gravity load back out of the applied force, and
     // RigidBodyEngine does not expose its settings; keep equal to
     // EngineSettings::gravity.
-    Eigen::Vector3d gravity = Eigen::Vector3d(0.0, 0.0, -9.81);
+    Eigen::Vector3d gravity = Eigen::Vector3d(0.0, 0.0, -kStandardGravity);
 };
 
 struct CellMask {

@@ -23,6 +23,7 @@
 #include "clump.h"
 #include "mass_properties.h"
 #include "mesh.h"
+#include "standard_conditions.h"
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -105,9 +106,9 @@ struct EngineSettings {
     double characteristic_velocity = 1.0; // m/s, sets the hooke stiffness and the Hertz stiffness used for dt
     std::vector<Material> materials;
     std::vector<MaterialPair> pairs;
-    Eigen::Vector3d domain_min = Eigen::Vector3d::Constant(-10.0); // m
-    Eigen::Vector3d domain_max = Eigen::Vector3d::Constant(10.0);  // m
-    Eigen::Vector3d gravity = Eigen::Vector3d(0.0, 0.0, -9.81);    // m/s^2
+    Eigen::Vector3d domain_min = Eigen::Vector3d::Constant(-10.0);          // m
+    Eigen::Vector3d domain_max = Eigen::Vector3d::Constant(10.0);           // m
+    Eigen::Vector3d gravity = Eigen::Vector3d(0.0, 0.0, -kStandardGravity); // m/s^2
     double time_step = 0.0;       // s; 0 = the default (safety factor x stability limit)
     bool force_time_step = false; // accept a step above the stability limit (stability studies)
     std::string work_dir;         // where the engine may write its own files (logs, meshes)

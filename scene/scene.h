@@ -17,6 +17,7 @@
 #pragma once
 
 #include "shapes.h"
+#include "standard_conditions.h"
 
 #include <Eigen/Core>
 #include <array>
@@ -109,22 +110,22 @@ struct ScenePattern {
 // A coupled fluid run (interFoam through the armourCoupling plugin): the
 // mesh box is run.domain_min/max, water below water_level at the start.
 struct SceneFluid {
-    std::string case_name = "tank";      // template folder in foam_cases/ (key `case`)
-    double water_level = 0.0;            // m, z of the still-water surface
-    std::array<int, 3> cells{{0, 0, 0}}; // blockMesh cells along x, y, z (from cell_size when given)
-    double cell_size = 0.0;              // m; 0 = `cells` was given
-    double penalty = 1e5;                // K [1/s] of -rho K chi (U - U_body)
-    std::string mask = "exact";          // exact | spheres
-    double smoothing_cells = 1.0;        // width of the chi ramp [cells]
-    double added_mass = 0.0;             // C_a [-]
-    int np = 1;                          // MPI ranks of interFoam
-    double fluid_density = 1000.0;       // kg/m^3, water
-    double air_density = 1.0;            // kg/m^3
-    double viscosity = 1e-6;             // m^2/s, water, kinematic
-    double air_viscosity = 1.48e-5;      // m^2/s, air, kinematic
-    double max_courant = 0.5;            // interFoam maxCo and maxAlphaCo
-    double max_time_step = 0.005;        // s, largest fluid step (at most run.output_interval)
-    double write_interval = 0.0;         // s between field writes (the parser's default: run.duration)
+    std::string case_name = "tank";            // template folder in foam_cases/ (key `case`)
+    double water_level = 0.0;                  // m, z of the still-water surface
+    std::array<int, 3> cells{{0, 0, 0}};       // blockMesh cells along x, y, z (from cell_size when given)
+    double cell_size = 0.0;                    // m; 0 = `cells` was given
+    double penalty = 1e5;                      // K [1/s] of -rho K chi (U - U_body)
+    std::string mask = "exact";                // exact | spheres
+    double smoothing_cells = 1.0;              // width of the chi ramp [cells]
+    double added_mass = 0.0;                   // C_a [-]
+    int np = 1;                                // MPI ranks of interFoam
+    double fluid_density = kFreshWaterDensity; // kg/m^3, water
+    double air_density = 1.0;                  // kg/m^3
+    double viscosity = 1e-6;                   // m^2/s, water, kinematic
+    double air_viscosity = 1.48e-5;            // m^2/s, air, kinematic
+    double max_courant = 0.5;                  // interFoam maxCo and maxAlphaCo
+    double max_time_step = 0.005;              // s, largest fluid step (at most run.output_interval)
+    double write_interval = 0.0;               // s between field writes (the parser's default: run.duration)
     // Optional water column (dam break): water in this box at the start, besides
     // the water below water_level (which may then be left at domain_min.z: dry).
     bool has_water_box = false;
@@ -149,7 +150,7 @@ struct Scene {
     double output_interval = 0.01;   // s
     double time_step = 0.0;          // s; 0 = automatic
     bool force_time_step = false;
-    Eigen::Vector3d gravity = Eigen::Vector3d(0, 0, -9.81);                                          // m/s^2
+    Eigen::Vector3d gravity = Eigen::Vector3d(0, 0, -kStandardGravity);                              // m/s^2
     Eigen::Vector3d domain_min = Eigen::Vector3d(-5, -5, -1), domain_max = Eigen::Vector3d(5, 5, 5); // m
     // [contact]
     std::string contact_model = "hertz";  // hertz | hooke
