@@ -1,6 +1,7 @@
 // The `armour` command line: results on good input; one error line, a
 // non-zero exit and no output directory on bad input.
 #include "cli.h"
+#include "engine_registry.h"
 #include "mesh.h"
 #include "output_folder.h"
 #include "output_folder_rule.h"
@@ -12,6 +13,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -278,4 +280,25 @@ TEST_F(Cli, OutputFolderUncommittedLeavesTheEarlierResult) {
     } // a command that fails before commit()
     EXPECT_EQ(output_rule::names(out), before);
     EXPECT_EQ(output_rule::read(out / "summary.json"), summary);
+}
+
+// `armour engines`: one line per registered style, name first, with its
+// capabilities; an engine a scene cannot have is refused by name.
+TEST_F(Cli, EnginesListsEveryRegisteredStyleWithItsCapabilities) {
+    ::testing::internal::CaptureStdout();
+    const int code = run({"engines"});
+    const std::string out = ::testing::internal::GetCapturedStdout();
+    ASSERT_EQ(code, 0) << err_;
+    std::istringstream lines(out);
+    std::string line;
+    std::size_t n = 0;
+    while (std::getline(lines, line)) {
+        const std::string &name = armour::engine_styles().at(n).name;
+        EXPECT_EQ(line.rfind(name + ": contacts=", 0), 0u) << line;
+        for (const char *field : {" shape=", " parallel=", " pivot=", " restart="})
+            EXPECT_NE(line.find(field), std::string::npos) << line;
+        ++n;
+    }
+    EXPECT_EQ(n, armour::engine_styles().size());
+    EXPECT_NE(out.find("free_body: contacts=none"), std::string::npos) << out;
 }
