@@ -2,6 +2,7 @@
 // exact-shape facts (mass properties, frames, margin), pair friction, rigid
 // restitution and edge landings.
 #include "bullet_engine.h"
+#include "engine_test_kit.h"
 #include "shapes.h"
 
 #include <gtest/gtest.h>
@@ -10,16 +11,9 @@
 #include <random>
 
 using namespace armour;
+using namespace armour::test;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-double deg(double radians) {
-    return radians * 180.0 / kPi;
-}
-double rad(double degrees) {
-    return degrees * kPi / 180.0;
-}
 
 // A unit as the exact-shape engine sees it: exact mesh, convex parts (cube:
 // the cube itself; dolos: shank and flukes) and mass properties.
@@ -40,25 +34,6 @@ UnitTemplate dolos_unit(double height, double waist, double density) {
     return exact_unit(make_dolos_shape(height, waist, density));
 }
 
-Wall floor_plane(double half, int material = 0) {
-    Wall w;
-    w.name = "floor";
-    w.surface.vertices = {{-half, -half, 0}, {half, -half, 0}, {half, half, 0}, {-half, half, 0}};
-    w.surface.triangles = {{0, 1, 2}, {0, 2, 3}};
-    w.material = material;
-    return w;
-}
-
-Material concrete(double restitution, double friction, const std::string &name = "concrete") {
-    Material m;
-    m.name = name;
-    m.youngs_modulus = 5e9;
-    m.poisson_ratio = 0.25;
-    m.restitution = restitution;
-    m.friction = friction;
-    return m;
-}
-
 EngineSettings settings_for(std::vector<Material> materials) {
     EngineSettings s;
     s.materials = std::move(materials);
@@ -67,9 +42,7 @@ EngineSettings settings_for(std::vector<Material> materials) {
     return s;
 }
 
-// As in the conformance suite: rest the unit-edge cube on the floor, turn gravity
-// about +y to `angle` over 0.2 s (a slowly inclined floor), hold `seconds`.
-// Returns (slide distance along x, rotation angle in degrees) over the hold.
+// The tilt experiment (engine_test_kit.h) with the cube and floor of given materials.
 std::pair<double, double> tilt_cube(const EngineSettings &settings, int cube_material, int floor_material,
                                     double angle_deg, double seconds) {
     auto engine = make_bullet_engine(settings);
@@ -80,19 +53,7 @@ std::pair<double, double> tilt_cube(const EngineSettings &settings, int cube_mat
     body.pose.position = Eigen::Vector3d(0, 0, 0.5 + 1e-4);
     engine->add_body(body);
     engine->add_wall(floor_plane(3.0, floor_material));
-    engine->advance(0.3);
-    const double g = 9.81;
-    for (int k = 1; k <= 20; ++k) {
-        const double t = rad(angle_deg) * k / 20.0;
-        engine->set_gravity(Eigen::Vector3d(g * std::sin(t), 0.0, -g * std::cos(t)));
-        engine->advance(0.01);
-    }
-    const BodyState rest = engine->state(0);
-    engine->advance(seconds);
-    const BodyState end = engine->state(0);
-    const double turned =
-        2.0 * std::acos(std::min(1.0, std::abs(end.pose.orientation.dot(rest.pose.orientation))));
-    return {end.pose.position.x() - rest.pose.position.x(), deg(turned)};
+    return tilt_and_hold(*engine, angle_deg, seconds);
 }
 
 } // namespace
@@ -118,7 +79,7 @@ TEST(BulletEngine, LockedAxesHoldTheirComponents) {
 
 TEST(BulletEngine, PairFrictionIsTheOverrideElseTheSmaller) {
     // Cube 0.7 on floor 0.9: the smaller, 0.7 (product: 0.63).
-    EngineSettings s = settings_for({concrete(0.3, 0.7, "unit"), concrete(0.3, 0.9, "floor")});
+    EngineSettings s = settings_for({concrete(0.3, 0.7, 5e9, "unit"), concrete(0.3, 0.9, 5e9, "floor")});
     const double onset_min = deg(std::atan(0.7));
     EXPECT_LT(std::abs(tilt_cube(s, 0, 1, onset_min - 0.5, 0.6).first), 1e-3);
     EXPECT_GT(tilt_cube(s, 0, 1, onset_min + 0.5, 0.6).first, 0.01);

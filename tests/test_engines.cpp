@@ -4,7 +4,7 @@
 // and adding its row to kTolerances; tests of contacts run for engines whose
 // capabilities say they have contacts.
 #include "engine_registry.h"
-#include "shapes.h"
+#include "engine_test_kit.h"
 
 #include <gtest/gtest.h>
 
@@ -16,17 +16,11 @@
 #include <vector>
 
 using namespace armour;
+using namespace armour::test;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kG = 9.81;
-double deg(double radians) {
-    return radians * 180.0 / kPi;
-}
-double rad(double degrees) {
-    return degrees * kPi / 180.0;
-}
 
 // The clump of the conformance cube: 8 corner spheres touching the faces,
 // radius a fraction of the edge. Its support on a plane is the square of
@@ -66,39 +60,6 @@ const Tolerances &tolerances(const std::string &style) {
                              "': add its row to kTolerances");
 }
 
-// A cube as every engine may see it: exact mesh and mass properties, the mesh
-// as its one convex part (exact-shape engines), and corner spheres (DEM).
-UnitTemplate conformance_cube(double a, double density, double corner = kCornerRadius) {
-    const Shape shape = make_cube_shape(a, 0.0, density);
-    UnitTemplate unit;
-    unit.name = "cube";
-    unit.mesh = shape.mesh;
-    unit.props = shape.props;
-    unit.convex_parts = {shape.mesh};
-    const double r = corner * a, c = 0.5 * a - r;
-    for (int i = 0; i < 8; ++i)
-        unit.clump.push_back({Eigen::Vector3d(i & 1 ? c : -c, i & 2 ? c : -c, i & 4 ? c : -c), r});
-    return unit;
-}
-
-Wall floor_plane(double half) {
-    Wall w;
-    w.name = "floor";
-    w.surface.vertices = {{-half, -half, 0}, {half, -half, 0}, {half, half, 0}, {-half, half, 0}};
-    w.surface.triangles = {{0, 1, 2}, {0, 2, 3}};
-    return w;
-}
-
-Material concrete(double restitution, double friction, double youngs = 5e9) {
-    Material m;
-    m.name = "concrete";
-    m.youngs_modulus = youngs;
-    m.poisson_ratio = 0.25;
-    m.restitution = restitution;
-    m.friction = friction;
-    return m;
-}
-
 class Conformance : public ::testing::TestWithParam<std::string> {
   protected:
     const Tolerances &tol() const { return tolerances(GetParam()); }
@@ -120,29 +81,15 @@ class Conformance : public ::testing::TestWithParam<std::string> {
         return make_engine(GetParam(), s);
     }
 
-    // Rests a unit-edge cube on the floor, turns gravity about +y to `angle`
-    // over 0.2 s (a slowly inclined floor: a sudden tilt would overshoot
-    // tangential springs), then holds it for `seconds`. Returns the slide
-    // along x and the rotation (deg) over the hold.
+    // The tilt experiment (engine_test_kit.h) on a resting unit-edge cube.
     std::pair<double, double> tilt_cube(double mu, double angle_deg, double seconds) const {
         auto engine = make(settings(concrete(0.3, mu)));
-        engine->add_template(conformance_cube(1.0, 2400.0, kTiltCornerRadius));
+        engine->add_template(test_cube(1.0, 2400.0, kTiltCornerRadius));
         BodyInit body;
         body.pose.position = Eigen::Vector3d(0, 0, 0.5 + 1e-4);
         engine->add_body(body);
         engine->add_wall(floor_plane(3.0));
-        engine->advance(0.3);
-        for (int k = 1; k <= 20; ++k) {
-            const double t = rad(angle_deg) * k / 20.0;
-            engine->set_gravity(Eigen::Vector3d(kG * std::sin(t), 0.0, -kG * std::cos(t)));
-            engine->advance(0.01);
-        }
-        const BodyState rest = engine->state(0);
-        engine->advance(seconds);
-        const BodyState end = engine->state(0);
-        const double turned =
-            2.0 * std::acos(std::min(1.0, std::abs(end.pose.orientation.dot(rest.pose.orientation))));
-        return {end.pose.position.x() - rest.pose.position.x(), deg(turned)};
+        return tilt_and_hold(*engine, angle_deg, seconds);
     }
 
     bool has_contacts() const { return caps().contacts != ContactKind::none; }
@@ -192,7 +139,7 @@ TEST(EngineRegistry, DescribesOneStylePerLineWithItsCapabilities) {
 
 TEST_P(Conformance, FreeFallMatchesAnalytic) {
     auto engine = make(settings(concrete(0.5, 0.5)));
-    engine->add_template(conformance_cube(0.5, 2400.0));
+    engine->add_template(test_cube(0.5, 2400.0, kCornerRadius));
     BodyInit body;
     body.pose.position = Eigen::Vector3d(0.1, -0.2, 6.0);
     body.velocity = Eigen::Vector3d(0.3, 0.0, 1.0);
@@ -212,7 +159,7 @@ TEST_P(Conformance, ExternalForceAndTorqueGiveFOverMAndTOverI) {
     EngineSettings es = settings(concrete(0.5, 0.5));
     es.gravity = Eigen::Vector3d::Zero();
     auto engine = make(es);
-    const UnitTemplate unit = conformance_cube(0.5, 2400.0);
+    const UnitTemplate unit = test_cube(0.5, 2400.0, kCornerRadius);
     engine->add_template(unit);
     BodyInit body;
     body.pose.position = Eigen::Vector3d(0, 0, 3);
@@ -261,7 +208,7 @@ TEST_P(Conformance, CubeTopplesAtTheGeometricAngleWhenFrictionHolds) {
 // mechanical energy may only fall.
 TEST_P(Conformance, NoEnergyGainOverManyStepsWithElasticContacts) {
     auto engine = make(settings(concrete(1.0, 0.0, 5e8)));
-    const UnitTemplate unit = conformance_cube(0.2, 2400.0);
+    const UnitTemplate unit = test_cube(0.2, 2400.0, kCornerRadius);
     engine->add_template(unit);
     BodyInit body;
     body.pose.position = Eigen::Vector3d(0, 0, 0.1 + 0.1);
@@ -295,7 +242,7 @@ TEST_P(Conformance, NoEnergyGainOverManyStepsWithElasticContacts) {
 TEST_P(Conformance, ClockKeepsTheSumOfNonCommensurateSpans) {
     for (const double ratio : {1.4, 1.6, 0.3, 2.5}) {
         auto engine = make(settings(concrete(0.5, 0.5)));
-        engine->add_template(conformance_cube(0.5, 2400.0));
+        engine->add_template(test_cube(0.5, 2400.0, kCornerRadius));
         BodyInit body;
         body.pose.position = Eigen::Vector3d(0, 0, 7);
         engine->add_body(body);
@@ -317,7 +264,7 @@ TEST_P(Conformance, ClockKeepsTheSumOfNonCommensurateSpans) {
     }
     for (unsigned seed : {1u, 2u, 3u}) {
         auto engine = make(settings(concrete(0.5, 0.5)));
-        engine->add_template(conformance_cube(0.5, 2400.0));
+        engine->add_template(test_cube(0.5, 2400.0, kCornerRadius));
         BodyInit body;
         body.pose.position = Eigen::Vector3d(0, 0, 7);
         engine->add_body(body);

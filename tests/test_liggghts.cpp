@@ -1,5 +1,6 @@
 // What is LIGGGHTS' own beyond the conformance suite (test_engines.cpp):
 // restitution of its contact laws and its time-step refusal.
+#include "engine_test_kit.h"
 #include "liggghts_engine.h"
 #include "time_step.h"
 
@@ -9,33 +10,9 @@
 #include <filesystem>
 
 using namespace armour;
+using namespace armour::test;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-
-// A cube of edge a whose clump is 8 corner spheres of radius r touching the
-// cube's faces: its support on a plane is the square of half-width a/2 - r,
-// so it topples at atan((a/2 - r) / (a/2)) and slides at atan(mu).
-UnitTemplate corner_cube(double a, double r, double density) {
-    const Shape shape = make_cube_shape(a, 0.0, density);
-    UnitTemplate unit;
-    unit.name = "corner_cube";
-    unit.mesh = shape.mesh;
-    unit.props = shape.props;
-    const double c = 0.5 * a - r;
-    for (int i = 0; i < 8; ++i)
-        unit.clump.push_back({Eigen::Vector3d(i & 1 ? c : -c, i & 2 ? c : -c, i & 4 ? c : -c), r});
-    return unit;
-}
-
-Wall floor_plane(double half) {
-    Wall w;
-    w.name = "floor";
-    w.surface.vertices = {{-half, -half, 0}, {half, -half, 0}, {half, half, 0}, {-half, half, 0}};
-    w.surface.triangles = {{0, 1, 2}, {0, 2, 3}};
-    return w;
-}
 
 EngineSettings settings_for(const std::string &test, Material material) {
     EngineSettings s;
@@ -44,16 +21,6 @@ EngineSettings settings_for(const std::string &test, Material material) {
     s.domain_min = Eigen::Vector3d(-3, -3, -1);
     s.domain_max = Eigen::Vector3d(3, 3, 8);
     return s;
-}
-
-Material concrete(double restitution, double friction, double youngs = 5e9) {
-    Material m;
-    m.name = "concrete";
-    m.youngs_modulus = youngs;
-    m.poisson_ratio = 0.25;
-    m.restitution = restitution;
-    m.friction = friction;
-    return m;
 }
 
 std::string current_test() {
@@ -125,7 +92,7 @@ TEST(LiggghtsEngine, BounceHeightRatioIsRestitutionSquared) {
 
 TEST(LiggghtsEngine, RefusesAnUnstableTimeStepUnlessForced) {
     EngineSettings settings = settings_for(current_test(), concrete(0.5, 0.5));
-    const UnitTemplate unit = corner_cube(0.5, 0.05, 2400.0);
+    const UnitTemplate unit = test_cube(0.5, 2400.0, 0.1);
     const TimeStepReport limit = compute_time_step(settings, {unit}, {0});
     EXPECT_NEAR(limit.used, kDefaultSafety * limit.limit, 1e-15);
     settings.time_step = 1.5 * limit.limit;
