@@ -1,7 +1,7 @@
 // The one interface between armour-fsi and any rigid-body engine.
 //
 // Description
-//     Everything the DEM driver and (later) the fluid coupler need from an
+//     Everything the DEM driver and the fluid coupler need from an
 //     engine: unit templates with exact mass properties, bodies, static walls,
 //     per-body external loads (held until changed), advance in time, and the
 //     state of each body in the unit's OWN frame (engines that work in a
@@ -9,15 +9,13 @@
 //     OpenFOAM type crosses this header. SI units throughout.
 //
 // Usage
-//     std::unique_ptr<RigidBodyEngine> engine = make_liggghts_engine(settings);
+//     std::unique_ptr<RigidBodyEngine> engine = make_engine("liggghts", settings); // engine_registry.h
 //     int cube = engine->add_template(unit);
 //     int body = engine->add_body({cube, pose, velocity, angular_velocity});
 //     engine->add_wall(wall);
 //     engine->set_external_load(body, force, torque);
 //     engine->advance(0.01);                       // s, any span: the clock keeps the remainder
 //     BodyState s = engine->state(body);
-//
-//     Engines are made by name through the registry (engine_registry.h).
 #pragma once
 
 #include "clump.h"
