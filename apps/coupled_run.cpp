@@ -1,12 +1,11 @@
 #include "coupled_run.h"
 
+#include "bodies_file.h"
 #include "body_recorder.h"
 #include "clump_io.h"
 #include "engine_registry.h"
 #include "output_folder.h"
 #include "stl_io.h"
-
-#include <hdf5.h>
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -249,88 +248,6 @@ void fill_tokens(const fs::path &case_dir, const std::map<std::string, std::stri
                              " (known: the tokens listed in docs/openfoam.md)");
         std::ofstream(entry.path(), std::ios::binary | std::ios::trunc) << text;
     }
-}
-
-// ---------------------------------------------------------------- reading bodies.h5
-
-struct Record {
-    std::vector<double> time;                                            // steps
-    std::vector<std::vector<Eigen::Vector3d>> position, force, velocity; // [step][body]
-    std::vector<std::vector<Eigen::Quaterniond>> orientation;
-    std::map<std::string, std::string> attributes;
-};
-
-std::vector<double> read_dataset(hid_t file, const std::string &name, std::vector<hsize_t> &dims) {
-    const hid_t set = H5Dopen2(file, name.c_str(), H5P_DEFAULT);
-    if (set < 0)
-        throw InputError("bodies.h5: no dataset " + name);
-    const hid_t space = H5Dget_space(set);
-    const int rank = H5Sget_simple_extent_ndims(space);
-    dims.assign(static_cast<std::size_t>(std::max(rank, 0)), 0);
-    H5Sget_simple_extent_dims(space, dims.data(), nullptr);
-    hsize_t count = 1;
-    for (const hsize_t d : dims)
-        count *= d;
-    std::vector<double> data(count);
-    const herr_t status =
-        count ? H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) : 0;
-    H5Sclose(space);
-    H5Dclose(set);
-    if (status < 0)
-        throw InputError("bodies.h5: cannot read " + name);
-    return data;
-}
-
-std::string read_attribute(hid_t file, const std::string &name) {
-    if (H5Aexists(file, name.c_str()) <= 0)
-        return "";
-    const hid_t attribute = H5Aopen(file, name.c_str(), H5P_DEFAULT);
-    const hid_t type = H5Aget_type(attribute);
-    std::string value(H5Tget_size(type), '\0');
-    H5Aread(attribute, type, value.data());
-    H5Tclose(type);
-    H5Aclose(attribute);
-    return value.c_str();
-}
-
-Record read_record(const fs::path &path) {
-    // The solver has exited; no lock is needed and none may be left over.
-    const hid_t access = H5Pcreate(H5P_FILE_ACCESS);
-    H5Pset_file_locking(access, false, true);
-    const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, access);
-    H5Pclose(access);
-    if (file < 0)
-        throw InputError(path.string() + ": cannot open the plugin's record");
-    Record r;
-    try {
-        std::vector<hsize_t> dt, dp, dq, df, dv;
-        r.time = read_dataset(file, "/time", dt);
-        const std::vector<double> p = read_dataset(file, "/bodies/position", dp);
-        const std::vector<double> q = read_dataset(file, "/bodies/orientation", dq);
-        const std::vector<double> f = read_dataset(file, "/bodies/external_force", df);
-        const std::vector<double> v = read_dataset(file, "/bodies/velocity", dv);
-        const std::size_t steps = r.time.size(), bodies = dp.size() == 3 ? dp[1] : 0;
-        for (std::size_t s = 0; s < steps; ++s) {
-            r.position.emplace_back();
-            r.force.emplace_back();
-            r.orientation.emplace_back();
-            r.velocity.emplace_back();
-            for (std::size_t b = 0; b < bodies; ++b) {
-                const std::size_t i3 = 3 * (s * bodies + b), i4 = 4 * (s * bodies + b);
-                r.position.back().emplace_back(p[i3], p[i3 + 1], p[i3 + 2]);
-                r.force.back().emplace_back(f[i3], f[i3 + 1], f[i3 + 2]);
-                r.velocity.back().emplace_back(v[i3], v[i3 + 1], v[i3 + 2]);
-                r.orientation.back().emplace_back(q[i4], q[i4 + 1], q[i4 + 2], q[i4 + 3]);
-            }
-        }
-        for (const char *key : {"engine", "dt"})
-            r.attributes[key] = read_attribute(file, key);
-    } catch (...) {
-        H5Fclose(file);
-        throw;
-    }
-    H5Fclose(file);
-    return r;
 }
 
 int count_solver_steps(const std::string &log) {
@@ -754,8 +671,8 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
     const double wall_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-    const Record rec = read_record(out / "bodies.h5");
-    if (rec.time.empty() || rec.position.back().size() != setup.bodies.size())
+    const BodiesFile rec = read_bodies_file((out / "bodies.h5").string());
+    if (rec.time.empty() || rec.bodies() != setup.bodies.size())
         throw InputError(out.string() + "/bodies.h5: the plugin recorded no steps");
     const std::string solver_log = read_file(case_dir / "log.interFoam");
 
@@ -769,10 +686,10 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
         {"command", "run"},
         {"coupled", true},
         {"scene", scene.name},
-        {"engine", rec.attributes.at("engine").empty() ? scene.engine : rec.attributes.at("engine")},
+        {"engine", rec.attribute("engine").empty() ? scene.engine : rec.attribute("engine")},
         {"spheres_per_unit", spheres},
         {"units", static_cast<int>(setup.bodies.size())},
-        {"dt", std::atof(rec.attributes.at("dt").c_str())},
+        {"dt", std::atof(rec.attribute("dt").c_str())},
         {"simulated_seconds", simulated},
         {"wall_seconds", wall_seconds},
         {"wall_seconds_per_simulated_second", wall_seconds / std::max(simulated, 1e-300)},
@@ -809,11 +726,11 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
     std::string result;
     if (scene.analysis == "buoyancy") {
         const double expected = f.fluid_density * g * volume;
-        const double fz = rec.force.back()[0].dot(up);
+        const double fz = rec.external_force.back()[0].dot(up);
         summary["buoyancy_force"] = fz;
         summary["buoyancy_expected"] = expected;
         summary["buoyancy_error"] = std::abs(fz - expected) / expected;
-        summary["buoyancy_lateral"] = (rec.force.back()[0] - fz * up).norm();
+        summary["buoyancy_lateral"] = (rec.external_force.back()[0] - fz * up).norm();
         char text[96];
         std::snprintf(text, sizeof text, "buoyancy %.5g N vs rho g V = %.5g N", fz, expected);
         result = text;
@@ -926,7 +843,7 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
                 const Eigen::Vector3d d = rec.position[s][b] - rec.position[0][b];
                 max_disp[b] = std::max(max_disp[b], d.norm());
                 top_speed = std::max(top_speed, rec.velocity[s][b].norm());
-                peak_fx[b] = std::max(peak_fx[b], rec.force[s][b].x());
+                peak_fx[b] = std::max(peak_fx[b], rec.external_force[s][b].x());
                 if (first_move < 0.0 && d.x() > 0.05 * Dn) // downstream, not the settling drop
                     first_move = rec.time[s];
                 outside = outside || ((rec.position[s][b].array() < lo.array()).any() ||
