@@ -1,10 +1,14 @@
 // The analysis room: read_bodies_file returns exactly what BodyRecorder
-// wrote, and names the file and the reason when it cannot.
+// wrote, and names the file and the reason when it cannot; the registry of
+// analyses holds exactly the kinds a scene may name.
+#include "analysis.h"
 #include "bodies_file.h"
 #include "body_recorder.h"
+#include "scene_keys.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -115,6 +119,44 @@ TEST_F(Analysis, BodiesFileNamesTheFileWhenItIsNoRecord) {
     const std::string text = (dir_ / "text.h5").string();
     std::ofstream(text) << "not HDF5\n";
     EXPECT_THROW(read_bodies_file(text), InputError);
+}
+
+TEST(AnalysisRegistry, HoldsExactlyTheKindsASceneMayName) {
+    std::vector<std::string> scene_kinds;
+    for (const auto &key : armour::analysis_keys())
+        if (std::string(key.name) == "kind")
+            scene_kinds = key.choices;
+    ASSERT_FALSE(scene_kinds.empty());
+    std::vector<std::string> registered;
+    for (const auto &style : armour::analysis_styles())
+        registered.push_back(style.name);
+    EXPECT_EQ(registered, scene_kinds);
+}
+
+TEST(AnalysisRegistry, EveryStyleDescribesItselfAndItsAnalyticKeysAreHeadlines) {
+    for (const auto &style : armour::analysis_styles()) {
+        EXPECT_FALSE(style.summary.empty()) << style.name;
+        EXPECT_TRUE(style.make) << style.name;
+        for (const auto &[key, analytic] : style.analytic_keys) {
+            EXPECT_NE(std::find(style.headline_keys.begin(), style.headline_keys.end(), key),
+                      style.headline_keys.end())
+                << style.name << ": " << key;
+            EXPECT_NE(key, analytic) << style.name;
+        }
+    }
+    EXPECT_TRUE(armour::analysis_style("tilt").turns_gravity);
+    EXPECT_FALSE(armour::analysis_style("slope").turns_gravity);
+}
+
+TEST(AnalysisRegistry, RefusesAnUnknownKindNamingTheKey) {
+    try {
+        armour::analysis_style("damage");
+        FAIL() << "an unknown kind was found";
+    } catch (const InputError &e) {
+        const std::string what = e.what();
+        EXPECT_EQ(what.rfind("analysis.kind: 'damage'", 0), 0u) << what;
+        EXPECT_NE(what.find("slope_waves"), std::string::npos) << what;
+    }
 }
 
 } // namespace
