@@ -7,8 +7,10 @@
 #include "scene_keys.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -157,6 +159,78 @@ TEST(AnalysisRegistry, RefusesAnUnknownKindNamingTheKey) {
         EXPECT_EQ(what.rfind("analysis.kind: 'damage'", 0), 0u) << what;
         EXPECT_NE(what.find("slope_waves"), std::string::npos) << what;
     }
+}
+
+// A one-sphere unit (radius 0.05 m) whose centre starts 0.55 m above a
+// floor at z = 0: its lowest point falls 0.5 m.
+struct BallScene {
+    armour::Scene scene;
+    armour::SceneSetup setup;
+    BallScene() {
+        armour::SceneWall floor;
+        floor.type = "plane";
+        scene.walls.push_back(floor);
+        armour::UnitTemplate ball;
+        ball.clump = {{Eigen::Vector3d::Zero(), 0.05}};
+        setup.units.push_back(ball);
+        setup.unit_Dn.push_back(0.2);
+        armour::BodyInit body;
+        body.pose.position = Eigen::Vector3d(0, 0, 0.55);
+        setup.bodies.push_back(body);
+    }
+};
+
+BodyState ball_at(double z, double vz, double contact) {
+    BodyState s;
+    s.pose.position = Eigen::Vector3d(0, 0, z);
+    s.velocity = Eigen::Vector3d(0, 0, vz);
+    s.contact_force = Eigen::Vector3d(0, 0, contact);
+    return s;
+}
+
+TEST(AnalysisRegistry, BounceReportsTheFirstReboundOverTheDrop) {
+    BallScene b;
+    b.scene.analysis = "bounce";
+    const auto analysis = armour::make_analysis({b.scene, b.setup, "", ""});
+    // Falls, touches, rises to a lowest point 0.2 m above the floor, falls
+    // back; a later, higher value must not count (the first rebound only).
+    const std::vector<BodyState> path = {ball_at(0.55, 0, 0),    ball_at(0.30, -2, 0), ball_at(0.05, -3, 0),
+                                         ball_at(0.049, 0, 50),  ball_at(0.10, 2, 0),  ball_at(0.25, 0.1, 0),
+                                         ball_at(0.24, -0.5, 0), ball_at(0.05, 0, 40), ball_at(0.40, 1, 0)};
+    for (std::size_t k = 0; k < path.size(); ++k)
+        analysis->sample(0.1 * static_cast<double>(k), {path[k]});
+    EXPECT_FALSE(analysis->finished());
+    nlohmann::json summary = nlohmann::json::object();
+    analysis->write(summary);
+    EXPECT_DOUBLE_EQ(summary["drop_height"].get<double>(), 0.5);
+    EXPECT_DOUBLE_EQ(summary["rebound_height"].get<double>(), 0.2);
+    EXPECT_DOUBLE_EQ(summary["bounce_height_ratio"].get<double>(), 0.4);
+    EXPECT_DOUBLE_EQ(summary["restitution_effective"].get<double>(), std::sqrt(0.4));
+}
+
+TEST(AnalysisRegistry, StillReportsTheLargestDriftOfAnyUnit) {
+    BallScene b;
+    b.scene.analysis = "still";
+    b.scene.fluid = armour::SceneFluid();
+    b.setup.bodies.push_back(b.setup.bodies[0]);
+    const auto analysis = armour::make_analysis({b.scene, b.setup, "", ""});
+    BodyState first = ball_at(0.55, 0, 0), second = ball_at(1.0, 0, 0);
+    analysis->sample(0.0, {first, second});
+    second.pose.position.x() += 0.003; // drifts 3 mm, then back
+    analysis->sample(0.1, {first, second});
+    second.pose.position.x() -= 0.003;
+    first.pose.position.z() -= 0.001;
+    analysis->sample(0.2, {first, second});
+    nlohmann::json summary = nlohmann::json::object();
+    EXPECT_NE(analysis->write(summary).find("max displacement"), std::string::npos);
+    EXPECT_NEAR(summary["max_displacement"].get<double>(), 0.003, 1e-15);
+    EXPECT_NEAR(summary["max_displacement_over_Dn"].get<double>(), 0.015, 1e-15);
+}
+
+TEST(AnalysisRegistry, CoupledKindsRefuseADryScene) {
+    BallScene b;
+    b.scene.analysis = "still";
+    EXPECT_THROW(armour::make_analysis({b.scene, b.setup, "", ""}), InputError);
 }
 
 } // namespace
