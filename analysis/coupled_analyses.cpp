@@ -20,7 +20,8 @@ using nlohmann::json;
 // Keeps every sampled step: these figures are taken over the whole record.
 class History : public Analysis {
   public:
-    explicit History(const AnalysisContext &c) : scene_(c.scene), setup_(c.setup), c_(c) {
+    explicit History(const AnalysisContext &c)
+        : scene_(c.scene), setup_(c.setup), out_dir_(c.out_dir), case_dir_(c.case_dir) {
         if (!c.scene.fluid)
             throw InputError(c.scene.file + ": analysis.kind: '" + c.scene.analysis +
                              "' needs a [fluid] table");
@@ -41,7 +42,7 @@ class History : public Analysis {
 
     const Scene &scene_;
     const SceneSetup &setup_;
-    AnalysisContext c_;
+    const fs::path out_dir_, case_dir_;
     std::vector<double> time_;                   // s
     std::vector<std::vector<BodyState>> states_; // [step][body]
 };
@@ -99,7 +100,7 @@ class FloatAnalysis : public History {
         const double z0 = lo.dot(up);
         std::map<double, double> outside_water; // time -> W_out, from the plugin
         {
-            std::ifstream csv(fs::path(c_.out_dir) / "fluid.csv");
+            std::ifstream csv(out_dir_ / "fluid.csv");
             std::string line;
             std::getline(csv, line);
             for (double t, w, wo; std::getline(csv, line);)
@@ -289,7 +290,7 @@ class WaveAnalysis : public UnitMotionAnalysis {
     std::string flow(json &summary, const Motion &m) const override {
         const SceneFluid &f = fluid();
         const std::size_t n = time_.size(), bodies = setup_.bodies.size();
-        const auto gauge = gauge_series(c_.case_dir);
+        const auto gauge = gauge_series(case_dir_);
         double crest = -HUGE_VAL, arrival = -1.0;
         for (const auto &[t, z] : gauge) {
             crest = std::max(crest, z - f.water_level);
