@@ -4,6 +4,7 @@
 // limit for both engines, and writes summary.json, charts and a report.
 #include "compare_command.h"
 
+#include "analysis.h"
 #include "engine_registry.h"
 #include "output_folder.h"
 #include "run_command.h"
@@ -24,18 +25,6 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
-
-// The scene's headline figures (summary keys) and, where the physics gives
-// one, the analytic value of the first.
-std::vector<std::string> headline_keys(const std::string &analysis) {
-    if (analysis == "tilt")
-        return {"slide_angle_deg", "topple_angle_deg"};
-    if (analysis == "slope")
-        return {"packing_density", "porosity"};
-    if (analysis == "bounce")
-        return {"bounce_height_ratio"};
-    return {};
-}
 
 struct Run {
     Run(std::string label_, std::string engine_, int spheres_, std::uint64_t seed_, double dt_factor_ = 0.0)
@@ -143,8 +132,9 @@ int run_compare(const CompareRequest &r) {
     // Its measure is the energy gain, which needs fixed gravity: a tilt scene
     // turns gravity, so it gets no sweep (the report says so).
     std::vector<Run> sweep;
+    const AnalysisStyle &analysis = analysis_style(scene.analysis);
     const std::vector<std::string> sweep_engines =
-        scene.analysis == "tilt" ? std::vector<std::string>{} : engines;
+        analysis.turns_gravity ? std::vector<std::string>{} : engines;
     for (const std::string &engine : sweep_engines) {
         double limit = 0.0;
         for (const Run &run : results)
@@ -172,7 +162,7 @@ int run_compare(const CompareRequest &r) {
     }
 
     // Errors against the exact runs (mean over seeds) and against analytic values.
-    const std::vector<std::string> keys = headline_keys(scene.analysis);
+    const std::vector<std::string> &keys = analysis.headline_keys;
     json exact_mean = json::object();
     for (const auto &key : keys) {
         double sum = 0.0;
@@ -207,11 +197,11 @@ int run_compare(const CompareRequest &r) {
             const double x = exact_mean[key].is_number() ? exact_mean[key].get<double>() : std::nan("");
             vs_exact[key] = std::isfinite(v) && std::isfinite(x) ? json(v - x) : json(nullptr);
         }
-        if (scene.analysis == "tilt" && s.contains("slide_angle_analytic_deg")) {
-            const double v = number_or_nan(s, "slide_angle_deg");
-            vs_analytic["slide_angle_deg"] =
-                std::isfinite(v) ? json(v - s["slide_angle_analytic_deg"].get<double>()) : json(nullptr);
-        }
+        for (const auto &[key, analytic_key] : analysis.analytic_keys)
+            if (s.contains(analytic_key)) {
+                const double v = number_or_nan(s, key);
+                vs_analytic[key] = std::isfinite(v) ? json(v - s[analytic_key].get<double>()) : json(nullptr);
+            }
         e["figures"] = figures;
         e["error_vs_exact"] = vs_exact;
         e["error_vs_analytic"] = vs_analytic;

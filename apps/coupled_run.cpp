@@ -1,12 +1,12 @@
 #include "coupled_run.h"
 
+#include "analysis.h"
+#include "bodies_file.h"
 #include "body_recorder.h"
 #include "clump_io.h"
 #include "engine_registry.h"
 #include "output_folder.h"
 #include "stl_io.h"
-
-#include <hdf5.h>
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -251,88 +251,6 @@ void fill_tokens(const fs::path &case_dir, const std::map<std::string, std::stri
     }
 }
 
-// ---------------------------------------------------------------- reading bodies.h5
-
-struct Record {
-    std::vector<double> time;                                            // steps
-    std::vector<std::vector<Eigen::Vector3d>> position, force, velocity; // [step][body]
-    std::vector<std::vector<Eigen::Quaterniond>> orientation;
-    std::map<std::string, std::string> attributes;
-};
-
-std::vector<double> read_dataset(hid_t file, const std::string &name, std::vector<hsize_t> &dims) {
-    const hid_t set = H5Dopen2(file, name.c_str(), H5P_DEFAULT);
-    if (set < 0)
-        throw InputError("bodies.h5: no dataset " + name);
-    const hid_t space = H5Dget_space(set);
-    const int rank = H5Sget_simple_extent_ndims(space);
-    dims.assign(static_cast<std::size_t>(std::max(rank, 0)), 0);
-    H5Sget_simple_extent_dims(space, dims.data(), nullptr);
-    hsize_t count = 1;
-    for (const hsize_t d : dims)
-        count *= d;
-    std::vector<double> data(count);
-    const herr_t status =
-        count ? H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) : 0;
-    H5Sclose(space);
-    H5Dclose(set);
-    if (status < 0)
-        throw InputError("bodies.h5: cannot read " + name);
-    return data;
-}
-
-std::string read_attribute(hid_t file, const std::string &name) {
-    if (H5Aexists(file, name.c_str()) <= 0)
-        return "";
-    const hid_t attribute = H5Aopen(file, name.c_str(), H5P_DEFAULT);
-    const hid_t type = H5Aget_type(attribute);
-    std::string value(H5Tget_size(type), '\0');
-    H5Aread(attribute, type, value.data());
-    H5Tclose(type);
-    H5Aclose(attribute);
-    return value.c_str();
-}
-
-Record read_record(const fs::path &path) {
-    // The solver has exited; no lock is needed and none may be left over.
-    const hid_t access = H5Pcreate(H5P_FILE_ACCESS);
-    H5Pset_file_locking(access, false, true);
-    const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, access);
-    H5Pclose(access);
-    if (file < 0)
-        throw InputError(path.string() + ": cannot open the plugin's record");
-    Record r;
-    try {
-        std::vector<hsize_t> dt, dp, dq, df, dv;
-        r.time = read_dataset(file, "/time", dt);
-        const std::vector<double> p = read_dataset(file, "/bodies/position", dp);
-        const std::vector<double> q = read_dataset(file, "/bodies/orientation", dq);
-        const std::vector<double> f = read_dataset(file, "/bodies/external_force", df);
-        const std::vector<double> v = read_dataset(file, "/bodies/velocity", dv);
-        const std::size_t steps = r.time.size(), bodies = dp.size() == 3 ? dp[1] : 0;
-        for (std::size_t s = 0; s < steps; ++s) {
-            r.position.emplace_back();
-            r.force.emplace_back();
-            r.orientation.emplace_back();
-            r.velocity.emplace_back();
-            for (std::size_t b = 0; b < bodies; ++b) {
-                const std::size_t i3 = 3 * (s * bodies + b), i4 = 4 * (s * bodies + b);
-                r.position.back().emplace_back(p[i3], p[i3 + 1], p[i3 + 2]);
-                r.force.back().emplace_back(f[i3], f[i3 + 1], f[i3 + 2]);
-                r.velocity.back().emplace_back(v[i3], v[i3 + 1], v[i3 + 2]);
-                r.orientation.back().emplace_back(q[i4], q[i4 + 1], q[i4 + 2], q[i4 + 3]);
-            }
-        }
-        for (const char *key : {"engine", "dt"})
-            r.attributes[key] = read_attribute(file, key);
-    } catch (...) {
-        H5Fclose(file);
-        throw;
-    }
-    H5Fclose(file);
-    return r;
-}
-
 int count_solver_steps(const std::string &log) {
     int n = 0;
     for (std::size_t at = log.find("\nTime = "); at != std::string::npos; at = log.find("\nTime = ", at + 1))
@@ -425,25 +343,6 @@ std::string waves_library(const std::string &plugin) {
     if (const char *env = std::getenv("ARMOUR_WAVES_LIB"); env && *env)
         return env;
     return (fs::path(plugin).parent_path() / "waves" / "libarmourWaves.so").string();
-}
-
-// Surface height at the first gauge of an armourWaveGauges function object
-// (postProcessing/gauges/<start>/surfaceElevation.dat): (time, z) rows.
-std::vector<std::pair<double, double>> gauge_series(const fs::path &case_dir) {
-    std::vector<std::pair<double, double>> rows;
-    std::error_code ec;
-    for (const auto &e : fs::recursive_directory_iterator(case_dir / "postProcessing", ec)) {
-        if (e.path().filename() != "surfaceElevation.dat")
-            continue;
-        std::ifstream in(e.path());
-        for (std::string line; std::getline(in, line);) {
-            double t = 0.0, z = 0.0;
-            if (!line.empty() && line[0] != '#' && std::sscanf(line.c_str(), "%lf %lf", &t, &z) == 2)
-                rows.emplace_back(t, z);
-        }
-        break;
-    }
-    return rows;
 }
 
 // nCells of the mesh as written (the note in constant/polyMesh/owner): templates
@@ -754,8 +653,8 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
     const double wall_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-    const Record rec = read_record(out / "bodies.h5");
-    if (rec.time.empty() || rec.position.back().size() != setup.bodies.size())
+    const BodiesFile rec = read_bodies_file((out / "bodies.h5").string());
+    if (rec.time.empty() || rec.bodies() != setup.bodies.size())
         throw InputError(out.string() + "/bodies.h5: the plugin recorded no steps");
     const std::string solver_log = read_file(case_dir / "log.interFoam");
 
@@ -769,10 +668,10 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
         {"command", "run"},
         {"coupled", true},
         {"scene", scene.name},
-        {"engine", rec.attributes.at("engine").empty() ? scene.engine : rec.attributes.at("engine")},
+        {"engine", rec.attribute("engine").empty() ? scene.engine : rec.attribute("engine")},
         {"spheres_per_unit", spheres},
         {"units", static_cast<int>(setup.bodies.size())},
-        {"dt", std::atof(rec.attributes.at("dt").c_str())},
+        {"dt", std::atof(rec.attribute("dt").c_str())},
         {"simulated_seconds", simulated},
         {"wall_seconds", wall_seconds},
         {"wall_seconds_per_simulated_second", wall_seconds / std::max(simulated, 1e-300)},
@@ -802,205 +701,22 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
           {"solver_log", "case/log.interFoam"}}},
         {"si_units", {{"dt", "s"}, {"wall_seconds", "s"}, {"lengths", "m"}, {"forces", "N"}}}};
 
-    const double g = scene.gravity.norm();
-    const Eigen::Vector3d up = -scene.gravity.normalized();
-    const int unit0 = setup.bodies[0].unit;
-    const double volume = setup.units[unit0].props.volume;
-    std::string result;
-    if (scene.analysis == "buoyancy") {
-        const double expected = f.fluid_density * g * volume;
-        const double fz = rec.force.back()[0].dot(up);
-        summary["buoyancy_force"] = fz;
-        summary["buoyancy_expected"] = expected;
-        summary["buoyancy_error"] = std::abs(fz - expected) / expected;
-        summary["buoyancy_lateral"] = (rec.force.back()[0] - fz * up).norm();
-        char text[96];
-        std::snprintf(text, sizeof text, "buoyancy %.5g N vs rho g V = %.5g N", fz, expected);
-        result = text;
-    } else if (scene.analysis == "float") {
-        // The free surface rises as the cube sinks into the small tank, and
-        // falls by what seeps into the cube's ramp cells. With the waterline
-        // on the cube's sides (A_b = a^2, upright), the water outside the
-        // cube's mask, W_out = A (h - z0) - A_b (h - z_b), gives the level;
-        // the plugin measures W_out (fluid.csv). Without it: the cube's
-        // interior keeps the water it started with (W_in), so
-        // W_out = A (h0 - z0) - W_in.
-        const double a = scene.units[static_cast<std::size_t>(unit0)].size;
-        const double rho_u = scene.units[static_cast<std::size_t>(unit0)].density;
-        const double tank = (hi.x() - lo.x()) * (hi.y() - lo.y()), area = a * a;
-        const auto bottom = [&](std::size_t step) {
-            double low = HUGE_VAL;
-            for (const auto &v : setup.units[unit0].mesh.vertices)
-                low = std::min(low, (rec.position[step][0] + rec.orientation[step][0] * v).dot(up));
-            return low;
-        };
-        const double h0 = f.water_level, zb0 = bottom(0);
-        const double inside = area * std::clamp(h0 - zb0, 0.0, a);
-        const std::size_t n = rec.time.size();
-        const double z0 = lo.dot(up);
-        std::map<double, double> outside_water; // time -> W_out, from the plugin
-        {
-            std::ifstream csv(out / "fluid.csv");
-            std::string line;
-            std::getline(csv, line);
-            for (double t, w, wo; std::getline(csv, line);)
-                if (std::sscanf(line.c_str(), "%lf,%lf,%lf", &t, &w, &wo) == 3)
-                    outside_water[t] = wo;
+    // The analysis samples the record as a dry run's analysis samples the engine.
+    const std::unique_ptr<Analysis> analysis = make_analysis({scene, setup, out.string(), case_dir.string()});
+    std::vector<BodyState> states(rec.bodies());
+    for (std::size_t s = 0; s < rec.steps(); ++s) {
+        for (std::size_t b = 0; b < rec.bodies(); ++b) {
+            states[b].pose.position = rec.position[s][b];
+            states[b].pose.orientation = rec.orientation[s][b];
+            states[b].velocity = rec.velocity[s][b];
+            states[b].angular_velocity = rec.angular_velocity[s][b];
+            states[b].external_force = rec.external_force[s][b];
+            states[b].external_torque = rec.external_torque[s][b];
+            states[b].contact_force = rec.contact_force[s][b];
         }
-        std::vector<double> zb(n), drafts(n);
-        int measured = 0;
-        for (std::size_t s = 0; s < n; ++s) {
-            zb[s] = bottom(s);
-            double w_out = tank * (h0 - z0) - inside;
-            const auto it = outside_water.lower_bound(rec.time[s] - 1e-9);
-            if (it != outside_water.end() &&
-                std::abs(it->first - rec.time[s]) <= 1e-9 * std::max(1.0, it->first)) {
-                w_out = it->second;
-                ++measured;
-            }
-            drafts[s] = (w_out + tank * z0 - area * zb[s]) / (tank - area) - zb[s];
-        }
-        summary["water_level_from"] = measured > 0 ? "fluid.csv: water volume outside the units, measured"
-                                                   : "volume balance: the cube keeps its initial contents";
-        // Heave is lightly damped (radiated waves reflect in a small tank),
-        // so the equilibrium is taken as the mean over whole heave periods:
-        // from the first to the last crest of the bottom height in the second
-        // half of the run; without two crests, the last value.
-        std::vector<std::size_t> crests;
-        for (std::size_t s = 1; s + 1 < n; ++s)
-            if (rec.time[s] >= 0.5 * simulated && zb[s] > zb[s - 1] && zb[s] >= zb[s + 1])
-                crests.push_back(s);
-        double draft = drafts.back();
-        if (crests.size() >= 2) {
-            double sum = 0.0;
-            for (std::size_t s = crests.front(); s < crests.back(); ++s)
-                sum += drafts[s];
-            draft = sum / static_cast<double>(crests.back() - crests.front());
-            summary["draft_averaged_from"] = rec.time[crests.front()];
-            summary["draft_averaged_to"] = rec.time[crests.back()];
-            summary["heave_periods_averaged"] = crests.size() - 1;
-        }
-        const double expected = rho_u / f.fluid_density * a;
-        double zmin = HUGE_VAL, zmax = -HUGE_VAL;
-        for (std::size_t s = 0; s < n; ++s)
-            if (rec.time[s] >= 0.8 * simulated) {
-                zmin = std::min(zmin, zb[s]);
-                zmax = std::max(zmax, zb[s]);
-            }
-        summary["draft"] = draft;
-        summary["draft_expected"] = expected;
-        summary["draft_error"] = std::abs(draft - expected) / expected;
-        summary["draft_final"] = drafts.back();
-        summary["water_level_final"] = drafts.back() + zb.back();
-        summary["heave_amplitude_last_fifth"] = 0.5 * (zmax - zmin);
-        char text[96];
-        std::snprintf(text, sizeof text, "draft %.5g m vs %.5g m", draft, expected);
-        result = text;
-    } else if (scene.analysis == "still") {
-        double worst = 0.0, ratio = 0.0;
-        for (std::size_t s = 0; s < rec.time.size(); ++s)
-            for (std::size_t b = 0; b < setup.bodies.size(); ++b) {
-                const double d = (rec.position[s][b] - rec.position[0][b]).norm();
-                worst = std::max(worst, d);
-                ratio = std::max(ratio, d / setup.unit_Dn[setup.bodies[b].unit]);
-            }
-        summary["max_displacement"] = worst;
-        summary["max_displacement_over_Dn"] = ratio;
-        char text[96];
-        std::snprintf(text, sizeof text, "max displacement %.3g m (%.3g %% of Dn)", worst, 100 * ratio);
-        result = text;
-    } else if (scene.analysis == "dambreak" || scene.analysis == "platform" ||
-               scene.analysis == "slope_waves") {
-        // Per unit over the record: displacement from the start (largest and
-        // last), speed, streamwise (+x) fluid load; a unit whose centre leaves
-        // the mesh box is counted.
-        const std::size_t n = rec.time.size(), bodies = setup.bodies.size();
-        json units = json::array();
-        std::vector<double> peak_fx(bodies, -HUGE_VAL), max_disp(bodies, 0.0), final_disp(bodies, 0.0);
-        int left = 0;
-        for (std::size_t b = 0; b < bodies; ++b) {
-            const double Dn = setup.unit_Dn[setup.bodies[b].unit];
-            double top_speed = 0.0, first_move = -1.0;
-            bool outside = false;
-            for (std::size_t s = 0; s < n; ++s) {
-                const Eigen::Vector3d d = rec.position[s][b] - rec.position[0][b];
-                max_disp[b] = std::max(max_disp[b], d.norm());
-                top_speed = std::max(top_speed, rec.velocity[s][b].norm());
-                peak_fx[b] = std::max(peak_fx[b], rec.force[s][b].x());
-                if (first_move < 0.0 && d.x() > 0.05 * Dn) // downstream, not the settling drop
-                    first_move = rec.time[s];
-                outside = outside || ((rec.position[s][b].array() < lo.array()).any() ||
-                                      (rec.position[s][b].array() > hi.array()).any());
-            }
-            const Eigen::Vector3d last = rec.position[n - 1][b] - rec.position[0][b];
-            final_disp[b] = last.norm();
-            left += outside ? 1 : 0;
-            units.push_back({{"body", b},
-                             {"initial_position",
-                              {rec.position[0][b].x(), rec.position[0][b].y(), rec.position[0][b].z()}},
-                             {"max_displacement", max_disp[b]},
-                             {"final_displacement", final_disp[b]},
-                             {"final_displacement_x", last.x()},
-                             {"max_speed", top_speed},
-                             {"peak_force_x", peak_fx[b]},
-                             {"first_move_time", first_move >= 0.0 ? json(first_move) : json(nullptr)},
-                             {"moved", max_disp[b] > 0.1 * Dn},
-                             {"displaced", final_disp[b] > Dn},
-                             {"Dn", Dn},
-                             {"left_domain", outside}});
-        }
-        summary["per_unit"] = units;
-        summary["units_left_domain"] = left;
-        summary["max_displacement"] = *std::max_element(max_disp.begin(), max_disp.end());
-        char text[160];
-        if (scene.analysis == "dambreak") {
-            // First and second in the flow: by initial x (the water column
-            // is upstream, at smaller x).
-            std::vector<std::size_t> order(bodies);
-            for (std::size_t b = 0; b < bodies; ++b)
-                order[b] = b;
-            std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) {
-                return rec.position[0][i].x() < rec.position[0][j].x();
-            });
-            summary["first_body"] = order[0];
-            summary["second_body"] = order[1];
-            summary["force_difference"] = peak_fx[order[0]] - peak_fx[order[1]];
-            std::snprintf(text, sizeof text,
-                          "peak F_x %.3g N (first) vs %.3g N (second), max displacement %.3g / %.3g m",
-                          peak_fx[order[0]], peak_fx[order[1]], max_disp[order[0]], max_disp[order[1]]);
-        } else {
-            // The wave at the first gauge: crest above the still level, and
-            // when it first exceeded 5 % of the inlet's wave height.
-            const auto gauge = gauge_series(case_dir);
-            double crest = -HUGE_VAL, arrival = -1.0;
-            for (const auto &[t, z] : gauge) {
-                crest = std::max(crest, z - f.water_level);
-                if (arrival < 0.0 && f.wave_height > 0.0 && z - f.water_level > 0.05 * f.wave_height)
-                    arrival = t;
-            }
-            summary["wave_height_inlet"] = f.wave_height;
-            summary["wave_height_gauge"] = gauge.empty() ? json(nullptr) : json(crest);
-            summary["wave_arrival_gauge"] = arrival >= 0.0 ? json(arrival) : json(nullptr);
-            // What moved before the wave reached the gauge (settling of the
-            // placed units in the still water).
-            double before = 0.0;
-            for (std::size_t s = 0; s < n && arrival >= 0.0 && rec.time[s] <= arrival; ++s)
-                for (std::size_t b = 0; b < bodies; ++b)
-                    before = std::max(before, (rec.position[s][b] - rec.position[0][b]).norm());
-            summary["max_displacement_before_wave"] = before;
-            int moved = 0, displaced = 0;
-            for (std::size_t b = 0; b < bodies; ++b) {
-                const double Dn = setup.unit_Dn[setup.bodies[b].unit];
-                moved += max_disp[b] > 0.1 * Dn ? 1 : 0;
-                displaced += final_disp[b] > Dn ? 1 : 0;
-            }
-            summary["units_moved"] = moved;         // largest displacement > 0.1 Dn
-            summary["units_displaced"] = displaced; // final displacement > Dn
-            std::snprintf(text, sizeof text, "wave %.3g m at the gauge, %d of %zu units moved, %d displaced",
-                          gauge.empty() ? 0.0 : crest, moved, bodies, displaced);
-        }
-        result = text;
+        analysis->sample(rec.time[s], states);
     }
+    const std::string result = analysis->write(summary);
     // Cost and limits as run: interFoam's wall time per step, the largest
     // Courant numbers it printed (the step adapts to max_courant from the
     // previous step's flux, so it may overshoot; more than 10 % is reported),

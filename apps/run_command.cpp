@@ -1,11 +1,11 @@
 // Runs a scene: engine set-up, time loop with progress, recording, analysis.
 #include "run_command.h"
 
+#include "analysis.h"
 #include "body_recorder.h"
 #include "clump_io.h"
 #include "coupled_run.h"
 #include "engine_registry.h"
-#include "materials.h"
 #include "mesh.h"
 #include "output_folder.h"
 #include "scene_setup.h"
@@ -29,8 +29,6 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 class Progress {
   public:
@@ -62,123 +60,6 @@ class Progress {
     double next_report_ = 0.1;
     std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
-
-double rotation_deg(const Eigen::Quaterniond &a, const Eigen::Quaterniond &b) {
-    return 2.0 * std::acos(std::min(1.0, std::abs(a.dot(b)))) * 180.0 / kPi;
-}
-
-json nullable(const std::optional<double> &v) {
-    return v ? json(*v) : json(nullptr);
-}
-
-// Tilt: gravity turns about +y; the angle at which the unit first slides
-// (moves along x by 1 % of Dn without turning) and first topples (turns by
-// 10 degrees), each taken back to the last sample at which it was still at
-// rest: slower than 5 mm/s (soft contacts creep at ~0.1-1 mm/s well before
-// sliding) or turning slower than 0.05 rad/s.
-struct TiltAnalysis {
-    double rate = 0.0, max = 0.0, Dn = 1.0;
-    std::optional<Pose> reference;
-    double last_still_slide = 0.0, last_still_turn = 0.0;
-    std::optional<double> slide, topple;
-    bool finished = false; // slid a whole Dn or turned past 45 degrees: nothing more to learn
-
-    double angle(double t) const { return std::min(rate * t, max); }
-    void sample(double t, const BodyState &s) {
-        const double theta = angle(t);
-        if (!reference) {
-            // The reference is the unit at rest on the plane: a unit placed
-            // above it lands and rocks for a while, and that motion is not sliding.
-            if (theta >= 1.0 && s.velocity.norm() < 5e-3 && s.angular_velocity.norm() < 5e-2)
-                reference = s.pose;
-            return;
-        }
-        const double moved = s.pose.position.x() - reference->position.x();
-        const double turned = rotation_deg(s.pose.orientation, reference->orientation);
-        if (std::abs(s.velocity.x()) < 5e-3 && !slide)
-            last_still_slide = theta;
-        if (s.angular_velocity.norm() < 5e-2 && !topple)
-            last_still_turn = theta;
-        if (!slide && moved > 0.01 * Dn && turned < 5.0)
-            slide = last_still_slide;
-        if (!topple && turned > 10.0)
-            topple = last_still_turn;
-        finished = (slide && moved > Dn) || (topple && turned > 45.0);
-    }
-};
-
-struct BounceAnalysis {
-    double floor_z = 0.0, drop = 0.0, lowest_offset = 0.0;
-    bool contact = false, rising = false;
-    double apex = -HUGE_VAL;
-    bool done = false;
-    void sample(const BodyState &s) {
-        if (done)
-            return;
-        const double bottom = s.pose.position.z() - lowest_offset - floor_z;
-        if (s.contact_force.norm() > 0.0)
-            contact = true;
-        if (contact && s.contact_force.norm() == 0.0 && s.velocity.z() > 0.0)
-            rising = true;
-        if (rising) {
-            apex = std::max(apex, bottom);
-            if (s.velocity.z() < 0.0)
-                done = true;
-        }
-    }
-};
-
-// Armour layer on the first slope wall, from the final poses. With the units'
-// centres in slope coordinates (s up the slope, y across), the covered area is
-// A = (s_max - s_min + Dn) (y_max - y_min + Dn), capped at the slope's width;
-// packing density = N Dn^2 / A (the coastal-engineering definition, units per
-// Dn^2 of slope) and porosity = 1 - N V / (A t), with t the layer thickness:
-// the highest sphere surface above the slope plane.
-json slope_layer_figures(const Scene &scene, const SceneSetup &setup, const std::vector<BodyState> &states) {
-    const SceneWall *slope = nullptr;
-    for (const auto &w : scene.walls)
-        if (w.type == "slope") {
-            slope = &w;
-            break;
-        }
-    if (!slope)
-        return {{"units", states.size()}, {"packing_density", nullptr}, {"porosity", nullptr}};
-    const double alpha = std::atan2(1.0, slope->cot);
-    const Eigen::Vector3d origin(slope->toe_x, 0.0, slope->floor_z);
-    const Eigen::Vector3d along(std::cos(alpha), 0.0, std::sin(alpha)),
-        normal(-std::sin(alpha), 0.0, std::cos(alpha));
-    double s_min = HUGE_VAL, s_max = -HUGE_VAL, y_min = HUGE_VAL, y_max = -HUGE_VAL, top = 0.0, volume = 0.0,
-           Dn = 0.0;
-    int n = 0;
-    for (std::size_t i = 0; i < states.size(); ++i) {
-        const int unit = setup.bodies[i].unit;
-        const Eigen::Vector3d c = states[i].pose.position - origin;
-        if (c.dot(along) < -setup.unit_Dn[unit] || c.dot(normal) < -setup.unit_Dn[unit])
-            continue; // not on the slope (e.g. fell off seaward)
-        ++n;
-        s_min = std::min(s_min, c.dot(along));
-        s_max = std::max(s_max, c.dot(along));
-        y_min = std::min(y_min, c.y());
-        y_max = std::max(y_max, c.y());
-        volume += setup.units[unit].props.volume;
-        Dn = std::max(Dn, setup.unit_Dn[unit]);
-        for (const auto &sph : setup.units[unit].clump) {
-            const Eigen::Vector3d p =
-                states[i].pose.position + states[i].pose.orientation * sph.center - origin;
-            top = std::max(top, p.dot(normal) + sph.radius);
-        }
-    }
-    if (n == 0)
-        return {{"units", 0}, {"packing_density", nullptr}, {"porosity", nullptr}};
-    const double area = (s_max - s_min + Dn) * std::min(slope->width, y_max - y_min + Dn);
-    return {{"units", n},
-            {"units_total", states.size()},
-            {"packing_density", n * Dn * Dn / area},
-            {"porosity", 1.0 - volume / (area * top)},
-            {"layer_area", area},
-            {"layer_thickness", top},
-            {"slope_angle_deg", alpha * 180.0 / kPi}};
-}
 
 // Still water for a settle run (the coupled scene's, at rest): each unit
 // carries the buoyancy of its part below the surface, so the layer settles
@@ -275,63 +156,33 @@ int run_dem(OutputFolder &folder, const Scene &scene, SceneSetup &setup, std::ve
         recorder.append(engine->time(), states);
     };
 
-    TiltAnalysis tilt;
-    tilt.rate = scene.tilt_rate;
-    tilt.max = scene.tilt_max;
-    tilt.Dn = setup.unit_Dn[setup.bodies[0].unit];
-    BounceAnalysis bounce;
-    if (scene.analysis == "bounce") {
-        const BodyInit &b = setup.bodies[0];
-        double low = HUGE_VAL;
-        for (const auto &s : setup.units[b.unit].clump)
-            low = std::min(low, (b.pose.orientation * s.center).z() - s.radius);
-        bounce.lowest_offset = -low;
-        for (const auto &w : scene.walls)
-            if (w.type == "plane") {
-                bounce.floor_z = w.point.z();
-                break;
-            }
-        bounce.drop = b.pose.position.z() + low - bounce.floor_z;
-    }
-    const double g = scene.gravity.norm();
-    auto set_tilt = [&](double t) {
-        const double theta = tilt.angle(t) * kPi / 180.0;
-        engine->set_gravity(Eigen::Vector3d(g * std::sin(theta), 0.0, -g * std::cos(theta)));
-    };
-
+    const std::unique_ptr<Analysis> analysis = make_analysis({scene, setup, out.string(), ""});
     Progress progress(scene.duration, terminal);
-    if (scene.analysis == "tilt")
-        set_tilt(0.0);
+    analysis->before_advance(0.0, *engine);
     record();
+    analysis->sample(engine->time(), states);
     const long outputs = std::lround(std::ceil(scene.duration / scene.output_interval - 1e-9));
     for (long k = 1; k <= outputs; ++k) {
         const double target = std::min(scene.duration, static_cast<double>(k) * scene.output_interval);
-        if (scene.analysis == "tilt") {
-            // Gravity turns in increments of at most 0.1 degree.
-            const double piece = std::max(dt.used, 0.1 / std::max(scene.tilt_rate, 1e-12));
-            while (engine->time() < target - 0.5 * dt.used) {
-                set_tilt(engine->time());
-                engine->advance_to(std::min(engine->time() + piece, target));
-            }
-        } else if (water) {
-            while (engine->time() < target - 0.5 * dt.used) {
+        do {
+            // The analysis (tilt turns gravity) and the still water's buoyancy
+            // both act between engine advances of at most their own span.
+            double span = analysis->before_advance(engine->time(), *engine);
+            if (water) {
                 for (int i = 0; i < engine->body_count(); ++i)
                     set_buoyancy(*engine, i, setup.units[setup.bodies[i].unit], engine->state(i), *water,
                                  scene.gravity);
-                engine->advance_to(std::min(engine->time() + std::max(water->update_interval, dt.used), target));
+                span = std::min(span, water->update_interval);
             }
-        } else {
-            engine->advance_to(target);
-        }
+            engine->advance_to(std::min(engine->time() + std::max(span, dt.used), target));
+        } while (engine->time() < target - 0.5 * dt.used);
         record();
-        if (scene.analysis == "tilt")
-            tilt.sample(engine->time(), states[0]);
-        if (tilt.finished) {
-            std::fprintf(stderr, "run: tilt test decided at t = %.3f s, stopping\n", engine->time());
+        analysis->sample(engine->time(), states);
+        if (analysis->finished()) {
+            std::fprintf(stderr, "run: %s test decided at t = %.3f s, stopping\n", scene.analysis.c_str(),
+                         engine->time());
             break;
         }
-        if (scene.analysis == "bounce")
-            bounce.sample(states[0]);
         progress.update(engine->time());
     }
     recorder.close();
@@ -365,24 +216,7 @@ int run_dem(OutputFolder &folder, const Scene &scene, SceneSetup &setup, std::ve
         {"files", {{"bodies", "bodies.h5"}, {"paraview", "bodies.xdmf"}, {"scene", "scene.resolved.toml"}}},
         {"si_units",
          {{"dt", "s"}, {"wall_seconds", "s"}, {"angles", "deg"}, {"lengths", "m"}, {"energy", "J"}}}};
-    if (scene.analysis == "tilt") {
-        const int wall_material = setup.walls.empty() ? 0 : setup.walls[0].material;
-        const double mu = pair_value(setup.settings, setup.units[setup.bodies[0].unit].material,
-                                     wall_material, &Material::friction, &MaterialPair::friction);
-        summary["mu"] = mu;
-        summary["slide_angle_deg"] = nullable(tilt.slide);
-        summary["topple_angle_deg"] = nullable(tilt.topple);
-        summary["slide_angle_analytic_deg"] = std::atan(mu) * 180.0 / kPi;
-    }
-    if (scene.analysis == "bounce") {
-        summary["drop_height"] = bounce.drop;
-        summary["rebound_height"] = bounce.done ? json(bounce.apex) : json(nullptr);
-        summary["bounce_height_ratio"] = bounce.done ? json(bounce.apex / bounce.drop) : json(nullptr);
-        summary["restitution_effective"] =
-            bounce.done ? json(std::sqrt(std::max(0.0, bounce.apex / bounce.drop))) : json(nullptr);
-    }
-    if (scene.analysis == "slope")
-        summary.update(slope_layer_figures(scene, setup, states));
+    analysis->write(summary);
     write_text_file(folder.claim("summary.json"), summary.dump(2) + "\n");
     std::printf("%s: %d units, %ld steps of %.3g s, %.1f s wall -> %s\n", scene.name.c_str(),
                 static_cast<int>(setup.bodies.size()), engine->steps(), dt.used, wall_seconds, out.c_str());

@@ -13,6 +13,9 @@
 # scripts/build.sh), --out DIR, -h/--help. The older form `script OUT_DIR
 # [VALUE...]` still works: OUT_DIR, then the script's options in order.
 
+# The chart scripts read results through analysis/armour_results.py.
+export PYTHONPATH="$root/analysis${PYTHONPATH:+:$PYTHONPATH}"
+
 # The build output of a CMake target, relative to the build folder.
 bench_target_file() {
   case "$1" in

@@ -48,7 +48,7 @@ done
 
 /usr/bin/python3 - "$out" <<'PY'
 import json, sys
-import h5py
+from armour_results import read_bodies, read_summary
 import numpy as np
 import matplotlib
 matplotlib.use("Agg")
@@ -59,10 +59,9 @@ models = ["hulls", "hulls_p1000", "clumps8", "clumps27"]
 Dn = 0.06  # m, the scene's cube
 runs = {}
 for m in models:
-    s = json.load(open(f"{out}/{m}/summary.json"))
-    with h5py.File(f"{out}/{m}/bodies.h5", "r") as f:
-        t = f["time"][:]
-        p = f["bodies/position"][:]
+    s = read_summary(f"{out}/{m}")
+    b = read_bodies(f"{out}/{m}")
+    t, p = b.time, b.position
     disp = np.linalg.norm(p - p[0], axis=2)
     onset = [float(t[np.argmax(disp[:, k] > 0.1 * Dn)]) if (disp[:, k] > 0.1 * Dn).any() else None
              for k in range(p.shape[1])]

@@ -41,7 +41,7 @@ for r in $ratios; do
 done
 /usr/bin/python3 - "$out" "$ca" "$ratios" <<'PY'
 import json, math, os, sys
-import h5py
+from armour_results import read_bodies
 import numpy as np
 import matplotlib
 matplotlib.use("Agg")
@@ -60,10 +60,8 @@ for r in ratios:
         if row["exit_status"] != 0 or not os.path.exists(f"{d}/summary.json"):
             why.append("solver stopped (exit %d)" % row["exit_status"])
         if os.path.exists(f"{d}/bodies.h5"):
-            with h5py.File(f"{d}/bodies.h5", "r") as f:
-                t = f["time"][:]
-                z = f["bodies/position"][:, 0, 2]
-                v = f["bodies/velocity"][:, 0, 2]
+            b = read_bodies(d)
+            t, z, v = b.time, b.position[:, 0, 2], b.velocity[:, 0, 2]
             if not (np.all(np.isfinite(z)) and np.all(np.isfinite(v))):
                 why.append("NaN")
             ok = np.isfinite(z) & np.isfinite(v)

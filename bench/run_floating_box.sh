@@ -57,7 +57,7 @@ stock_case stock
 
 $py - "$out" <<'PY'
 import json, sys
-import h5py
+from armour_results import read_bodies, read_summary
 import numpy as np
 import matplotlib
 matplotlib.use("Agg")
@@ -77,11 +77,9 @@ def stock(name):
                     "wall": float(open(f"{out}/{name}/wall_seconds").read()),
             "status": int(open(f"{out}/{name}/status").read())}
 runs = {"stock": stock("stock")}
-with h5py.File(f"{out}/ours/bodies.h5", "r") as f:
-    t = f["time"][:]
-    p = f["bodies/position"][:, 0, :]
-    q = f["bodies/orientation"][:, 0, :]  # w x y z
-s = json.load(open(f"{out}/ours/summary.json"))
+b = read_bodies(f"{out}/ours")
+t, p, q = b.time, b.position[:, 0, :], b.orientation[:, 0, :]  # q: w x y z
+s = read_summary(f"{out}/ours")
 # rotation about y only: q = (cos th/2, 0, sin th/2, 0)
 runs["ours"] = {"t": t, "x": p[:, 0], "y": p[:, 1], "z": p[:, 2],
                 "pitch": 2 * np.arctan2(q[:, 2], q[:, 0]), "wall": s["wall_seconds"]}

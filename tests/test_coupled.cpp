@@ -2,10 +2,10 @@
 // scenes/ with [fluid] run interFoam with the plugin, and their summaries are
 // checked against the physics they claim. Needs Debian's openfoam (the
 // target exists only then).
+#include "bodies_file.h"
 #include "cli.h"
 
 #include <gtest/gtest.h>
-#include <hdf5.h>
 #include <nlohmann/json.hpp>
 
 #include <cmath>
@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -61,22 +62,20 @@ void clean(const Outcome &r) {
         fs::remove_all(r.out.parent_path());
 }
 
-// /bodies/position of a run's record: [step][body][xyz] flattened, and the step count.
-std::vector<double> positions(const fs::path &h5, std::size_t &steps, const char *field = "position") {
+// /bodies/<field> of a run's record (a vector series: position, velocity,
+// external_force, contact_force...): [step][body][xyz] flattened, and the step count.
+std::vector<double> positions(const fs::path &h5, std::size_t &steps, const std::string &field = "position") {
+    const armour::BodiesFile rec = armour::read_bodies_file(h5.string());
+    const std::map<std::string, const armour::BodiesFile::Series<Eigen::Vector3d> *> series = {
+        {"position", &rec.position},
+        {"velocity", &rec.velocity},
+        {"external_force", &rec.external_force},
+        {"contact_force", &rec.contact_force}};
+    steps = rec.steps();
     std::vector<double> data;
-    const hid_t file = H5Fopen(h5.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-    if (file < 0)
-        return data;
-    const hid_t set = H5Dopen2(file, (std::string("/bodies/") + field).c_str(), H5P_DEFAULT);
-    const hid_t space = H5Dget_space(set);
-    hsize_t dims[3] = {0, 0, 0};
-    H5Sget_simple_extent_dims(space, dims, nullptr);
-    steps = dims[0];
-    data.resize(dims[0] * dims[1] * dims[2]);
-    H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data());
-    H5Sclose(space);
-    H5Dclose(set);
-    H5Fclose(file);
+    for (const auto &step : *series.at(field))
+        for (const Eigen::Vector3d &v : step)
+            data.insert(data.end(), {v.x(), v.y(), v.z()});
     return data;
 }
 
@@ -280,10 +279,9 @@ TEST(CoupledRun, LiggghtsSerialAndTwoRanksAgree) {
     // the squeeze film under the sinking clump makes the exchange unstable at
     // t = 0.28 s once the engine keeps the fluid's clock (the old clock
     // dropped 0.3 % of every fluid step, which happened to damp it).
-    const std::vector<std::string> sinking = {"--set", "run.engine=\"liggghts\"",
-                                              "--set", "body.0.position=[0.0, 0.0, 0.17]",
-                                              "--set", "run.duration=0.4",
-                                              "--set", "fluid.penalty=1e4"};
+    const std::vector<std::string> sinking = {
+        "--set", "run.engine=\"liggghts\"", "--set", "body.0.position=[0.0, 0.0, 0.17]",
+        "--set", "run.duration=0.4",        "--set", "fluid.penalty=1e4"};
     const Outcome serial = armour_run("still_water_cube.toml", "lig_np1", sinking);
     ASSERT_EQ(serial.status, 0) << serial.err;
     std::vector<std::string> two = sinking;

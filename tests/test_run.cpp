@@ -1,5 +1,6 @@
 // `armour run`: a scene runs end to end, and every bad scene stops with one
 // error line before anything is written (or, mid-run, keeps what was written).
+#include "bodies_file.h"
 #include "cli.h"
 #include "clump_evaluator.h"
 #include "output_folder_rule.h"
@@ -7,7 +8,6 @@
 #include "scene_setup.h"
 
 #include <gtest/gtest.h>
-#include <hdf5.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -88,14 +88,9 @@ TEST_F(Run, WritesSummaryTrajectoriesAndResolvedScene) {
     // Steps times the step is the simulated time (to one step).
     EXPECT_NEAR(s["steps"].get<double>() * s["dt"].get<double>(), 0.05, s["dt"].get<double>());
     // Six records (t = 0 .. 0.05 s) of a cube in free fall: z(t) = 0.3 - g t^2 / 2.
-    const hid_t file = H5Fopen((out() / "bodies.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-    ASSERT_GE(file, 0);
-    const hid_t set = H5Dopen2(file, "/bodies/position", H5P_DEFAULT);
-    std::vector<double> position(6 * 3);
-    ASSERT_GE(H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, position.data()), 0);
-    H5Dclose(set);
-    H5Fclose(file);
-    EXPECT_NEAR(position[5 * 3 + 2], 0.3 - 0.5 * 9.81 * 0.05 * 0.05, 2e-4);
+    const armour::BodiesFile rec = armour::read_bodies_file((out() / "bodies.h5").string());
+    ASSERT_EQ(rec.steps(), 6u);
+    EXPECT_NEAR(rec.position[5][0].z(), 0.3 - 0.5 * 9.81 * 0.05 * 0.05, 2e-4);
 }
 
 TEST_F(Run, SetOverridesAScalar) {
@@ -135,16 +130,8 @@ TEST_F(Run, ABodyLeavingTheDomainStopsTheRunAndKeepsItsRecord) {
     EXPECT_EQ(run(scene_text("[0, 0, 0.3]", "velocity = [0, 0, 30]\n")), 2);
     EXPECT_NE(error_line().find("left the domain"), std::string::npos) << err_;
     EXPECT_FALSE(fs::exists(out() / "summary.json"));
-    const hid_t file = H5Fopen((out() / "bodies.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-    ASSERT_GE(file, 0) << "the trajectory file must be closed cleanly";
-    const hid_t set = H5Dopen2(file, "/time", H5P_DEFAULT);
-    const hid_t space = H5Dget_space(set);
-    hsize_t steps = 0;
-    H5Sget_simple_extent_dims(space, &steps, nullptr);
-    EXPECT_GE(steps, 1u);
-    H5Sclose(space);
-    H5Dclose(set);
-    H5Fclose(file);
+    // The trajectory file must be closed cleanly: read_bodies_file throws otherwise.
+    EXPECT_GE(armour::read_bodies_file((out() / "bodies.h5").string()).steps(), 1u);
 }
 
 TEST_F(Run, TiltSceneSlidesAtTheFrictionAngle) {
@@ -170,38 +157,17 @@ namespace {
 struct Rest {
     double wander = 0.0, tilt_min = HUGE_VAL, tilt_max = 0.0;
 };
-// All values of dataset `name` of an HDF5 file, in storage order (for
-// /bodies/position: record, body, xyz); empty when the file cannot be opened.
-std::vector<double> read_dataset(const fs::path &h5, const char *name) {
-    const hid_t file = H5Fopen(h5.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-    if (file < 0)
-        return {};
-    const hid_t set = H5Dopen2(file, name, H5P_DEFAULT);
-    const hid_t space = H5Dget_space(set);
-    hsize_t dims[3] = {1, 1, 1};
-    H5Sget_simple_extent_dims(space, dims, nullptr);
-    const int rank = H5Sget_simple_extent_ndims(space);
-    std::size_t count = 1;
-    for (int d = 0; d < rank; ++d)
-        count *= dims[d];
-    std::vector<double> v(count);
-    H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
-    H5Sclose(space);
-    H5Dclose(set);
-    H5Fclose(file);
-    return v;
-}
-
 Rest rest_after(const fs::path &h5, double t_from) {
-    const std::vector<double> t = read_dataset(h5, "/time"), p = read_dataset(h5, "/bodies/position"),
-                              q = read_dataset(h5, "/bodies/orientation");
+    const armour::BodiesFile rec = armour::read_bodies_file(h5.string());
     Rest r;
     std::size_t from = 0;
-    while (from < t.size() && t[from] < t_from)
+    while (from < rec.steps() && rec.time[from] < t_from)
         ++from;
-    for (std::size_t i = from; i < t.size(); ++i) {
-        r.wander = std::max(r.wander, std::hypot(p[3 * i] - p[3 * from], p[3 * i + 1] - p[3 * from + 1]));
-        const double tilt = 2.0 * std::acos(std::min(1.0, std::abs(q[4 * i]))) * 57.29577951308232; // deg
+    for (std::size_t i = from; i < rec.steps(); ++i) {
+        const Eigen::Vector3d p = rec.position[i][0], p0 = rec.position[from][0];
+        r.wander = std::max(r.wander, std::hypot(p.x() - p0.x(), p.y() - p0.y()));
+        const double tilt =
+            2.0 * std::acos(std::min(1.0, std::abs(rec.orientation[i][0].w()))) * 57.29577951308232; // deg
         r.tilt_min = std::min(r.tilt_min, tilt);
         r.tilt_max = std::max(r.tilt_max, tilt);
     }
@@ -264,8 +230,8 @@ TEST_F(Run, LiggghtsTakesWallsReachingPastTheDomain) {
     ASSERT_EQ(run(text), 0) << err_;
     std::ifstream in(out() / "summary.json");
     ASSERT_TRUE(in);
-    const std::vector<double> p = read_dataset(out() / "bodies.h5", "/bodies/position");
-    ASSERT_FALSE(p.empty());
+    const armour::BodiesFile rec = armour::read_bodies_file((out() / "bodies.h5").string());
+    ASSERT_GT(rec.steps(), 0u);
     double reach = 0.0; // m, lowest sphere point below the centre, as placed
     std::ifstream spheres(out() / "units" / "cube" / "clump.spheres");
     for (std::string line; std::getline(spheres, line);) {
@@ -277,7 +243,7 @@ TEST_F(Run, LiggghtsTakesWallsReachingPastTheDomain) {
         reach = std::max(reach, r - z);
     }
     EXPECT_GT(reach, 0.1);
-    EXPECT_NEAR(p[p.size() - 1], reach, 1e-3);
+    EXPECT_NEAR(rec.position.back().back().z(), reach, 1e-3);
 }
 
 TEST_F(Run, RestGapTellsTheFacesAClumpRocksOn) {

@@ -1,0 +1,80 @@
+"""Reading armour run results for chart scripts: bodies.h5 and summary.json.
+
+Description
+    The Python twin of analysis/bodies_file.h. read_bodies loads a run's
+    rigid-body record (results/body_recorder.h writes it) into numpy arrays,
+    SI units as written:
+        time              (steps,)            s
+        unit              (bodies,)           -, index of the body's unit shape
+        position          (steps, bodies, 3)  m, centre of mass, world frame
+        orientation       (steps, bodies, 4)  -, quaternion w x y z, unit frame -> world
+        velocity          (steps, bodies, 3)  m/s
+        angular_velocity  (steps, bodies, 3)  rad/s, world frame
+        external_force, contact_force (steps, bodies, 3)  N
+        external_torque   (steps, bodies, 3)  N m
+    and the root string attributes (scene, engine, dt, ...) as `attributes`.
+    The file is opened read-only without HDF5's file lock, so a record that a
+    running solver still holds can be read.
+
+Usage
+    import sys; sys.path.insert(0, "<repo>/analysis")   # bench/common.sh sets PYTHONPATH
+    from armour_results import read_bodies, read_summary
+    b = read_bodies("out/run")                # a run folder, or the bodies.h5 itself
+    z = b.position[:, 0, 2]                   # heave of body 0, m
+    s = read_summary("out/run")               # summary.json as a dict
+"""
+import json
+import os
+
+import h5py
+import numpy as np
+
+SERIES = ("position", "orientation", "velocity", "angular_velocity", "external_force", "external_torque",
+          "contact_force")
+
+
+class Bodies:
+    """One run's bodies.h5 in memory (see the module's description for fields and units)."""
+
+    def __init__(self, path):
+        self.path = path
+        with h5py.File(path, "r", locking=False) as f:
+            self.time = f["time"][:]
+            self.unit = f["bodies/unit"][:]
+            for name in SERIES:
+                setattr(self, name, f["bodies/" + name][:])
+            self.attributes = {k: (v.decode() if isinstance(v, bytes) else str(v)) for k, v in f.attrs.items()}
+
+    @property
+    def steps(self):
+        return len(self.time)
+
+    @property
+    def bodies(self):
+        return len(self.unit)
+
+
+def _in_run(path, name):
+    return os.path.join(path, name) if os.path.isdir(path) else path
+
+
+def read_bodies(path):
+    """A run folder's bodies.h5 (or the file named) as Bodies."""
+    return Bodies(_in_run(path, "bodies.h5"))
+
+
+def read_summary(path):
+    """A run folder's summary.json (or the file named) as a dict."""
+    with open(_in_run(path, "summary.json")) as f:
+        return json.load(f)
+
+
+if __name__ == "__main__":
+    # A quick look: python3 analysis/armour_results.py RUN_DIR
+    import sys
+
+    b = read_bodies(sys.argv[1])
+    print(f"{b.path}: {b.steps} steps, {b.bodies} bodies, t = {b.time[0] if b.steps else 0:g}.."
+          f"{b.time[-1] if b.steps else 0:g} s, attributes {sorted(b.attributes)}")
+    if b.steps:
+        print("last position of body 0 (m):", np.array2string(b.position[-1, 0]))

@@ -1,0 +1,236 @@
+// The analysis room: read_bodies_file returns exactly what BodyRecorder
+// wrote, and names the file and the reason when it cannot; the registry of
+// analyses holds exactly the kinds a scene may name.
+#include "analysis.h"
+#include "bodies_file.h"
+#include "body_recorder.h"
+#include "scene_keys.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+namespace fs = std::filesystem;
+using armour::BodiesFile;
+using armour::BodyRecorder;
+using armour::BodyState;
+using armour::InputError;
+using armour::read_bodies_file;
+using armour::RecorderUnit;
+using armour::TriangleMesh;
+
+namespace {
+
+TriangleMesh tetrahedron() {
+    TriangleMesh m;
+    m.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    m.triangles = {{{0, 2, 1}}, {{0, 1, 3}}, {{0, 3, 2}}, {{1, 2, 3}}};
+    return m;
+}
+
+const std::vector<int> kBodyUnit = {0, 1, 0};
+
+// Distinct values per step, body and field, so a transposed or shifted read cannot pass.
+BodyState state_of(int step, int body) {
+    BodyState s;
+    const double t = 0.25 * step + 0.1;
+    s.pose.position = Eigen::Vector3d(body + t, -2.0 * body + 0.5 * t, 3.0 + t * t);
+    s.pose.orientation =
+        Eigen::Quaterniond(Eigen::AngleAxisd(0.7 * t + body, Eigen::Vector3d(1, 2, 3).normalized()));
+    s.velocity = Eigen::Vector3d(10 + body, 20 + step, 30);
+    s.angular_velocity = Eigen::Vector3d(-1.0 * body, 0.5 * step, 0.25);
+    s.external_force = Eigen::Vector3d(100.0 * body, 7, -step);
+    s.external_torque = Eigen::Vector3d(1, 2, 3) * (step + 1);
+    s.contact_force = Eigen::Vector3d(0, 0, 9.81 * (body + 1) * step);
+    return s;
+}
+
+class Analysis : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() / (std::string("armour_analysis_") +
+                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+    fs::path dir_;
+};
+
+TEST_F(Analysis, BodiesFileReadsBackEveryRecordedValue) {
+    const std::string h5 = (dir_ / "bodies.h5").string();
+    constexpr int kSteps = 4;
+    {
+        BodyRecorder recorder(h5, (dir_ / "bodies.xdmf").string(),
+                              {{"tetra", tetrahedron()}, {"other", tetrahedron()}}, kBodyUnit,
+                              {{"scene", "three bodies"}, {"engine", "free"}, {"dt", "1e-4"}});
+        for (int step = 0; step < kSteps; ++step) {
+            std::vector<BodyState> states;
+            for (int body = 0; body < 3; ++body)
+                states.push_back(state_of(step, body));
+            recorder.append(0.25 * step + 0.1, states);
+        }
+    }
+    const BodiesFile rec = read_bodies_file(h5);
+    ASSERT_EQ(rec.steps(), static_cast<std::size_t>(kSteps));
+    ASSERT_EQ(rec.bodies(), 3u);
+    EXPECT_EQ(rec.unit, kBodyUnit);
+    EXPECT_EQ(rec.attribute("scene"), "three bodies");
+    EXPECT_EQ(rec.attribute("engine"), "free");
+    EXPECT_EQ(rec.attribute("dt"), "1e-4");
+    EXPECT_EQ(rec.attribute("units_system"), "SI");
+    EXPECT_EQ(rec.attribute("no such attribute"), "");
+    for (int step = 0; step < kSteps; ++step) {
+        const auto s = static_cast<std::size_t>(step);
+        EXPECT_EQ(rec.time[s], 0.25 * step + 0.1); // doubles are stored as doubles: exact
+        for (int body = 0; body < 3; ++body) {
+            const auto b = static_cast<std::size_t>(body);
+            const BodyState expected = state_of(step, body);
+            EXPECT_EQ(rec.position[s][b], expected.pose.position);
+            EXPECT_EQ(rec.orientation[s][b].coeffs(), expected.pose.orientation.coeffs());
+            EXPECT_EQ(rec.velocity[s][b], expected.velocity);
+            EXPECT_EQ(rec.angular_velocity[s][b], expected.angular_velocity);
+            EXPECT_EQ(rec.external_force[s][b], expected.external_force);
+            EXPECT_EQ(rec.external_torque[s][b], expected.external_torque);
+            EXPECT_EQ(rec.contact_force[s][b], expected.contact_force);
+        }
+    }
+}
+
+TEST_F(Analysis, BodiesFileReadsARecordWithoutSteps) {
+    const std::string h5 = (dir_ / "bodies.h5").string();
+    BodyRecorder(h5, (dir_ / "bodies.xdmf").string(), {{"tetra", tetrahedron()}}, {0}, {}).close();
+    const BodiesFile rec = read_bodies_file(h5);
+    EXPECT_EQ(rec.steps(), 0u);
+    EXPECT_EQ(rec.bodies(), 1u);
+    EXPECT_TRUE(rec.position.empty());
+}
+
+TEST_F(Analysis, BodiesFileNamesTheFileWhenItIsNoRecord) {
+    const std::string missing = (dir_ / "missing.h5").string();
+    try {
+        read_bodies_file(missing);
+        FAIL() << "a missing file was read";
+    } catch (const InputError &e) {
+        EXPECT_EQ(std::string(e.what()).rfind(missing + ": ", 0), 0u) << e.what();
+    }
+    const std::string text = (dir_ / "text.h5").string();
+    std::ofstream(text) << "not HDF5\n";
+    EXPECT_THROW(read_bodies_file(text), InputError);
+}
+
+TEST(AnalysisRegistry, HoldsExactlyTheKindsASceneMayName) {
+    std::vector<std::string> scene_kinds;
+    for (const auto &key : armour::analysis_keys())
+        if (std::string(key.name) == "kind")
+            scene_kinds = key.choices;
+    ASSERT_FALSE(scene_kinds.empty());
+    std::vector<std::string> registered;
+    for (const auto &style : armour::analysis_styles())
+        registered.push_back(style.name);
+    EXPECT_EQ(registered, scene_kinds);
+}
+
+TEST(AnalysisRegistry, EveryStyleDescribesItselfAndItsAnalyticKeysAreHeadlines) {
+    for (const auto &style : armour::analysis_styles()) {
+        EXPECT_FALSE(style.summary.empty()) << style.name;
+        EXPECT_TRUE(style.make) << style.name;
+        for (const auto &[key, analytic] : style.analytic_keys) {
+            EXPECT_NE(std::find(style.headline_keys.begin(), style.headline_keys.end(), key),
+                      style.headline_keys.end())
+                << style.name << ": " << key;
+            EXPECT_NE(key, analytic) << style.name;
+        }
+    }
+    EXPECT_TRUE(armour::analysis_style("tilt").turns_gravity);
+    EXPECT_FALSE(armour::analysis_style("slope").turns_gravity);
+}
+
+TEST(AnalysisRegistry, RefusesAnUnknownKindNamingTheKey) {
+    try {
+        armour::analysis_style("damage");
+        FAIL() << "an unknown kind was found";
+    } catch (const InputError &e) {
+        const std::string what = e.what();
+        EXPECT_EQ(what.rfind("analysis.kind: 'damage'", 0), 0u) << what;
+        EXPECT_NE(what.find("slope_waves"), std::string::npos) << what;
+    }
+}
+
+// A one-sphere unit (radius 0.05 m) whose centre starts 0.55 m above a
+// floor at z = 0: its lowest point falls 0.5 m.
+struct BallScene {
+    armour::Scene scene;
+    armour::SceneSetup setup;
+    BallScene() {
+        armour::SceneWall floor;
+        floor.type = "plane";
+        scene.walls.push_back(floor);
+        armour::UnitTemplate ball;
+        ball.clump = {{Eigen::Vector3d::Zero(), 0.05}};
+        setup.units.push_back(ball);
+        setup.unit_Dn.push_back(0.2);
+        armour::BodyInit body;
+        body.pose.position = Eigen::Vector3d(0, 0, 0.55);
+        setup.bodies.push_back(body);
+    }
+};
+
+BodyState ball_at(double z, double vz, double contact) {
+    BodyState s;
+    s.pose.position = Eigen::Vector3d(0, 0, z);
+    s.velocity = Eigen::Vector3d(0, 0, vz);
+    s.contact_force = Eigen::Vector3d(0, 0, contact);
+    return s;
+}
+
+TEST(AnalysisRegistry, BounceReportsTheFirstReboundOverTheDrop) {
+    BallScene b;
+    b.scene.analysis = "bounce";
+    const auto analysis = armour::make_analysis({b.scene, b.setup, "", ""});
+    // Falls, touches, rises to a lowest point 0.2 m above the floor, falls
+    // back; a later, higher value must not count (the first rebound only).
+    const std::vector<BodyState> path = {ball_at(0.55, 0, 0),    ball_at(0.30, -2, 0), ball_at(0.05, -3, 0),
+                                         ball_at(0.049, 0, 50),  ball_at(0.10, 2, 0),  ball_at(0.25, 0.1, 0),
+                                         ball_at(0.24, -0.5, 0), ball_at(0.05, 0, 40), ball_at(0.40, 1, 0)};
+    for (std::size_t k = 0; k < path.size(); ++k)
+        analysis->sample(0.1 * static_cast<double>(k), {path[k]});
+    EXPECT_FALSE(analysis->finished());
+    nlohmann::json summary = nlohmann::json::object();
+    analysis->write(summary);
+    EXPECT_DOUBLE_EQ(summary["drop_height"].get<double>(), 0.5);
+    EXPECT_DOUBLE_EQ(summary["rebound_height"].get<double>(), 0.2);
+    EXPECT_DOUBLE_EQ(summary["bounce_height_ratio"].get<double>(), 0.4);
+    EXPECT_DOUBLE_EQ(summary["restitution_effective"].get<double>(), std::sqrt(0.4));
+}
+
+TEST(AnalysisRegistry, StillReportsTheLargestDriftOfAnyUnit) {
+    BallScene b;
+    b.scene.analysis = "still";
+    b.scene.fluid = armour::SceneFluid();
+    b.setup.bodies.push_back(b.setup.bodies[0]);
+    const auto analysis = armour::make_analysis({b.scene, b.setup, "", ""});
+    BodyState first = ball_at(0.55, 0, 0), second = ball_at(1.0, 0, 0);
+    analysis->sample(0.0, {first, second});
+    second.pose.position.x() += 0.003; // drifts 3 mm, then back
+    analysis->sample(0.1, {first, second});
+    second.pose.position.x() -= 0.003;
+    first.pose.position.z() -= 0.001;
+    analysis->sample(0.2, {first, second});
+    nlohmann::json summary = nlohmann::json::object();
+    EXPECT_NE(analysis->write(summary).find("max displacement"), std::string::npos);
+    EXPECT_NEAR(summary["max_displacement"].get<double>(), 0.003, 1e-15);
+    EXPECT_NEAR(summary["max_displacement_over_Dn"].get<double>(), 0.015, 1e-15);
+}
+
+TEST(AnalysisRegistry, CoupledKindsRefuseADryScene) {
+    BallScene b;
+    b.scene.analysis = "still";
+    EXPECT_THROW(armour::make_analysis({b.scene, b.setup, "", ""}), InputError);
+}
+
+} // namespace
