@@ -767,6 +767,9 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
                 times.value("dem_seconds", 0.0) / std::max(solver_seconds, 1e-300);
             summary["coupling_seconds"] = times.value("dem_seconds", 0.0) + times.value("load_seconds", 0.0) +
                                           times.value("mask_seconds", 0.0);
+            // s, at the end: the engine keeps the fluid's clock to half an engine step.
+            for (const char *key : {"fluid_time", "engine_time"})
+                summary[key] = times.contains(key) ? times[key] : json(nullptr);
         }
     }
     write_text_file(folder.claim("summary.json"), summary.dump(2) + "\n");

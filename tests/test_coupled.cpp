@@ -86,6 +86,49 @@ json coupling_times(const Outcome &r) {
     return in ? json::parse(in) : json::object();
 }
 
+// The engine keeps the fluid's clock: the released cube (density 500, rising)
+// with Bullet's 1 ms step under fluid steps of at most 1.4 ms, and with the
+// free body at 0.3 ms under the scene's 5 ms: at the end the engine's time is
+// within half an engine step of the fluid's (the old clock rounded each fluid
+// step to whole engine steps and dropped the rest: Bullet ran 71 % of fluid
+// time). The free body's heave at 0.3 ms matches the scene's 0.1 ms (a
+// multiple of the fluid step) to 1 % of the rise.
+TEST(CoupledRun, EngineKeepsTheFluidClockAtNonCommensurateSteps) {
+    auto end_gap = [](const Outcome &r) {
+        return std::abs(r.summary.at("engine_time").get<double>() - r.summary.at("fluid_time").get<double>());
+    };
+    const Outcome bullet = armour_run("released_cube.toml", "clock_bullet",
+                                      {"--set", "run.engine=\"bullet\"", "--set", "run.time_step=0.001",
+                                       "--set", "fluid.max_time_step=0.0014"});
+    ASSERT_EQ(bullet.status, 0) << bullet.err;
+    const double dt_bullet = bullet.summary["dt"].get<double>();
+    ASSERT_NEAR(dt_bullet, 0.001, 1e-15);
+    EXPECT_NEAR(bullet.summary["fluid_time"].get<double>(), 0.25, 1e-6);
+    EXPECT_LE(end_gap(bullet), 0.5 * dt_bullet * (1 + 1e-9)) << bullet.summary.dump();
+
+    const Outcome fine = armour_run("released_cube.toml", "clock_fine");
+    const Outcome odd = armour_run("released_cube.toml", "clock_odd", {"--set", "run.time_step=3e-4"});
+    ASSERT_EQ(fine.status, 0) << fine.err;
+    ASSERT_EQ(odd.status, 0) << odd.err;
+    EXPECT_LE(end_gap(fine), 0.5e-4 * (1 + 1e-9));
+    EXPECT_LE(end_gap(odd), 1.5e-4 * (1 + 1e-9)) << odd.summary.dump();
+    std::size_t n_fine = 0, n_odd = 0;
+    const std::vector<double> a = positions(fine.out / "bodies.h5", n_fine);
+    const std::vector<double> b = positions(odd.out / "bodies.h5", n_odd);
+    ASSERT_GT(n_fine, 1u);
+    ASSERT_EQ(n_fine, n_odd);
+    const double rise_fine = a[3 * (n_fine - 1) + 2] - a[2], rise_odd = b[3 * (n_odd - 1) + 2] - b[2];
+    std::printf("[ coupled  ] clock: bullet engine %.6f s vs fluid %.6f s; free body rise %.5f m (0.1 ms) vs "
+                "%.5f m (0.3 ms)\n",
+                bullet.summary["engine_time"].get<double>(), bullet.summary["fluid_time"].get<double>(),
+                rise_fine, rise_odd);
+    EXPECT_GT(rise_fine, 0.01); // it moves
+    EXPECT_NEAR(rise_odd, rise_fine, 0.01 * std::abs(rise_fine));
+    clean(bullet);
+    clean(fine);
+    clean(odd);
+}
+
 // A fixed, fully submerged cube: the fluid load is rho_w g a^3 upwards
 // (264.87 N). The smoothed mask over-counts edges by ~0.5 (h/a)^2 = +0.9 %
 // at 6 cells across; 2 % leaves room for that and nothing else.

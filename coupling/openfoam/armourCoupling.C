@@ -1071,6 +1071,12 @@ void Foam::fv::armourCoupling::couple
             << ", \"replicas_identical\": "
             << (armour_->replicasIdentical ? "true" : "false")
             << ", \"replica_position_spread\": " << armour_->replicaSpread
+            // Both clocks start at 0 (the cases' startTime); the engine keeps
+            // the fluid's to half an engine step (frozen runs never advance).
+            << std::setprecision(17)
+            << ", \"fluid_time\": " << t
+            << ", \"engine_time\": " << armour_->engine->time()
+            << ", \"engine_time_step\": " << armour_->engine->time_step()
             << "}\n";
     }
 
