@@ -2,6 +2,8 @@
 
 #include "mesh.h"
 
+#include "hdf5_handles.h"
+
 #include <hdf5.h>
 
 #include <functional>
@@ -9,35 +11,8 @@
 namespace armour {
 namespace {
 
-// Closes one HDF5 identifier when it goes out of scope.
-struct Id {
-    hid_t id;
-    herr_t (*close)(hid_t);
-    Id(hid_t value, herr_t (*closer)(hid_t)) : id(value), close(closer) {}
-    ~Id() {
-        if (id >= 0)
-            close(id);
-    }
-    Id(const Id &) = delete;
-    Id &operator=(const Id &) = delete;
-};
-
-// HDF5 prints its error stack by default; a missing dataset is reported
-// here as one line instead. The caller's handler is put back afterwards.
-class QuietErrors {
-  public:
-    QuietErrors() {
-        H5Eget_auto2(H5E_DEFAULT, &func_, &data_);
-        H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-    }
-    ~QuietErrors() { H5Eset_auto2(H5E_DEFAULT, func_, data_); }
-    QuietErrors(const QuietErrors &) = delete;
-    QuietErrors &operator=(const QuietErrors &) = delete;
-
-  private:
-    H5E_auto2_t func_ = nullptr;
-    void *data_ = nullptr;
-};
+using hdf5::Handle;
+using hdf5::QuietErrors;
 
 struct Reader {
     std::string path;
@@ -50,18 +25,18 @@ struct Reader {
     std::vector<T> read(const std::string &name, hid_t memory_type, std::vector<hsize_t> &dims) const {
         if (H5Lexists(file, name.c_str(), H5P_DEFAULT) <= 0)
             fail("no dataset " + name);
-        Id set(H5Dopen2(file, name.c_str(), H5P_DEFAULT), H5Dclose);
-        if (set.id < 0)
+        Handle set(H5Dopen2(file, name.c_str(), H5P_DEFAULT), H5Dclose);
+        if (set.get() < 0)
             fail("cannot open dataset " + name);
-        Id space(H5Dget_space(set.id), H5Sclose);
-        const int rank = H5Sget_simple_extent_ndims(space.id);
+        Handle space(H5Dget_space(set.get()), H5Sclose);
+        const int rank = H5Sget_simple_extent_ndims(space.get());
         dims.assign(static_cast<std::size_t>(std::max(rank, 0)), 0);
-        H5Sget_simple_extent_dims(space.id, dims.data(), nullptr);
+        H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
         hsize_t count = 1;
         for (const hsize_t d : dims)
             count *= d;
         std::vector<T> data(count);
-        if (count > 0 && H5Dread(set.id, memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) < 0)
+        if (count > 0 && H5Dread(set.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) < 0)
             fail("cannot read dataset " + name);
         return data;
     }
@@ -84,13 +59,13 @@ struct Reader {
 };
 
 herr_t collect_string_attribute(hid_t object, const char *name, const H5A_info_t *, void *client) {
-    Id attribute(H5Aopen(object, name, H5P_DEFAULT), H5Aclose);
-    Id type(H5Aget_type(attribute.id), H5Tclose);
-    if (attribute.id < 0 || type.id < 0 || H5Tget_class(type.id) != H5T_STRING ||
-        H5Tis_variable_str(type.id) > 0)
+    Handle attribute(H5Aopen(object, name, H5P_DEFAULT), H5Aclose);
+    Handle type(H5Aget_type(attribute.get()), H5Tclose);
+    if (attribute.get() < 0 || type.get() < 0 || H5Tget_class(type.get()) != H5T_STRING ||
+        H5Tis_variable_str(type.get()) > 0)
         return 0; // the recorder writes fixed-length strings only
-    std::string value(H5Tget_size(type.id), '\0');
-    if (H5Aread(attribute.id, type.id, value.data()) >= 0)
+    std::string value(H5Tget_size(type.get()), '\0');
+    if (H5Aread(attribute.get(), type.get(), value.data()) >= 0)
         (*static_cast<std::map<std::string, std::string> *>(client))[name] = value.c_str();
     return 0;
 }
@@ -105,11 +80,11 @@ std::string BodiesFile::attribute(const std::string &name) const {
 BodiesFile read_bodies_file(const std::string &path) {
     QuietErrors quiet;
     // Read-only without a lock: a running solver may still hold the file open for writing.
-    Id access(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
-    H5Pset_file_locking(access.id, false, true);
-    Id file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, access.id), H5Fclose);
-    const Reader r{path, file.id};
-    if (file.id < 0)
+    Handle access(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
+    H5Pset_file_locking(access.get(), false, true);
+    Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, access.get()), H5Fclose);
+    const Reader r{path, file.get()};
+    if (file.get() < 0)
         r.fail("cannot open as HDF5 (no bodies record)");
 
     BodiesFile rec;
@@ -126,7 +101,8 @@ BodiesFile read_bodies_file(const std::string &path) {
     rec.external_force = r.series<Eigen::Vector3d>("/bodies/external_force", steps, bodies, 3, vec);
     rec.external_torque = r.series<Eigen::Vector3d>("/bodies/external_torque", steps, bodies, 3, vec);
     rec.contact_force = r.series<Eigen::Vector3d>("/bodies/contact_force", steps, bodies, 3, vec);
-    H5Aiterate2(file.id, H5_INDEX_NAME, H5_ITER_NATIVE, nullptr, collect_string_attribute, &rec.attributes);
+    H5Aiterate2(file.get(), H5_INDEX_NAME, H5_ITER_NATIVE, nullptr, collect_string_attribute,
+                &rec.attributes);
     return rec;
 }
 
