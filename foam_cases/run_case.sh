@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# run_case.sh [--np N] [--plugin LIB] [--waves LIB] CASE_TEMPLATE OUTDIR
+# run_case.sh [--np N] [--plugin LIB] [--waves LIB] [--scene FILE] CASE_TEMPLATE OUTDIR
 #
 # Copies an interFoam case template to OUTDIR, fills its placeholders
 # (@ARMOUR_PLUGIN@: the plugin's absolute path; @ARMOUR_WAVES@: the wave
-# library's; @NP@: ranks), then runs
+# library's; @NP@: ranks; @ARMOUR_SCENE@ in constant/fvOptions: the armour
+# scene --scene FILE, copied to OUTDIR/scene.toml), then runs
 # blockMesh, setFields and interFoam (serial, or decomposePar + mpirun with
 # --np N). Each tool logs to OUTDIR/log.<tool>. Any failure stops the script
 # with the tool's FOAM FATAL line on stderr and exit status 1.
@@ -20,17 +21,19 @@ die() { echo "run_case: $*" >&2; exit 1; }
 np=1
 plugin="${ARMOUR_FOAM_PLUGIN:-}"
 waves="${ARMOUR_WAVES_LIB:-}"
+scene=""
 while [ $# -gt 0 ]; do
     case "$1" in
         --np) [ $# -ge 2 ] || die "--np needs a number"; np="$2"; shift 2 ;;
         --plugin) [ $# -ge 2 ] || die "--plugin needs a path"; plugin="$2"; shift 2 ;;
         --waves) [ $# -ge 2 ] || die "--waves needs a path"; waves="$2"; shift 2 ;;
+        --scene) [ $# -ge 2 ] || die "--scene needs a path"; scene="$2"; shift 2 ;;
         -h|--help) sed -n '2,15p' "$0"; exit 0 ;;
         -*) die "unknown option $1" ;;
         *) break ;;
     esac
 done
-[ $# -eq 2 ] || die "usage: run_case.sh [--np N] [--plugin LIB] [--waves LIB] CASE_TEMPLATE OUTDIR"
+[ $# -eq 2 ] || die "usage: run_case.sh [--np N] [--plugin LIB] [--waves LIB] [--scene FILE] CASE_TEMPLATE OUTDIR"
 template="$1"
 out="$2"
 [[ "$np" =~ ^[1-9][0-9]*$ ]] || die "--np must be a positive integer, got '$np'"
@@ -52,6 +55,10 @@ if grep -q '@ARMOUR_WAVES@' "$template/system/controlDict"; then
     waves="$(cd "$(dirname "$waves")" && pwd)/$(basename "$waves")"
 fi
 
+if [ -f "$template/constant/fvOptions" ] && grep -q '@ARMOUR_SCENE@' "$template/constant/fvOptions"; then
+    { [ -n "$scene" ] && [ -f "$scene" ]; } || die "$template/constant/fvOptions needs an armour scene: pass --scene FILE"
+fi
+
 if [ -e "$out" ] && [ -n "$(ls -A "$out" 2>/dev/null)" ]; then
     die "$out exists and is not empty"
 fi
@@ -60,6 +67,10 @@ cp -r "$template"/. "$out"/
 out="$(cd "$out" && pwd)"
 sed -i -e "s|@ARMOUR_PLUGIN@|$plugin|g" -e "s|@ARMOUR_WAVES@|$waves|g" "$out/system/controlDict"
 [ -f "$out/system/decomposeParDict" ] && sed -i "s|@NP@|$np|g" "$out/system/decomposeParDict"
+if [ -n "$scene" ]; then
+    cp "$scene" "$out/scene.toml"
+    [ -f "$out/constant/fvOptions" ] && sed -i "s|@ARMOUR_SCENE@|$out/scene.toml|g" "$out/constant/fvOptions"
+fi
 for f in "$out"/0/*.orig; do
     [ -e "$f" ] && cp "$f" "${f%.orig}"
 done

@@ -21,7 +21,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The template's cube: constant/fvOptions and constant/g of buoyancy_cube.
+// The cube of scenes/buoyancy_cube.toml, which run_case.sh --scene puts in foam_cases/buoyancy_cube.
 constexpr double kEdge = 0.3;        // m
 constexpr double kRhoWater = 1000.0; // kg/m^3
 constexpr double kG = 9.81;          // m/s^2
@@ -51,8 +51,11 @@ bool replace_in_file(const fs::path &path, const std::string &from, const std::s
     return true;
 }
 
+const fs::path kBuoyancyScene = fs::path(ARMOUR_SOURCE_DIR) / "scenes/buoyancy_cube.toml";
+
 CaseRun run_case(const std::string &name, int np,
-                 const fs::path &case_template = fs::path(ARMOUR_SOURCE_DIR) / "foam_cases/buoyancy_cube") {
+                 const fs::path &case_template = fs::path(ARMOUR_SOURCE_DIR) / "foam_cases/buoyancy_cube",
+                 const fs::path &scene = kBuoyancyScene) {
     CaseRun r;
     std::string tmpl = (fs::temp_directory_path() / ("armour_test_foam_" + name + "_XXXXXX")).string();
     if (!mkdtemp(tmpl.data()))
@@ -60,7 +63,7 @@ CaseRun run_case(const std::string &name, int np,
     r.dir = tmpl;
     const fs::path log = r.dir / "run_case.log";
     const std::string cmd = std::string("bash '") + ARMOUR_SOURCE_DIR + "/foam_cases/run_case.sh' --np " +
-                            std::to_string(np) + " --plugin '" + ARMOUR_FOAM_PLUGIN + "' '" +
+                            std::to_string(np) + " --plugin '" + ARMOUR_FOAM_PLUGIN + "' --scene '" + scene.string() + "' '" +
                             case_template.string() + "' '" + (r.dir / "case").string() + "' > '" +
                             log.string() + "' 2>&1";
     const int rc = std::system(cmd.c_str());
@@ -148,7 +151,7 @@ TEST(FoamForceDensity, NonOrthogonalMeshFallsBackToFvc) {
     ASSERT_EQ(run.status, 0) << run.output;
     EXPECT_NE(slurp(run.dir / "case/log.interFoam").find("force density by fvc on the whole mesh"),
               std::string::npos);
-    const auto row = last_row(run.dir / "case/armourBodies.csv", "cube");
+    const auto row = last_row(run.dir / "case/armourBodies.csv", "cube_0");
     ASSERT_FALSE(row.empty());
     const double buoyancy = kRhoWater * kG * kEdge * kEdge * kEdge;
     EXPECT_NEAR(num(row, "Fz") / buoyancy, 1.0, 0.02);
@@ -158,7 +161,7 @@ TEST(FoamForceDensity, NonOrthogonalMeshFallsBackToFvc) {
     }
 }
 
-// The stand-alone dictionary's pivot: the template's cube hinged about a
+// A scene's pivot: the template's cube hinged about a
 // y-parallel axis through a point 0.1 m off its centre in +x (translations
 // held at the pivot, rotation free about y only). Weight less buoyancy,
 // (rho_c - rho_w) g V = 371 N down at the centre, turns it about -y, the
@@ -167,20 +170,21 @@ TEST(FoamForceDensity, NonOrthogonalMeshFallsBackToFvc) {
 // only and negative; and in 0.2 s it is at most what the same torque
 // gives without the fluid's inertia, 1/2 (T / I_p) t^2 = 0.458 rad
 // (I_p = m a^2/6 + m d^2 = 1.62 kg m^2): added mass and drag only slow it.
-TEST(FoamPivot, StandAloneDictionaryHingesTheCube) {
+TEST(FoamPivot, ScenePivotHingesTheCube) {
     std::string tmpl = (fs::temp_directory_path() / "armour_test_foam_pivot_XXXXXX").string();
     ASSERT_NE(mkdtemp(tmpl.data()), nullptr);
     const fs::path hinged = fs::path(tmpl) / "template";
     fs::copy(fs::path(ARMOUR_SOURCE_DIR) / "foam_cases/buoyancy_cube", hinged, fs::copy_options::recursive);
     const double pivot[3] = {kPosition[0] + 0.1, kPosition[1], kPosition[2]};
-    ASSERT_TRUE(replace_in_file(hinged / "constant/fvOptions", "fixedRotation    (x y z);",
-                                "fixedRotation    (x z);\n                pivot       (" +
-                                    std::to_string(pivot[0]) + " " + std::to_string(pivot[1]) + " " +
-                                    std::to_string(pivot[2]) + ");"))
-        << "fvOptions changed";
-    const CaseRun run = run_case("pivot", 1, hinged);
+    const fs::path scene = fs::path(tmpl) / "hinged.toml";
+    fs::copy_file(kBuoyancyScene, scene);
+    ASSERT_TRUE(replace_in_file(scene, "fixed_rotation = [true, true, true]",
+                                "fixed_rotation = [true, false, true]\npivot = [" + std::to_string(pivot[0]) +
+                                    ", " + std::to_string(pivot[1]) + ", " + std::to_string(pivot[2]) + "]"))
+        << "scenes/buoyancy_cube.toml changed";
+    const CaseRun run = run_case("pivot", 1, hinged, scene);
     ASSERT_EQ(run.status, 0) << run.output;
-    const auto row = last_row(run.dir / "case/armourBodies.csv", "cube");
+    const auto row = last_row(run.dir / "case/armourBodies.csv", "cube_0");
     ASSERT_FALSE(row.empty());
     const Eigen::Quaterniond q(num(row, "qw"), num(row, "qx"), num(row, "qy"), num(row, "qz"));
     const Eigen::Vector3d centre(num(row, "x"), num(row, "y"), num(row, "z"));
@@ -206,7 +210,7 @@ TEST(FoamPivot, StandAloneDictionaryHingesTheCube) {
 // of the displaced water, upwards, and nothing sideways.
 TEST_F(FoamBuoyancy, Archimedes) {
     ASSERT_EQ(serial_->status, 0) << serial_->output;
-    const auto row = last_row(serial_->dir / "case/armourBodies.csv", "cube");
+    const auto row = last_row(serial_->dir / "case/armourBodies.csv", "cube_0");
     ASSERT_FALSE(row.empty());
     EXPECT_NEAR(num(row, "time"), 0.2, 1e-9);
 
@@ -229,7 +233,7 @@ TEST_F(FoamBuoyancy, Archimedes) {
 // is carried by the pressure, not by the penalty.
 TEST_F(FoamBuoyancy, LoadBalancesSourceAndMaskedWeight) {
     ASSERT_EQ(serial_->status, 0) << serial_->output;
-    const auto row = last_row(serial_->dir / "case/armourBodies.csv", "cube");
+    const auto row = last_row(serial_->dir / "case/armourBodies.csv", "cube_0");
     ASSERT_FALSE(row.empty());
     const double weight = kRhoWater * kG * num(row, "chiVolume");
     EXPECT_NEAR(num(row, "Fz") + num(row, "Sz"), weight, 1e-3 * weight);
@@ -244,8 +248,8 @@ TEST_F(FoamBuoyancy, TwoRanksMatchSerial) {
     ASSERT_EQ(serial_->status, 0) << serial_->output;
     const CaseRun parallel = run_case("np2", 2);
     ASSERT_EQ(parallel.status, 0) << parallel.output;
-    const auto s = last_row(serial_->dir / "case/armourBodies.csv", "cube");
-    const auto p = last_row(parallel.dir / "case/armourBodies.csv", "cube");
+    const auto s = last_row(serial_->dir / "case/armourBodies.csv", "cube_0");
+    const auto p = last_row(parallel.dir / "case/armourBodies.csv", "cube_0");
     ASSERT_FALSE(p.empty());
     EXPECT_NEAR(num(p, "Fz"), num(s, "Fz"), 1e-5 * num(s, "Fz"));
     EXPECT_NEAR(num(p, "chiVolume"), num(s, "chiVolume"), 1e-12);

@@ -93,12 +93,13 @@ Foam::fv::armourCoupling::armourCoupling
     fieldNames_ = wordList(1, "U");
     applied_.setSize(fieldNames_.size(), false);
 
-    if (coeffs_.found("scene"))
+    if (!coeffs_.found("scene"))
     {
-        constructFromScene(fileName(coeffs_.get<fileName>("scene")));
-        return;
+        FatalIOErrorInFunction(coeffs_)
+            << "armourCouplingCoeffs needs 'scene' (an armour scene file with"
+            << " a [fluid] table; `armour run` writes it)" << exit(FatalIOError);
     }
-    constructFromDictionary();
+    constructFromScene(fileName(coeffs_.get<fileName>("scene")));
 }
 
 
