@@ -1,18 +1,18 @@
-// The force density and vector conversions of the plugin (armourForceDensity.H).
+/*---------------------------------------------------------------------------*\
+    armour-fsi: two-way coupling of armour units with interFoam
+\*---------------------------------------------------------------------------*/
+
 #include "armourForceDensity.H"
 
 #include "fvcGrad.H"
 #include "fvcLaplacian.H"
 
-namespace Foam
-{
-namespace armourFoam
-{
+#include <cmath>
 
-Eigen::Vector3d toEigen(const Foam::vector& v)
+// * * * * * * * * * * * * * * * Local Functions * * * * * * * * * * * * * * //
+
+namespace
 {
-    return Eigen::Vector3d(v.x(), v.y(), v.z());
-}
 
 // f = -grad(p) + laplacian(muEff, U) on the whole mesh, as OpenFOAM's
 // schemes give it: the reference, and the fallback where the face-by-face
@@ -206,27 +206,72 @@ bool forceDensityAgrees(const Foam::fvMesh& mesh, const Foam::volScalarField& mu
 }
 
 
-// This rank's cells for the coupler; copied once: the mesh is static.
-armour::CellSet cellSet(const Foam::fvMesh& mesh)
+} // End anonymous namespace
+
+
+// * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
+
+const std::vector<Eigen::Vector3d>& armourFoam::forceDensity::compute
+(
+    const Foam::fvMesh& mesh,
+    const Foam::volScalarField& rho,
+    const Foam::volVectorField& U,
+    const std::vector<int>& body
+)
 {
-    armour::CellSet cells;
-    const Foam::vectorField& C = mesh.C();
-    const Foam::scalarField& V = mesh.V();
-    cells.centres.resize(C.size());
-    cells.volumes.resize(C.size());
-    forAll(C, i)
+    using namespace Foam;
+    const volScalarField& p = mesh.lookupObject<volScalarField>("p");
+
+    // mu_eff = rho (nu + nut); nut only where a turbulence model made one.
+    volScalarField muEff
+    (
+        "armourMuEff",
+        rho*mesh.lookupObject<volScalarField>("nu")
+    );
+    if (mesh.foundObject<volScalarField>("nut"))
     {
-        cells.centres[i] = toEigen(C[i]);
-        cells.volumes[i] = V[i];
+        muEff += rho*mesh.lookupObject<volScalarField>("nut");
     }
-    return cells;
+    if (method_ == method::unchecked)
+    {
+        const bool agrees = forceDensityAgrees(mesh, muEff);
+        method_ = agrees ? method::faceByFace : method::fvc;
+        Info<< "    armourCoupling: force density "
+            << (agrees
+                ? "face by face in the units' cells (checked against fvc)"
+                : "by fvc on the whole mesh (the face-by-face sum differs "
+                  "from fvc here: non-orthogonal mesh or other schemes)")
+            << endl;
+    }
+
+    f_.assign(mesh.nCells(), Eigen::Vector3d::Zero());
+    if (method_ == method::faceByFace)
+    {
+        DynamicList<label> cells(mesh.nCells()/8);
+        for (std::size_t i = 0; i < body.size(); ++i)
+        {
+            if (body[i] >= 0)
+            {
+                cells.append(label(i));
+            }
+        }
+        vectorField f(cells.size());
+        faceByFaceForceDensity(mesh, p, muEff, U, cells, f);
+        forAll(cells, k)
+        {
+            f_[cells[k]] = Eigen::Vector3d(f[k].x(), f[k].y(), f[k].z());
+        }
+    }
+    else
+    {
+        const volVectorField f(fvcForceDensity(p, muEff, U));
+        forAll(f, i)
+        {
+            f_[i] = Eigen::Vector3d(f[i].x(), f[i].y(), f[i].z());
+        }
+    }
+    return f_;
 }
 
 
-Foam::vector toFoam(const Eigen::Vector3d& v)
-{
-    return Foam::vector(v.x(), v.y(), v.z());
-}
-
-} // End namespace armourFoam
-} // End namespace Foam
+// ************************************************************************* //
