@@ -125,7 +125,7 @@ TEST_F(FoamBuoyancy, CaseRuns) {
     EXPECT_TRUE(fs::exists(serial_->dir / "case/0.2/armourChi"));
     EXPECT_TRUE(fs::exists(serial_->dir / "case/0.2/armourUBody"));
     // On this orthogonal mesh the loads take the fast path, which agreed
-    // with fvc on smooth test fields (armourCoupling.C).
+    // with fvc on smooth test fields (armourForceDensity.C).
     EXPECT_NE(slurp(serial_->dir / "case/log.interFoam").find("force density face by face"),
               std::string::npos);
 }
