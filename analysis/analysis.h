@@ -29,6 +29,7 @@
 //     const double span = a->before_advance(engine.time(), engine);
 //     ...
 //     const std::string line = a->write(summary);
+//     if (const std::string why = analysis_refusal(scene, setup); !why.empty()) ...
 //     for (const auto &key : analysis_style(scene.analysis).headline_keys) ...
 #pragma once
 
@@ -76,6 +77,9 @@ struct AnalysisStyle {
     std::vector<std::pair<std::string, std::string>> analytic_keys;
     bool turns_gravity = false; // gravity is not fixed: an energy balance means nothing
     std::function<std::unique_ptr<Analysis>(const AnalysisContext &)> make;
+    // Why the kind cannot watch this scene's bodies ("" when it can; unset:
+    // any bodies do). A run refuses the scene with it before any tool runs.
+    std::function<std::string(const Scene &, const SceneSetup &)> refusal = {};
 };
 
 // Every style, in the order of the scene room's list of kinds.
@@ -83,6 +87,9 @@ const std::vector<AnalysisStyle> &analysis_styles();
 
 // Throws InputError naming the key `analysis` and listing the kinds.
 const AnalysisStyle &analysis_style(const std::string &name);
+
+// Why scene.analysis cannot watch the scene's bodies; "" when it can.
+std::string analysis_refusal(const Scene &scene, const SceneSetup &setup);
 
 // The analysis for context.scene.analysis.
 std::unique_ptr<Analysis> make_analysis(const AnalysisContext &context);

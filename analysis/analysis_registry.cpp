@@ -28,6 +28,11 @@ const AnalysisStyle &analysis_style(const std::string &name) {
     throw InputError("analysis.kind: '" + name + "' is not an analysis (known: " + known + ")");
 }
 
+std::string analysis_refusal(const Scene &scene, const SceneSetup &setup) {
+    const AnalysisStyle &style = analysis_style(scene.analysis);
+    return style.refusal ? style.refusal(scene, setup) : std::string();
+}
+
 std::unique_ptr<Analysis> make_analysis(const AnalysisContext &context) {
     return analysis_style(context.scene.analysis).make(context);
 }

@@ -26,9 +26,6 @@ Usage
 import json
 import os
 
-import h5py
-import numpy as np
-
 SERIES = ("position", "orientation", "velocity", "angular_velocity", "external_force", "external_torque",
           "contact_force")
 
@@ -37,6 +34,8 @@ class Bodies:
     """One run's bodies.h5 in memory (see the module's description for fields and units)."""
 
     def __init__(self, path):
+        import h5py  # here: scripts reading only summaries need no HDF5
+
         self.path = path
         with h5py.File(path, "r", locking=False) as f:
             self.time = f["time"][:]
@@ -72,6 +71,8 @@ def read_summary(path):
 if __name__ == "__main__":
     # A quick look: python3 analysis/armour_results.py RUN_DIR
     import sys
+
+    import numpy as np
 
     b = read_bodies(sys.argv[1])
     print(f"{b.path}: {b.steps} steps, {b.bodies} bodies, t = {b.time[0] if b.steps else 0:g}.."

@@ -2,6 +2,7 @@
 // still, dambreak, platform, slope_waves. The solver runs in interFoam; the
 // driver then samples the plugin's bodies.h5 step by step.
 #include "analysis.h"
+#include "scene_keys.h"
 
 #include <nlohmann/json.hpp>
 
@@ -325,6 +326,30 @@ template <class T> std::function<std::unique_ptr<Analysis>(const AnalysisContext
     return [](const AnalysisContext &c) { return std::make_unique<T>(c); };
 }
 
+std::string needs_a_body(const Scene &, const SceneSetup &setup) {
+    return setup.bodies.empty() ? "needs a body" : "";
+}
+
+std::string needs_one_lighter_cube(const Scene &scene, const SceneSetup &setup) {
+    const SceneUnit *u = nullptr;
+    for (const auto &unit : scene.units)
+        if (!scene.bodies.empty() && unit.name == scene.bodies[0].unit)
+            u = &unit;
+    if (!u || u->shape != "cube" || setup.bodies.size() != 1)
+        return "\"float\" needs exactly one [[body]] of a cube unit";
+    if (scene.fluid && u->density >= scene.fluid->fluid_density)
+        return "\"float\": the cube's density " + number_text(u->density) +
+               " kg/m^3 is not below fluid.fluid_density; it sinks";
+    return "";
+}
+
+std::string needs_two_bodies(const Scene &, const SceneSetup &setup) {
+    if (setup.bodies.size() >= 2)
+        return "";
+    return "\"dambreak\" compares two units: it needs at least two bodies (has " +
+           std::to_string(setup.bodies.size()) + ")";
+}
+
 } // namespace
 
 AnalysisStyle buoyancy_analysis_style() {
@@ -333,7 +358,8 @@ AnalysisStyle buoyancy_analysis_style() {
             {"buoyancy_force", "buoyancy_error"},
             {{"buoyancy_force", "buoyancy_expected"}},
             false,
-            factory<BuoyancyAnalysis>()};
+            factory<BuoyancyAnalysis>(),
+            needs_a_body};
 }
 
 AnalysisStyle float_analysis_style() {
@@ -342,7 +368,8 @@ AnalysisStyle float_analysis_style() {
             {"draft", "draft_error"},
             {{"draft", "draft_expected"}},
             false,
-            factory<FloatAnalysis>()};
+            factory<FloatAnalysis>(),
+            needs_one_lighter_cube};
 }
 
 AnalysisStyle still_analysis_style() {
@@ -351,7 +378,8 @@ AnalysisStyle still_analysis_style() {
             {"max_displacement_over_Dn"},
             {},
             false,
-            factory<StillAnalysis>()};
+            factory<StillAnalysis>(),
+            needs_a_body};
 }
 
 AnalysisStyle dambreak_analysis_style() {
@@ -360,7 +388,8 @@ AnalysisStyle dambreak_analysis_style() {
             {"force_difference", "max_displacement"},
             {},
             false,
-            factory<DamBreakAnalysis>()};
+            factory<DamBreakAnalysis>(),
+            needs_two_bodies};
 }
 
 AnalysisStyle platform_analysis_style() {
@@ -369,7 +398,8 @@ AnalysisStyle platform_analysis_style() {
             {"units_moved", "units_displaced"},
             {},
             false,
-            factory<WaveAnalysis>()};
+            factory<WaveAnalysis>(),
+            needs_a_body};
 }
 
 AnalysisStyle slope_waves_analysis_style() {
@@ -378,7 +408,8 @@ AnalysisStyle slope_waves_analysis_style() {
             {"units_moved", "units_displaced"},
             {},
             false,
-            factory<WaveAnalysis>()};
+            factory<WaveAnalysis>(),
+            needs_a_body};
 }
 
 } // namespace armour

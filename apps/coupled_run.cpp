@@ -505,27 +505,8 @@ std::vector<std::string> check_coupled_scene(const Scene &scene, const SceneSetu
             warnings.push_back("engine step " + num(dt.used) + " s exceeds fluid.max_time_step " +
                                num(f.max_time_step) + " s: fluid steps shorter than it run no engine step");
     }
-    if (scene.analysis == "float") {
-        const SceneUnit *u = nullptr;
-        for (const auto &unit : scene.units)
-            if (!scene.bodies.empty() && unit.name == scene.bodies[0].unit)
-                u = &unit;
-        if (!u || u->shape != "cube" || setup.bodies.size() != 1)
-            throw InputError(file +
-                             ": key 'analysis.kind': \"float\" needs exactly one [[body]] of a cube unit");
-        if (u->density >= f.fluid_density)
-            throw InputError(file + ": key 'analysis.kind': \"float\": the cube's density " +
-                             num(u->density) + " kg/m^3 is not below fluid.fluid_density; it sinks");
-    }
-    if ((scene.analysis == "buoyancy" || scene.analysis == "still" || scene.analysis == "platform" ||
-         scene.analysis == "slope_waves") &&
-        setup.bodies.empty())
-        throw InputError(file + ": key 'analysis.kind': needs a body");
-    if (scene.analysis == "dambreak" && setup.bodies.size() < 2)
-        throw InputError(file +
-                         ": key 'analysis.kind': \"dambreak\" compares two units: it needs at least two "
-                         "bodies (has " +
-                         std::to_string(setup.bodies.size()) + ")");
+    if (const std::string why = analysis_refusal(scene, setup); !why.empty())
+        throw InputError(file + ": key 'analysis.kind': " + why);
     return warnings;
 }
 

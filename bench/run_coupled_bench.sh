@@ -31,9 +31,10 @@ for n in 10 100; do
 done
 /usr/bin/python3 - "$out" "$repeats" <<'PY'
 import json, sys
+from armour_results import read_summary
 out, repeats = sys.argv[1], int(sys.argv[2])
 def fastest(n, mode):
-    runs = [json.load(open(f"{out}/n{n}_{mode}_{r}/summary.json")) for r in range(1, repeats + 1)]
+    runs = [read_summary(f"{out}/n{n}_{mode}_{r}") for r in range(1, repeats + 1)]
     return min(runs, key=lambda s: s["fluid"]["cpu_seconds_per_step"])
 rows = []
 print(f"{'units':>5s} {'coupled s/step':>14s} {'frozen s/step':>13s} {'ratio':>6s} {'DEM s':>7s} "

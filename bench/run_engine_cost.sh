@@ -20,11 +20,12 @@ for scene in slope_cubes slope_dolosse; do
 done
 /usr/bin/python3 - "$out" <<'PY'
 import json, sys
+from armour_results import read_summary
 out = sys.argv[1]
 rows = []
 print(f"{'scene':15s} {'model':10s} {'s/unit-step':>12s} {'x hulls':>8s} {'dt [s]':>10s} {'wall s per sim s':>17s}")
 for scene in ("slope_cubes", "slope_dolosse"):
-    runs = {m: json.load(open(f"{out}/{scene}/{m}/summary.json")) for m in ("hulls", "clumps10", "clumps50")}
+    runs = {m: read_summary(f"{out}/{scene}/{m}") for m in ("hulls", "clumps10", "clumps50")}
     base = runs["hulls"]["seconds_per_unit_step"]
     for m, s in runs.items():
         ratio = s["seconds_per_unit_step"] / base

@@ -5,8 +5,8 @@ Writes DIR/pareto.png (error against cost, Pareto front marked), DIR/stability_d
 (energy gain against time step / stability limit, both engines), DIR/bumpiness.png
 (headline figure against sphere count, exact hulls as a line) and DIR/report.md.
 """
-import json
 import math
+import os
 import sys
 
 import matplotlib
@@ -14,9 +14,11 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "analysis"))
+from armour_results import read_summary  # noqa: E402
+
 out = sys.argv[1]
-with open(f"{out}/summary.json") as f:
-    s = json.load(f)
+s = read_summary(out)
 keys = s["headline_keys"]
 key = keys[0] if keys else None
 runs = [r for r in s["runs"] if r["status"] == "ok"]

@@ -233,4 +233,44 @@ TEST(AnalysisRegistry, CoupledKindsRefuseADryScene) {
     EXPECT_THROW(armour::make_analysis({b.scene, b.setup, "", ""}), InputError);
 }
 
+// The coupled kinds refuse, with the reason the run prints, bodies they
+// cannot watch; kinds without a refusal accept any scene.
+TEST(AnalysisRegistry, CoupledKindsRefuseBodiesTheyCannotWatch) {
+    BallScene b;
+    b.scene.fluid = armour::SceneFluid();
+    b.scene.fluid->fluid_density = 1000.0;
+    armour::SceneUnit cube;
+    cube.name = "box";
+    cube.shape = "cube";
+    cube.density = 500.0;
+    b.scene.units.push_back(cube);
+    armour::SceneBody body;
+    body.unit = "box";
+    b.scene.bodies.push_back(body);
+
+    b.scene.analysis = "float";
+    EXPECT_EQ(armour::analysis_refusal(b.scene, b.setup), "");
+    b.scene.units[0].density = 1000.0;
+    EXPECT_EQ(armour::analysis_refusal(b.scene, b.setup),
+              "\"float\": the cube's density 1000 kg/m^3 is not below fluid.fluid_density; it sinks");
+    b.scene.units[0].shape = "dolos";
+    EXPECT_EQ(armour::analysis_refusal(b.scene, b.setup),
+              "\"float\" needs exactly one [[body]] of a cube unit");
+
+    b.scene.analysis = "dambreak";
+    EXPECT_EQ(armour::analysis_refusal(b.scene, b.setup),
+              "\"dambreak\" compares two units: it needs at least two bodies (has 1)");
+    b.setup.bodies.push_back(b.setup.bodies[0]);
+    EXPECT_EQ(armour::analysis_refusal(b.scene, b.setup), "");
+
+    for (const char *kind : {"buoyancy", "still", "platform", "slope_waves"}) {
+        b.scene.analysis = kind;
+        EXPECT_EQ(armour::analysis_refusal(b.scene, b.setup), "") << kind;
+        armour::SceneSetup empty;
+        EXPECT_EQ(armour::analysis_refusal(b.scene, empty), "needs a body") << kind;
+    }
+    b.scene.analysis = "none";
+    EXPECT_EQ(armour::analysis_refusal(b.scene, armour::SceneSetup()), "");
+}
+
 } // namespace
