@@ -5,6 +5,7 @@
 #include "bodies_file.h"
 #include "body_recorder.h"
 #include "scene_keys.h"
+#include "shapes.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -19,18 +20,11 @@ using armour::BodiesFile;
 using armour::BodyRecorder;
 using armour::BodyState;
 using armour::InputError;
+using armour::make_cube_mesh;
 using armour::read_bodies_file;
 using armour::RecorderUnit;
-using armour::TriangleMesh;
 
 namespace {
-
-TriangleMesh tetrahedron() {
-    TriangleMesh m;
-    m.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-    m.triangles = {{{0, 2, 1}}, {{0, 1, 3}}, {{0, 3, 2}}, {{1, 2, 3}}};
-    return m;
-}
 
 const std::vector<int> kBodyUnit = {0, 1, 0};
 
@@ -66,7 +60,7 @@ TEST_F(Analysis, BodiesFileReadsBackEveryRecordedValue) {
     constexpr int kSteps = 4;
     {
         BodyRecorder recorder(h5, (dir_ / "bodies.xdmf").string(),
-                              {{"tetra", tetrahedron()}, {"other", tetrahedron()}}, kBodyUnit,
+                              {{"cube", make_cube_mesh(1.0)}, {"small", make_cube_mesh(0.5)}}, kBodyUnit,
                               {{"scene", "three bodies"}, {"engine", "free"}, {"dt", "1e-4"}});
         for (int step = 0; step < kSteps; ++step) {
             std::vector<BodyState> states;
@@ -103,7 +97,7 @@ TEST_F(Analysis, BodiesFileReadsBackEveryRecordedValue) {
 
 TEST_F(Analysis, BodiesFileReadsARecordWithoutSteps) {
     const std::string h5 = (dir_ / "bodies.h5").string();
-    BodyRecorder(h5, (dir_ / "bodies.xdmf").string(), {{"tetra", tetrahedron()}}, {0}, {}).close();
+    BodyRecorder(h5, (dir_ / "bodies.xdmf").string(), {{"cube", make_cube_mesh(1.0)}}, {0}, {}).close();
     const BodiesFile rec = read_bodies_file(h5);
     EXPECT_EQ(rec.steps(), 0u);
     EXPECT_EQ(rec.bodies(), 1u);
