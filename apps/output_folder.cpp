@@ -3,8 +3,15 @@
 #include "mesh.h"
 
 #include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <fcntl.h>
 #include <fstream>
+#include <signal.h>
 #include <stdexcept>
+#include <sys/file.h>
+#include <sys/stat.h>
 #include <system_error>
 #include <unistd.h>
 #include <utility>
@@ -16,14 +23,19 @@ namespace fs = std::filesystem;
 namespace {
 
 const std::string kMarker = ".armour-output";
+const std::string kLock = ".armour-lock";
 
-// Temporary files of a command that was killed: the marker's temporary copy
-// and a staging folder (.armour-partial-PID). They carry our names only, so they may go.
+// `name` is `prefix` followed by a pid (digits only).
+bool prefix_and_pid(const std::string &name, const std::string &prefix) {
+    return name.size() > prefix.size() && name.rfind(prefix, 0) == 0 &&
+           name.find_first_not_of("0123456789", prefix.size()) == std::string::npos;
+}
+
+// Files of a command that was killed: the marker's temporary copy, a staging
+// folder (.armour-partial-PID) and the lock file (its lock went with the
+// process). They carry our names only, so they may go once we hold the lock.
 bool own_leftover(const std::string &name) {
-    const std::string partial = ".armour-partial-";
-    return name == kMarker + ".tmp" ||
-           (name.size() > partial.size() && name.rfind(partial, 0) == 0 &&
-            name.find_first_not_of("0123456789", partial.size()) == std::string::npos);
+    return name == kMarker + ".tmp" || name == kLock || prefix_and_pid(name, ".armour-partial-");
 }
 
 // A marker line names a top-level entry; anything that could reach outside
@@ -56,6 +68,30 @@ std::string pid_suffix() {
     return std::to_string(::getpid());
 }
 
+bool process_alive(const std::string &pid) {
+    try {
+        return ::kill(static_cast<pid_t>(std::stol(pid)), 0) == 0 || errno == EPERM;
+    } catch (const std::exception &) {
+        return false; // out of range: no such process
+    }
+}
+
+// Earlier versions staged a new DIR in the sibling DIR.partial-PID; a killed
+// one left it there. Whether it is ours cannot be proven (a user may name a
+// folder so), so it is named, never removed.
+void warn_about_old_staging(const fs::path &target) {
+    std::error_code ec;
+    const std::string prefix = target.filename().string() + ".partial-";
+    for (const auto &entry : fs::directory_iterator(target.parent_path(), ec)) {
+        const std::string name = entry.path().filename().string();
+        if (prefix_and_pid(name, prefix) && !process_alive(name.substr(prefix.size())))
+            std::fprintf(stderr,
+                         "armour: warning: %s looks like what a killed earlier armour left (pid %s is "
+                         "gone); remove it by hand if it is\n",
+                         entry.path().c_str(), name.substr(prefix.size()).c_str());
+    }
+}
+
 } // namespace
 
 OutputFolder::OutputFolder(const fs::path &target, std::string command, Mode mode)
@@ -64,14 +100,103 @@ OutputFolder::OutputFolder(const fs::path &target, std::string command, Mode mod
         throw InputError("--out: an output directory is required");
     if (target_.filename().empty())
         target_ = target_.parent_path(); // "dir/" and "." name the folder itself
-    check();
+    check();                             // a folder that is not ours is refused untouched
+    try {
+        create_target();
+        lock();
+        check(); // again: the holder before us may have changed it
+    } catch (...) {
+        release();
+        throw;
+    }
+    warn_about_old_staging(target_);
 }
 
 OutputFolder::~OutputFolder() {
-    if (mode_ == Mode::staged && opened_ && !committed_) {
-        std::error_code ec;
-        fs::remove_all(staging_, ec);
+    release();
+}
+
+void OutputFolder::create_target() {
+    if (fs::exists(target_))
+        return;
+    std::vector<fs::path> missing;
+    for (fs::path p = target_; !p.empty() && !fs::exists(p); p = p.parent_path()) {
+        missing.push_back(p);
+        if (p == p.parent_path())
+            break;
     }
+    for (auto it = missing.rbegin(); it != missing.rend(); ++it) {
+        std::error_code ec;
+        if (!fs::create_directory(*it, ec) && !fs::is_directory(*it))
+            throw InputError("--out " + target_.string() + ": cannot create " + it->string() + ": " +
+                             (ec ? ec.message() : "exists"));
+        if (!ec)
+            created_.push_back(*it);
+    }
+}
+
+// flock(2) on DIR/.armour-lock: the kernel drops the lock when the last
+// process holding it ends, however it ends (kill -9 too). The descriptor is
+// inherited by the tools a command starts (interFoam), so the folder stays
+// locked while anything we started may still write into it.
+void OutputFolder::lock() {
+    const fs::path file = target_ / kLock;
+    for (;;) {
+        const int fd = ::open(file.c_str(), O_RDWR | O_CREAT, 0644);
+        if (fd < 0)
+            throw InputError("--out " + target_.string() + ": cannot create " + kLock + ": " +
+                             std::strerror(errno));
+        if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+            const int error = errno;
+            if (error != EWOULDBLOCK) {
+                // A file system without locks (some network mounts) still works, unguarded.
+                std::fprintf(stderr,
+                             "armour: warning: --out %s: cannot lock %s (%s); a second command into it "
+                             "would not be refused\n",
+                             target_.c_str(), kLock.c_str(), std::strerror(error));
+                lock_fd_ = fd;
+                return;
+            }
+            char text[32] = {};
+            const ssize_t got = ::pread(fd, text, sizeof text - 1, 0);
+            ::close(fd);
+            std::string holder(text, got > 0 ? static_cast<std::size_t>(got) : 0);
+            holder.erase(holder.find_last_not_of(" \n") + 1);
+            throw InputError("--out " + target_.string() + ": in use by another armour command (pid " +
+                             (holder.empty() ? "unknown" : holder) +
+                             "); wait for it to end or choose another folder");
+        }
+        // The holder before us removes the file as it lets go: a lock taken on
+        // the removed file guards nothing, so open the new one.
+        struct stat held {
+        }, named{};
+        if (::fstat(fd, &held) == 0 && ::stat(file.c_str(), &named) == 0 && held.st_ino == named.st_ino &&
+            held.st_dev == named.st_dev) {
+            const std::string pid = pid_suffix() + "\n";
+            if (::ftruncate(fd, 0) != 0 || ::pwrite(fd, pid.data(), pid.size(), 0) < 0) {
+                // The pid is only for the refusal's message.
+            }
+            lock_fd_ = fd;
+            return;
+        }
+        ::close(fd);
+    }
+}
+
+void OutputFolder::release() {
+    std::error_code ec;
+    if (mode_ == Mode::staged && opened_ && !committed_)
+        fs::remove_all(staging_, ec);
+    if (lock_fd_ >= 0) {
+        fs::remove(target_ / kLock, ec); // before letting go: see lock()
+        ::close(lock_fd_);
+        lock_fd_ = -1;
+    }
+    // Folders this command created and left empty (it failed before writing).
+    for (auto it = created_.rbegin(); it != created_.rend(); ++it)
+        if (!fs::remove(*it, ec))
+            break;
+    created_.clear();
 }
 
 OutputFolder::Earlier OutputFolder::check() const {
@@ -106,36 +231,25 @@ void OutputFolder::open() {
         return;
     const Earlier earlier = check();
     std::error_code ec;
-    // Leftovers of a killed command (checked to carry only our names).
-    if (earlier.exists) {
-        std::vector<fs::path> leftovers;
-        for (const auto &entry : fs::directory_iterator(target_, ec))
-            if (own_leftover(entry.path().filename().string()))
-                leftovers.push_back(entry.path());
-        for (const fs::path &path : leftovers)
-            fs::remove_all(path, ec);
+    // Leftovers of a killed command (checked to carry only our names; we hold
+    // the lock, so no live command is writing them).
+    std::vector<fs::path> leftovers;
+    for (const auto &entry : fs::directory_iterator(target_, ec)) {
+        const std::string name = entry.path().filename().string();
+        if (own_leftover(name) && name != kLock)
+            leftovers.push_back(entry.path());
     }
+    for (const fs::path &path : leftovers)
+        fs::remove_all(path, ec);
     if (mode_ == Mode::staged) {
-        if (earlier.exists) {
-            staging_ = target_ / (".armour-partial-" + pid_suffix());
-        } else {
-            fs::create_directories(target_.parent_path(), ec);
-            if (ec)
-                throw InputError("--out " + target_.string() + ": cannot create " +
-                                 target_.parent_path().string() + ": " + ec.message());
-            staging_ = target_;
-            staging_ += ".partial-" + pid_suffix();
-            fs::remove_all(staging_, ec);
-        }
+        staging_ = target_ / (".armour-partial-" + pid_suffix());
         if (!fs::create_directory(staging_, ec) || ec)
             throw InputError("--out " + target_.string() + ": cannot create " + staging_.string() + ": " +
                              ec.message());
     } else {
         remove_entries(earlier.entries);
-        fs::create_directories(target_, ec);
-        if (ec)
-            throw InputError("--out " + target_.string() + ": cannot create the folder: " + ec.message());
         write_marker(target_, {});
+        created_.clear(); // a streaming result stays, whatever happens next
     }
     opened_ = true;
 }
@@ -158,19 +272,9 @@ void OutputFolder::commit() {
     std::vector<std::string> made = entries_of(staging_);
     summary_last(made);
     std::error_code ec;
-    if (staging_.parent_path() != target_) {
-        // A new folder: it appears whole, with its marker.
-        write_marker(staging_, made);
-        fs::rename(staging_, target_, ec);
-        if (ec)
-            throw InputError("--out " + target_.string() +
-                             ": cannot move the result into place: " + ec.message());
-        committed_ = true;
-        return;
-    }
-    // An existing folder: checked again (the user may have added a file while
-    // the command worked); its marker lists old and new entries while they
-    // are swapped, so an interrupted swap is still recognised as ours.
+    // Checked again (the user may have added a file while the command
+    // worked); the marker lists old and new entries while they are swapped,
+    // so an interrupted swap is still recognised as ours.
     const Earlier earlier = check();
     std::vector<std::string> both = earlier.entries;
     for (const std::string &name : made)
@@ -186,6 +290,7 @@ void OutputFolder::commit() {
     }
     write_marker(target_, made);
     committed_ = true;
+    created_.clear();
     fs::remove_all(staging_, ec);
 }
 

@@ -12,12 +12,18 @@
 //     result removes only the entries its marker lists; DIR itself is never
 //     removed or renamed, so `--out .` works and the shell's folder survives.
 //
+//     One command at a time: the constructor takes an flock(2) on
+//     DIR/.armour-lock (creating DIR if needed) and a second command into
+//     DIR is refused at once, naming the holder's pid. The kernel drops the
+//     lock however the holder ends (kill -9 too); the tools a command starts
+//     inherit it. Holding it, a command removes what a killed one left
+//     (.armour-partial-PID, .armour-output.tmp, the lock file itself).
+//
 //     Two ways of writing:
-//     - staged: the result appears whole or not at all. A new DIR is staged in
-//       the sibling DIR.partial-PID and renamed into place; an existing DIR in
-//       its hidden DIR/.armour-partial-PID, whose entries then replace the
-//       listed old ones one by one, summary.json last. A failure before
-//       commit() leaves DIR as it was.
+//     - staged: the result appears whole or not at all. It is staged in the
+//       hidden DIR/.armour-partial-PID, whose entries then replace the listed
+//       old ones one by one, summary.json last. A failure before commit()
+//       leaves DIR as it was (a DIR the command created is removed again).
 //     - streaming: entries are written straight into DIR as the command goes
 //       (a long run that stops keeps what it wrote); open() removes the
 //       earlier result's entries.
@@ -40,7 +46,8 @@ class OutputFolder {
   public:
     enum class Mode { staged, streaming };
 
-    // Throws InputError when `target` may not be written by `command`.
+    // Throws InputError when `target` may not be written by `command`, or
+    // another command holds it.
     OutputFolder(const std::filesystem::path &target, std::string command, Mode mode);
     ~OutputFolder();
     OutputFolder(const OutputFolder &) = delete;
@@ -70,13 +77,18 @@ class OutputFolder {
     Earlier check() const;
     void write_marker(const std::filesystem::path &dir, const std::vector<std::string> &entries) const;
     void remove_entries(const std::vector<std::string> &entries) const;
+    void create_target();
+    void lock();
+    void release(); // what a command that did not finish leaves: only its result
 
     std::filesystem::path target_;
     std::string command_;
     Mode mode_;
     bool opened_ = false, committed_ = false;
-    std::filesystem::path staging_;    // staged: where entries are written until commit()
-    std::vector<std::string> claimed_; // streaming: entries listed in the marker
+    std::filesystem::path staging_;              // staged: where entries are written until commit()
+    std::vector<std::string> claimed_;           // streaming: entries listed in the marker
+    std::vector<std::filesystem::path> created_; // folders made for DIR, removed if left empty
+    int lock_fd_ = -1;                           // DIR/.armour-lock, held until destruction
 };
 
 // Writes text to path through a temporary file and a rename.

@@ -238,12 +238,18 @@ TEST_F(Cli, OutputFolderReplacesWhatAKilledRunLeft) {
     std::ofstream(out / ".armour-output") << "armour run\nbodies.h5\nsummary.json\n";
     std::ofstream(out / ".armour-output.tmp") << "armour run\n";
     std::ofstream(out / "bodies.h5") << "partial";
-    armour::OutputFolder folder(out, "armour run", armour::OutputFolder::Mode::streaming);
-    folder.open();
-    EXPECT_EQ(output_rule::names(out), std::set<std::string>{".armour-output"});
-    EXPECT_EQ(output_rule::read(out / ".armour-output"), "armour run\n");
-    armour::write_text_file(folder.claim("summary.json"), "{}\n");
-    EXPECT_EQ(output_rule::read(out / ".armour-output"), "armour run\nsummary.json\n");
+    std::ofstream(out / ".armour-lock") << "4242\n"; // its lock went with it
+    {
+        armour::OutputFolder folder(out, "armour run", armour::OutputFolder::Mode::streaming);
+        folder.open();
+        // The lock file is ours again while the folder is held.
+        EXPECT_EQ(output_rule::names(out), (std::set<std::string>{".armour-lock", ".armour-output"}));
+        EXPECT_EQ(output_rule::read(out / ".armour-lock"), std::to_string(::getpid()) + "\n");
+        EXPECT_EQ(output_rule::read(out / ".armour-output"), "armour run\n");
+        armour::write_text_file(folder.claim("summary.json"), "{}\n");
+        EXPECT_EQ(output_rule::read(out / ".armour-output"), "armour run\nsummary.json\n");
+    }
+    EXPECT_EQ(output_rule::names(out), (std::set<std::string>{".armour-output", "summary.json"}));
 }
 
 TEST_F(Cli, OutputFolderMarkerNeverReachesOutside) {

@@ -1,0 +1,203 @@
+// One command at a time in an output folder (docs/outputs.md): the lock on
+// --out, and what a killed command leaves (its staging folder, its lock file)
+// going with the next command into the folder, never anything of the user's.
+#include "mesh.h"
+#include "output_folder.h"
+#include "output_folder_rule.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <csignal>
+#include <fcntl.h>
+#include <filesystem>
+#include <fstream>
+#include <spawn.h>
+#include <string>
+#include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
+#include <vector>
+
+extern char **environ;
+
+namespace fs = std::filesystem;
+using armour::OutputFolder;
+
+namespace {
+
+class OutputLock : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        dir_ =
+            fs::temp_directory_path() /
+            ("armour_lock_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+    fs::path dir_;
+};
+
+// The message of the InputError `make` throws ("" if none).
+template <class Make> std::string refusal(Make make) {
+    try {
+        make();
+    } catch (const armour::InputError &e) {
+        return e.what();
+    }
+    return "";
+}
+
+// `armour args...` as a process of its own, stderr into `err`.
+pid_t spawn_armour(std::vector<std::string> args, const fs::path &err) {
+    args.insert(args.begin(), ARMOUR_BINARY);
+    std::vector<char *> argv;
+    for (std::string &a : args)
+        argv.push_back(a.data());
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
+                                     0644);
+    pid_t pid = -1;
+    const int failed = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+    return failed ? -1 : pid;
+}
+
+int exit_status(pid_t pid) {
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+// A child that holds `out` (as a command at work does) until killed.
+pid_t holder(const fs::path &out, OutputFolder::Mode mode) {
+    int ready[2];
+    if (::pipe(ready) != 0)
+        return -1;
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        OutputFolder folder(out, "armour clump", mode);
+        folder.open();
+        armour::write_text_file(folder.claim("clump.spheres"), "half\n");
+        const char ok = 1;
+        if (::write(ready[1], &ok, 1) != 1)
+            ::_exit(1);
+        for (;;)
+            ::pause();
+    }
+    char ok = 0;
+    ::close(ready[1]);
+    const bool started = ::read(ready[0], &ok, 1) == 1;
+    ::close(ready[0]);
+    return started ? pid : -1;
+}
+
+} // namespace
+
+TEST_F(OutputLock, ASecondCommandIsRefusedNamingTheHolder) {
+    const fs::path out = dir_ / "result";
+    OutputFolder first(out, "armour run", OutputFolder::Mode::streaming);
+    const std::string why = refusal([&] { OutputFolder(out, "armour run", OutputFolder::Mode::streaming); });
+    EXPECT_EQ(why, "--out " + out.string() + ": in use by another armour command (pid " +
+                       std::to_string(::getpid()) + "); wait for it to end or choose another folder");
+    // Another command's folder is refused for the lock as well, untouched.
+    EXPECT_NE(refusal([&] { OutputFolder(out, "armour clump", OutputFolder::Mode::staged); }).find("in use"),
+              std::string::npos);
+    EXPECT_EQ(output_rule::names(out), std::set<std::string>{".armour-lock"});
+}
+
+TEST_F(OutputLock, AFailedCommandRemovesTheFolderItCreated) {
+    const fs::path out = dir_ / "new" / "deeper" / "result";
+    {
+        OutputFolder folder(out, "armour clump", OutputFolder::Mode::staged);
+        folder.open();
+        EXPECT_TRUE(fs::is_directory(out));
+        armour::write_text_file(folder.claim("summary.json"), "{}\n");
+    } // fails before commit()
+    EXPECT_EQ(output_rule::names(dir_), std::set<std::string>{});
+    {
+        OutputFolder folder(out, "armour run", OutputFolder::Mode::streaming);
+    } // fails before open(), e.g. on the scene
+    EXPECT_FALSE(fs::exists(dir_ / "new"));
+    // An existing empty folder stays (it may be the shell's `--out .`).
+    fs::create_directories(out);
+    { OutputFolder folder(out, "armour clump", OutputFolder::Mode::staged); }
+    EXPECT_TRUE(fs::is_directory(out));
+    EXPECT_EQ(output_rule::names(out), std::set<std::string>{});
+}
+
+TEST_F(OutputLock, AKilledHolderLetsGoAndItsLeftoversAreRemoved) {
+    for (const auto mode : {OutputFolder::Mode::staged, OutputFolder::Mode::streaming}) {
+        const bool staged = mode == OutputFolder::Mode::staged;
+        SCOPED_TRACE(staged ? "staged" : "streaming");
+        const fs::path out = dir_ / (staged ? "staged" : "streaming");
+        const pid_t pid = holder(out, mode);
+        ASSERT_GT(pid, 0);
+        const std::string why = refusal([&] { OutputFolder(out, "armour clump", mode); });
+        EXPECT_NE(why.find("(pid " + std::to_string(pid) + ")"), std::string::npos) << why;
+        const std::string partial = ".armour-partial-" + std::to_string(pid);
+        EXPECT_EQ(fs::exists(out / partial), staged);
+
+        ::kill(pid, SIGKILL); // no destructor, no cleanup: what a killed command leaves
+        EXPECT_EQ(exit_status(pid), 128 + SIGKILL);
+        EXPECT_TRUE(fs::exists(out / ".armour-lock"));
+        {
+            OutputFolder next(out, "armour clump", mode);
+            next.open();
+            EXPECT_FALSE(fs::exists(out / partial));
+            armour::write_text_file(next.claim("summary.json"), "{}\n");
+            next.commit();
+        }
+        EXPECT_EQ(output_rule::names(out), (std::set<std::string>{".armour-output", "summary.json"}));
+    }
+}
+
+TEST_F(OutputLock, AnOldSiblingStagingFolderIsNamedNeverRemoved) {
+    // Earlier versions staged a new DIR in DIR.partial-PID: it may be a
+    // killed run's, or a user's folder that happens to be named so.
+    const pid_t gone = ::fork();
+    if (gone == 0)
+        ::_exit(0);
+    ASSERT_EQ(exit_status(gone), 0);
+    const fs::path out = dir_ / "result", old = dir_ / ("result.partial-" + std::to_string(gone));
+    fs::create_directories(old);
+    std::ofstream(old / "summary.json") << "{}\n";
+    ::testing::internal::CaptureStderr();
+    { OutputFolder folder(out, "armour run", OutputFolder::Mode::streaming); }
+    const std::string err = ::testing::internal::GetCapturedStderr();
+    EXPECT_EQ(
+        err.rfind("armour: warning: " + old.string() + " looks like what a killed earlier armour left", 0),
+        0u)
+        << err;
+    EXPECT_EQ(output_rule::read(old / "summary.json"), "{}\n");
+}
+
+// The real thing: two `armour demo` processes into one --out. The second is
+// refused at once, while the first works on, and the first completes.
+TEST_F(OutputLock, TwoCommandsIntoOneFolder) {
+    const fs::path out = dir_ / "demo";
+    const pid_t first = spawn_armour({"demo", "--out", out.string()}, dir_ / "first.err");
+    ASSERT_GT(first, 0);
+    // The first holds the folder once its pid is in the lock file.
+    const auto start = std::chrono::steady_clock::now();
+    while (output_rule::read(out / ".armour-lock") != std::to_string(first) + "\n") {
+        ASSERT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(60));
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    const pid_t second = spawn_armour({"demo", "--out", out.string()}, dir_ / "second.err");
+    ASSERT_GT(second, 0);
+    EXPECT_EQ(exit_status(second), 2);
+    int status = 0;
+    EXPECT_EQ(::waitpid(first, &status, WNOHANG), 0) << "the first ended before the second was refused";
+    EXPECT_EQ(output_rule::read(dir_ / "second.err"),
+              "armour: error: --out " + out.string() + ": in use by another armour command (pid " +
+                  std::to_string(first) + "); wait for it to end or choose another folder\n");
+    EXPECT_EQ(exit_status(first), 0) << output_rule::read(dir_ / "first.err");
+    EXPECT_TRUE(fs::is_regular_file(out / "summary.json"));
+    EXPECT_EQ(output_rule::names(out),
+              (std::set<std::string>{".armour-output", "cube", "dolos", "summary.json"}));
+}
