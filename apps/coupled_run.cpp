@@ -5,6 +5,7 @@
 #include "body_recorder.h"
 #include "clump_io.h"
 #include "engine_registry.h"
+#include "openfoam_environment.h"
 #include "output_folder.h"
 #include "stl_io.h"
 
@@ -373,6 +374,7 @@ std::vector<std::string> check_coupled_scene(const Scene &scene, const SceneSetu
         if (!on_path(tool))
             throw InputError(std::string(tool) +
                              " not found on PATH: install Debian's openfoam (docs/openfoam.md)");
+    check_openfoam_project_dir();
     if (np > 1) {
         for (const char *tool : {"decomposePar", "mpirun"})
             if (!on_path(tool))

@@ -9,6 +9,7 @@
 
 #include <chrono>
 #include <csignal>
+#include <cstdlib>
 #include <fcntl.h>
 #include <filesystem>
 #include <fstream>
@@ -200,4 +201,45 @@ TEST_F(OutputLock, TwoCommandsIntoOneFolder) {
     EXPECT_TRUE(fs::is_regular_file(out / "summary.json"));
     EXPECT_EQ(output_rule::names(out),
               (std::set<std::string>{".armour-output", "cube", "dolos", "summary.json"}));
+}
+
+// A coupled run with a wrong WM_PROJECT_DIR, or without OpenFOAM's tools, is
+// refused before anything is written: one line naming the variable, no new
+// folder, an earlier result untouched.
+TEST_F(OutputLock, AWrongOpenFoamIsRefusedBeforeAnythingIsWritten) {
+    const std::string scene = (fs::path(ARMOUR_SOURCE_DIR) / "scenes" / "buoyancy_cube.toml").string();
+    const std::string cache = (dir_ / "cache").string();
+    const fs::path earlier = dir_ / "earlier";
+    fs::create_directories(earlier);
+    std::ofstream(earlier / ".armour-output") << "armour run\nsummary.json\n";
+    std::ofstream(earlier / "summary.json") << "{}\n";
+    struct Case {
+        const char *variable, *value, *settle, *says;
+    };
+    const char *path = std::getenv("PATH");
+    const std::string saved_path = path ? path : "";
+    for (const Case &c :
+         {Case{"WM_PROJECT_DIR", "/no/such/openfoam", "0",
+               "armour: error: WM_PROJECT_DIR: /no/such/openfoam: not an OpenFOAM installation"},
+          Case{"WM_PROJECT_DIR", "/tmp", "0.05", "armour: error: WM_PROJECT_DIR: /tmp: not an"},
+          Case{"PATH", "/no/such/bin", "0", "armour: error: blockMesh not found on PATH"}}) {
+        SCOPED_TRACE(std::string(c.variable) + "=" + c.value + ", settle " + c.settle);
+        ::setenv(c.variable, c.value, 1);
+        for (const fs::path &out : {dir_ / "new", earlier}) {
+            const output_rule::Outcome o =
+                output_rule::armour({"run", scene, "--out", out.string(), "--cache", cache, "--set",
+                                     std::string("fluid.settle_time=") + c.settle});
+            EXPECT_EQ(o.code, 2) << o.err;
+            const std::size_t at = o.err.find(c.says);
+            EXPECT_NE(at, std::string::npos) << o.err;
+            EXPECT_EQ(o.err.find('\n', at), o.err.size() - 1) << o.err; // one line, the last
+        }
+        EXPECT_FALSE(fs::exists(dir_ / "new"));
+        EXPECT_EQ(output_rule::names(earlier), (std::set<std::string>{".armour-output", "summary.json"}));
+        EXPECT_EQ(output_rule::read(earlier / "summary.json"), "{}\n");
+        if (std::string(c.variable) == "PATH")
+            ::setenv("PATH", saved_path.c_str(), 1);
+        else
+            ::unsetenv(c.variable);
+    }
 }
