@@ -4,6 +4,7 @@
 // target exists only then).
 #include "bodies_file.h"
 #include "cli.h"
+#include "paraview_poses.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -189,6 +190,20 @@ TEST(CoupledRun, FloatingCubeSettlesAtItsDraft) {
     EXPECT_GE(r.summary.value("heave_periods_averaged", 0), 1);
     EXPECT_LT(r.summary["draft_error"].get<double>(), 0.03);
     EXPECT_LT(r.summary["heave_amplitude_last_fifth"].get<double>(), 0.5 * expected);
+    clean(r);
+}
+
+// ParaView's own Xdmf3 reader opens every step of a coupled result (the
+// plugin's bodies.xdmf), the cube posed as bodies.h5 records it while it
+// heaves (tests/paraview_poses.h). Short: the first 0.3 s.
+TEST(CoupledRun, ParaViewOpensEveryStepWithTheRecordedPoses) {
+    if (!have_pvpython())
+        GTEST_SKIP() << "pvpython not found (Debian: python3-paraview)";
+    const Outcome r = armour_run("floating_cube.toml", "paraview",
+                                 {"--set", "run.duration=0.3", "--set", "analysis.kind=\"none\""});
+    ASSERT_EQ(r.status, 0) << r.err;
+    ASSERT_GE(r.summary["records"].get<int>(), 3);
+    expect_paraview_shows_the_poses(r.out);
     clean(r);
 }
 

@@ -4,6 +4,7 @@
 #include "cli.h"
 #include "clump_evaluator.h"
 #include "output_folder_rule.h"
+#include "paraview_poses.h"
 #include "scene.h"
 #include "scene_setup.h"
 
@@ -330,4 +331,14 @@ TEST_F(Run, CoupledRunKeepsTheUsersFiles) {
         const auto before = output_rule::names(earlier);
         output_rule::expect_refused(coupled(earlier.string()), earlier, before, "later.txt", text);
     }
+}
+
+// ParaView's own Xdmf3 reader opens every step of a dry result, each unit
+// posed as bodies.h5 records it (tests/paraview_poses.h): a cube spinning as
+// it falls, so both position and orientation change from step to step.
+TEST_F(Run, ParaViewOpensEveryStepWithTheRecordedPoses) {
+    if (!have_pvpython())
+        GTEST_SKIP() << "pvpython not found (Debian: python3-paraview)";
+    ASSERT_EQ(run(scene_text("[0, 0, 0.3]", "angular_velocity = [3, 1, 2]\n")), 0) << err_;
+    expect_paraview_shows_the_poses(out());
 }
