@@ -161,15 +161,15 @@ void OutputFolder::lock() {
             const ssize_t got = ::pread(fd, text, sizeof text - 1, 0);
             ::close(fd);
             std::string holder(text, got > 0 ? static_cast<std::size_t>(got) : 0);
-            holder.erase(holder.find_last_not_of(" \n") + 1);
+            holder.erase(std::min(holder.size(), holder.find_first_not_of("0123456789"))); // the pid only
             throw InputError("--out " + target_.string() + ": in use by another armour command (pid " +
                              (holder.empty() ? "unknown" : holder) +
                              "); wait for it to end or choose another folder");
         }
         // The holder before us removes the file as it lets go: a lock taken on
         // the removed file guards nothing, so open the new one.
-        struct stat held {
-        }, named{};
+        struct stat held = {};
+        struct stat named = {};
         if (::fstat(fd, &held) == 0 && ::stat(file.c_str(), &named) == 0 && held.st_ino == named.st_ino &&
             held.st_dev == named.st_dev) {
             const std::string pid = pid_suffix() + "\n";

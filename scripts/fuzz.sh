@@ -18,7 +18,7 @@ cmake --build "$build" -j "$jobs" >/dev/null
 
 seeds_of() {
   case "$1" in
-    scene) ls "$root"/scenes/*.toml ;;
+    scene) ls "$root"/scenes/*.toml "$root"/fuzz/seeds/*.toml ;;
     stl) ls "$root"/scenes/*.stl "$root"/fuzz/seeds/*.stl ;;
   esac
 }
