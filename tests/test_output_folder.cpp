@@ -243,3 +243,49 @@ TEST_F(OutputLock, AWrongOpenFoamIsRefusedBeforeAnythingIsWritten) {
             ::unsetenv(c.variable);
     }
 }
+
+// The case: `armour compare` killed with -9 mid-way. It leaves only
+// hidden names of ours inside --out (no sibling DIR.partial-PID), and the
+// next compare into the folder completes and leaves nothing of it behind.
+TEST_F(OutputLock, AKilledCompareIsCleanedUpByTheNext) {
+    const auto scene = [](const char *duration) {
+        return std::string("name = \"tiny\"\n[run]\nduration = ") + duration +
+               "\noutput_interval = 0.005\ndomain_min = [-1, -1, -0.5]\n"
+               "domain_max = [1, 1, 1.5]\n[analysis]\nkind = \"bounce\"\n[[material]]\nname = \"concrete\"\n"
+               "[[unit]]\nname = \"cube\"\nshape = \"cube\"\nsize = 0.2\nspheres = 8\n"
+               "[[wall]]\nname = \"floor\"\ntype = \"plane\"\npoint = [0, 0, 0]\nnormal = [0, 0, 1]\nsize = "
+               "2\n"
+               "[[body]]\nunit = \"cube\"\nposition = [0, 0, 0.4]\n";
+    };
+    const fs::path out = dir_ / "out", slow = dir_ / "slow.toml", quick = dir_ / "quick.toml";
+    std::ofstream(slow) << scene("30.0");
+    std::ofstream(quick) << scene("0.05");
+    const std::string cache = (dir_ / "cache").string();
+    const pid_t killed = spawn_armour({"compare", slow.string(), "--spheres", "4", "--dt-factors", "1",
+                                       "--out", out.string(), "--cache", cache},
+                                      dir_ / "killed.err");
+    ASSERT_GT(killed, 0);
+    const fs::path partial = out / (".armour-partial-" + std::to_string(killed));
+    const auto start = std::chrono::steady_clock::now();
+    while (!fs::exists(partial / "runs")) {
+        ASSERT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(60))
+            << output_rule::read(dir_ / "killed.err");
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(500)); // well inside its 30 s runs
+    ::kill(killed, SIGKILL);
+    ASSERT_EQ(exit_status(killed), 128 + SIGKILL);
+    EXPECT_EQ(output_rule::names(out),
+              (std::set<std::string>{".armour-lock", ".armour-partial-" + std::to_string(killed)}));
+
+    const output_rule::Outcome next =
+        output_rule::armour({"compare", quick.string(), "--spheres", "4", "--dt-factors", "1", "--out",
+                             out.string(), "--cache", cache});
+    ASSERT_EQ(next.code, 0) << next.err;
+    for (const std::string &name : output_rule::names(out))
+        EXPECT_EQ(name.find(".armour-partial-"), std::string::npos) << name;
+    EXPECT_FALSE(fs::exists(out / ".armour-lock"));
+    EXPECT_TRUE(fs::is_regular_file(out / "summary.json"));
+    for (const std::string &name : output_rule::names(dir_))
+        EXPECT_EQ(name.find("out.partial-"), std::string::npos) << name;
+}
