@@ -38,6 +38,14 @@ template="$1"
 out="$2"
 [[ "$np" =~ ^[1-9][0-9]*$ ]] || die "--np must be a positive integer, got '$np'"
 [ -f "$template/system/controlDict" ] || die "$template is not a case (no system/controlDict)"
+# OpenFOAM's tools find their etc/ files only through WM_PROJECT_DIR (Debian's
+# v1912: /usr/share/openfoam); checked before OUTDIR is made, with the tools.
+export WM_PROJECT_DIR="${WM_PROJECT_DIR:-/usr/share/openfoam}"
+[ -f "$WM_PROJECT_DIR/etc/controlDict" ] ||
+    die "WM_PROJECT_DIR: $WM_PROJECT_DIR: not an OpenFOAM installation (no etc/controlDict); unset it to use /usr/share/openfoam"
+for tool in blockMesh setFields interFoam; do
+    command -v "$tool" > /dev/null || die "PATH: no $tool: install Debian's openfoam (docs/openfoam.md)"
+done
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 if grep -q '@ARMOUR_PLUGIN@' "$template/system/controlDict"; then
@@ -74,9 +82,6 @@ fi
 for f in "$out"/0/*.orig; do
     [ -e "$f" ] && cp "$f" "${f%.orig}"
 done
-
-# Debian's OpenFOAM finds its etc/ files only through this.
-export WM_PROJECT_DIR=/usr/share/openfoam
 
 # run NAME CMD...: runs in the case, logs to log.NAME, and on failure
 # surfaces the fatal line.

@@ -63,9 +63,9 @@ CaseRun run_case(const std::string &name, int np,
     r.dir = tmpl;
     const fs::path log = r.dir / "run_case.log";
     const std::string cmd = std::string("bash '") + ARMOUR_SOURCE_DIR + "/foam_cases/run_case.sh' --np " +
-                            std::to_string(np) + " --plugin '" + ARMOUR_FOAM_PLUGIN + "' --scene '" + scene.string() + "' '" +
-                            case_template.string() + "' '" + (r.dir / "case").string() + "' > '" +
-                            log.string() + "' 2>&1";
+                            std::to_string(np) + " --plugin '" + ARMOUR_FOAM_PLUGIN + "' --scene '" +
+                            scene.string() + "' '" + case_template.string() + "' '" +
+                            (r.dir / "case").string() + "' > '" + log.string() + "' 2>&1";
     const int rc = std::system(cmd.c_str());
     r.status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
     r.output = slurp(log);
@@ -261,3 +261,16 @@ TEST_F(FoamBuoyancy, TwoRanksMatchSerial) {
 }
 
 } // namespace
+
+// A wrong WM_PROJECT_DIR stops run_case.sh before OUTDIR is made, naming the
+// variable (blockMesh's own message does not).
+TEST(RunCase, WrongProjectDirIsRefusedBeforeTheCaseIsMade) {
+    ::setenv("WM_PROJECT_DIR", "/no/such/openfoam", 1);
+    const CaseRun r = run_case("wrong_project_dir", 1);
+    ::unsetenv("WM_PROJECT_DIR");
+    EXPECT_EQ(r.status, 1) << r.output;
+    EXPECT_EQ(r.output, "run_case: WM_PROJECT_DIR: /no/such/openfoam: not an OpenFOAM installation (no "
+                        "etc/controlDict); unset it to use /usr/share/openfoam\n");
+    EXPECT_FALSE(fs::exists(r.dir / "case"));
+    fs::remove_all(r.dir);
+}
