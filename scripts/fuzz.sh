@@ -13,8 +13,10 @@ seconds="${1:-60}"
 build="${ARMOUR_FUZZ_BUILD:-$root/build-fuzz}"
 jobs="$(nproc 2>/dev/null || echo 2)"
 
-cmake -S "$root/fuzz" -B "$build" -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ >/dev/null
-cmake --build "$build" -j "$jobs" >/dev/null
+mkdir -p "$build"
+{ cmake -S "$root/fuzz" -B "$build" -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ &&
+    cmake --build "$build" -j "$jobs"; } > "$build/build.log" 2>&1 ||
+  { tail -n 40 "$build/build.log"; echo "fuzz: the build failed (log: $build/build.log)" >&2; exit 1; }
 
 seeds_of() {
   case "$1" in
