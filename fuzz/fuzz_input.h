@@ -34,7 +34,8 @@ inline std::string file_of(const uint8_t *data, size_t size, const std::string &
     return path;
 }
 
-template <class Read> int refused_or_read(const uint8_t *data, size_t size, const std::string &suffix, Read read) {
+template <class Read>
+int refused_or_read(const uint8_t *data, size_t size, const std::string &suffix, Read read) {
     const std::string path = file_of(data, size, suffix);
     try {
         read(path);

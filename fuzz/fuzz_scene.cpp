@@ -13,7 +13,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     for (std::string line; std::getline(lines, line);)
         if (line.rfind("#set ", 0) == 0)
             overrides.push_back(line.substr(5));
-    return fuzz_input::refused_or_read(data, size, ".toml", [&](const std::string &path) {
-        (void)armour::load_scene(path, overrides);
-    });
+    return fuzz_input::refused_or_read(
+        data, size, ".toml", [&](const std::string &path) { (void)armour::load_scene(path, overrides); });
 }

@@ -50,7 +50,8 @@ TEST(FuzzInputs, StlsAreReadOrRefusedInOneLine) {
                                const armour::TriangleMesh mesh = armour::read_stl(path);
                                for (const auto &t : mesh.triangles)
                                    for (const int v : t)
-                                       ASSERT_TRUE(v >= 0 && static_cast<std::size_t>(v) < mesh.vertices.size());
+                                       ASSERT_TRUE(v >= 0 &&
+                                                   static_cast<std::size_t>(v) < mesh.vertices.size());
                            }),
               0);
 }
