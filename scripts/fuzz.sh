@@ -22,11 +22,13 @@ seeds_of() {
   case "$1" in
     scene) ls "$root"/scenes/*.toml "$root"/fuzz/seeds/*.toml ;;
     stl) ls "$root"/scenes/*.stl "$root"/fuzz/seeds/*.stl ;;
+    sweep) ls "$root"/studies/*.toml ;;
   esac
 }
 
-for target in scene stl; do
+for target in scene stl sweep; do
   fuzzer="$build/fuzz_$target"
+  [ -x "$fuzzer" ] || continue # fuzz_sweep: only with the sweep reader in the tree
   regressions=("$root/tests/fuzz_inputs/$target"/*)
   if [ -e "${regressions[0]}" ]; then
     "$fuzzer" -timeout=10 "${regressions[@]}" > "$build/regressions-$target.log" 2>&1 ||
