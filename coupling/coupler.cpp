@@ -82,12 +82,38 @@ double cell_circumradius(const CellSet &cells, std::size_t i) {
     return std::sqrt(r2);
 }
 
-// Cell i in the frame of a unit at `position` turned by `to_unit`.
-void cell_in_unit_frame(const CellSet &cells, std::size_t i, const Eigen::Vector3d &position,
-                        const Eigen::Matrix3d &to_unit, ConvexPolyhedron &out, std::vector<int> &ids) {
+// Half extents (m) of cell i when it is a box along the world axes centred
+// on its centre (every blockMesh hex of an unsheared block), else (-1, -1, -1).
+Eigen::Vector3d cell_box_half(const CellSet &cells, std::size_t i) {
+    if (cells.cell_faces.empty())
+        return Eigen::Vector3d::Constant(0.5 * std::cbrt(cells.volumes[i]));
+    const Eigen::Vector3d no = Eigen::Vector3d::Constant(-1.0);
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(HUGE_VAL), hi = -lo;
+    std::vector<int> ids;
+    for (int f : cells.cell_faces[i])
+        for (int p : cells.faces[f < 0 ? ~f : f]) {
+            if (std::find(ids.begin(), ids.end(), p) == ids.end())
+                ids.push_back(p);
+            lo = lo.cwiseMin(cells.points[p]);
+            hi = hi.cwiseMax(cells.points[p]);
+        }
+    const double tolerance = 1e-9 * (hi - lo).norm();
+    if (ids.size() != 8 || ((lo + hi) / 2 - cells.centres[i]).norm() > tolerance)
+        return no;
+    for (int p : ids)
+        for (int a = 0; a < 3; ++a)
+            if (std::abs(cells.points[p][a] - lo[a]) > tolerance && std::abs(cells.points[p][a] - hi[a]) > tolerance)
+                return no;
+    return (hi - lo) / 2;
+}
+
+// Cell i (its box half extents `half` when it is one) in the frame of a unit
+// at `position` turned by `to_unit`.
+void cell_in_unit_frame(const CellSet &cells, std::size_t i, const Eigen::Vector3d &half,
+                        const Eigen::Vector3d &position, const Eigen::Matrix3d &to_unit, ConvexPolyhedron &out,
+                        std::vector<int> &ids) {
     out.clear();
-    if (cells.cell_faces.empty()) {
-        const Eigen::Vector3d half = Eigen::Vector3d::Constant(0.5 * std::cbrt(cells.volumes[i]));
+    if (half.x() >= 0.0) {
         const Eigen::Vector3d lo = cells.centres[i] - half, hi = cells.centres[i] + half;
         for (int c = 0; c < 8; ++c)
             out.add_point(to_unit * (Eigen::Vector3d(c & 1 ? hi.x() : lo.x(), c & 2 ? hi.y() : lo.y(),
@@ -153,6 +179,10 @@ struct CellBins {
     // half its width; exact fractions: the cell's circumradius.
     std::vector<double> half_width;
     double max_half_width = 0.0;
+    // Exact fractions: each cell's half extents when it is a box along the
+    // world axes (x < 0 otherwise), and its volume as the clipping sees it.
+    std::vector<Eigen::Vector3d> box_half;
+    std::vector<double> cell_volume;
     Eigen::Vector3d lower = Eigen::Vector3d::Zero();
     double edge = 1.0; // m, bin edge
     std::array<int, 3> n{{1, 1, 1}};
@@ -169,9 +199,19 @@ struct CellBins {
         max_half_width = 0.0;
         lower = Eigen::Vector3d::Constant(HUGE_VAL);
         Eigen::Vector3d upper = Eigen::Vector3d::Constant(-HUGE_VAL);
+        box_half.assign(smoothing_cells ? 0 : count, Eigen::Vector3d::Constant(-1.0));
+        cell_volume.assign(smoothing_cells ? 0 : count, 0.0);
+        ConvexPolyhedron cell;
+        std::vector<int> ids;
         for (std::size_t i = 0; i < count; ++i) {
             half_width[i] =
                 smoothing_cells ? 0.5 * *smoothing_cells * std::cbrt(volumes[i]) : cell_circumradius(c, i);
+            if (!smoothing_cells) {
+                box_half[i] = cell_box_half(c, i);
+                cell_in_unit_frame(c, i, box_half[i], Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity(), cell,
+                                   ids);
+                cell_volume[i] = cell.volume_and_centroid().volume;
+            }
             max_half_width = std::max(max_half_width, half_width[i]);
             lower = lower.cwiseMin(centres[i]);
             upper = upper.cwiseMax(centres[i]);
@@ -236,6 +276,10 @@ struct Coupler::Impl {
     static bool exact_fraction(Impl &m, const UnitShape &shape, const CellSet &cells, std::size_t i,
                                const Eigen::Vector3d &position, const Eigen::Matrix3d &to_unit, double reach,
                                double &chi, Eigen::Vector3d &centroid);
+    // Convex units: each face normal turned into the world, component-wise
+    // |.|, for the body at hand: a box cell of half extents e reaches
+    // |n|_world . e along the normal.
+    std::vector<Eigen::Vector3d> abs_normals;
 
     void check_bodies(const char *where) const {
         if (engine.body_count() != static_cast<int>(body_unit.size()))
@@ -317,7 +361,25 @@ Coupler::~Coupler() = default;
 bool Coupler::Impl::exact_fraction(Impl &m, const UnitShape &shape, const CellSet &cells, std::size_t i,
                                    const Eigen::Vector3d &position, const Eigen::Matrix3d &to_unit,
                                    double reach, double &chi, Eigen::Vector3d &centroid) {
-    {
+    const Eigen::Vector3d &half = m.bins.box_half[i];
+    if (half.x() >= 0.0 && shape.solid->convex()) {
+        // A box cell against a convex unit: wholly outside when a plane has
+        // the whole box beyond it, inside when every plane has it within;
+        // otherwise some plane cuts it.
+        const Eigen::Vector3d x = to_unit * (cells.centres[i] - position);
+        const std::vector<HalfSpace> &planes = shape.solid->planes();
+        bool inside = true;
+        for (std::size_t k = 0; k < planes.size(); ++k) {
+            const double d = planes[k].normal.dot(x) - planes[k].offset, extent = m.abs_normals[k].dot(half);
+            if (d >= extent)
+                return false;
+            inside = inside && d <= -extent;
+        }
+        if (inside) {
+            chi = 1.0;
+            return true;
+        }
+    } else {
         // One distance spares the clipping for cells that do not reach the
         // surface. Convex units: the largest plane distance, exact inside and
         // at most the true distance outside. Spheres: the depth inside is at
@@ -331,12 +393,11 @@ bool Coupler::Impl::exact_fraction(Impl &m, const UnitShape &shape, const CellSe
             return true;
         }
     }
-    cell_in_unit_frame(cells, i, position, to_unit, m.cell, m.cell_points);
+    cell_in_unit_frame(cells, i, half, position, to_unit, m.cell, m.cell_points);
     const SolidPart part = shape.solid->part_inside(m.cell, m.scratch);
     if (!(part.volume > 0.0))
         return false;
-    const double cell_volume = m.cell.volume_and_centroid().volume;
-    chi = std::min(1.0, part.volume / cell_volume);
+    chi = std::min(1.0, part.volume / m.bins.cell_volume[i]);
     centroid = position + to_unit.transpose() * part.centroid;
     return true;
 }
@@ -375,6 +436,11 @@ const CellMask &Coupler::update_mask(const CellSet &cells) {
         const Eigen::Vector3d p = m.states[k].pose.position;
         const Eigen::Quaterniond q_inv = m.states[k].pose.orientation.normalized().conjugate();
         const Eigen::Matrix3d to_unit = q_inv.toRotationMatrix();
+        if (shape.solid && shape.solid->convex()) {
+            m.abs_normals.clear();
+            for (const HalfSpace &h : shape.solid->planes())
+                m.abs_normals.push_back((to_unit.transpose() * h.normal).cwiseAbs());
+        }
         const double body_reach = shape.outer + m.bins.max_half_width;
         std::array<int, 3> lo{}, hi{};
         for (int a = 0; a < 3; ++a) {

@@ -108,6 +108,7 @@ class SolidShape {
     static SolidShape from_spheres(const Clump &spheres, double line_spacing);
 
     bool convex() const { return !planes_.empty(); }
+    const std::vector<HalfSpace> &planes() const { return planes_; }
     // Convex units: max over the face planes of normal . x - offset (m):
     // the signed distance inside, at most the distance outside.
     double plane_distance(const Eigen::Vector3d &x) const;
