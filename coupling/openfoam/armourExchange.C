@@ -37,11 +37,17 @@ armour::CellSet cellSet(const Foam::fvMesh& mesh)
     {
         cells.faces[f].assign(faces[f].begin(), faces[f].end());
     }
+    // A face's points run counter-clockwise seen from outside its owner, so
+    // its neighbour lists it reversed (~f).
     const Foam::cellList& cellFaces = mesh.cells();
+    const Foam::labelList& owner = mesh.faceOwner();
     cells.cell_faces.resize(cellFaces.size());
     forAll(cellFaces, i)
     {
-        cells.cell_faces[i].assign(cellFaces[i].begin(), cellFaces[i].end());
+        for (const Foam::label f : cellFaces[i])
+        {
+            cells.cell_faces[i].push_back(owner[f] == i ? f : ~f);
+        }
     }
     return cells;
 }
