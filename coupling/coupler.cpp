@@ -505,7 +505,7 @@ const CellMask &Coupler::update_mask(const CellSet &cells) {
     m.mask.chi.assign(n, 0.0);
     m.mask.body.assign(n, -1);
     m.mask.velocity.assign(n, Eigen::Vector3d::Zero());
-    m.mask.centroid = cells.centres;
+    m.mask.centroid.resize(n); // set where a body owns the cell
     if (n == 0)
         return m.mask;
 

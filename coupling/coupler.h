@@ -80,7 +80,7 @@ struct CellMask {
     std::vector<double> chi;               // solid fraction in [0, 1]
     std::vector<int> body;                 // owning body, -1 where chi = 0
     std::vector<Eigen::Vector3d> velocity; // m/s, rigid-body velocity at the cell centre
-    std::vector<Eigen::Vector3d> centroid; // m, of the solid part of the cell (sampled_ramp: the centre)
+    std::vector<Eigen::Vector3d> centroid; // m, of the solid part of an owned cell (ramp: its centre)
 };
 
 struct BodyLoads {
