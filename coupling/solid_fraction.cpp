@@ -3,6 +3,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <utility>
 
@@ -29,14 +30,24 @@ void ConvexPolyhedron::clip(const HalfSpace &h, ConvexPolyhedron &out, std::vect
     out.clear();
     const int n = static_cast<int>(points.size());
     side.resize(n);
+    bool any_out = false, all_out = true;
+    for (int i = 0; i < n; ++i) {
+        side[i] = h.normal.dot(points[i]) - h.offset;
+        any_out = any_out || side[i] > 0.0;
+        all_out = all_out && side[i] > 0.0;
+    }
+    if (!any_out) {
+        out = *this;
+        return;
+    }
+    if (all_out)
+        return;
     // scratch: [0, n) the kept points' new indices; then per face its exit
     // and entry points; then the crossings found (lo, hi, new index).
     scratch.assign(static_cast<std::size_t>(n + 2 * faces), -1);
-    for (int i = 0; i < n; ++i) {
-        side[i] = h.normal.dot(points[i]) - h.offset;
+    for (int i = 0; i < n; ++i)
         if (side[i] <= 0.0)
             scratch[i] = out.add_point(points[i]);
-    }
     // The crossing of edge ab, found once for both faces that share it and
     // computed from its lower index, so both get the same point.
     const auto crossing = [&](int a, int b) {
@@ -86,8 +97,15 @@ SolidPart ConvexPolyhedron::volume_and_centroid() const {
     // Tetrahedra from a vertex p0 over each face's fan from its first point:
     // (p0, x_f, a, b) for every edge ab of face f, all positive for a convex
     // polyhedron with outward faces, whatever order the edges come in.
-    thread_local std::vector<int> first;
-    first.assign(static_cast<std::size_t>(faces), -1);
+    // Each face's first point; on the stack for the usual few faces.
+    std::array<int, 32> few;
+    std::vector<int> many;
+    int *first = few.data();
+    if (faces > static_cast<int>(few.size())) {
+        many.resize(static_cast<std::size_t>(faces));
+        first = many.data();
+    }
+    std::fill(first, first + faces, -1);
     const Eigen::Vector3d p0 = points[edges.front().from];
     double six_volume = 0.0;
     Eigen::Vector3d moment = Eigen::Vector3d::Zero();
@@ -194,18 +212,14 @@ const ConvexPolyhedron &SolidShape::clip_all(const ConvexPolyhedron &cell, const
     const ConvexPolyhedron *current = &cell;
     ConvexPolyhedron *next = &scratch.a, *spare = &scratch.b;
     for (int k = 0; k < count; ++k) {
-        bool any_out = false, all_out = true;
-        for (const Eigen::Vector3d &x : current->points) {
-            const bool out = h[k].normal.dot(x) > h[k].offset;
-            any_out = any_out || out;
-            all_out = all_out && out;
-        }
+        bool any_out = false;
+        for (const Eigen::Vector3d &x : current->points)
+            if (h[k].normal.dot(x) > h[k].offset) {
+                any_out = true;
+                break;
+            }
         if (!any_out)
             continue;
-        if (all_out) {
-            next->clear();
-            return *next;
-        }
         current->clip(h[k], *next, scratch.side, scratch.indices);
         current = next;
         std::swap(next, spare);

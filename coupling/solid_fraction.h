@@ -114,6 +114,12 @@ class SolidShape {
     double plane_distance(const Eigen::Vector3d &x) const;
     // The part of `cell` (unit frame) inside the unit.
     SolidPart part_inside(const ConvexPolyhedron &cell, FractionScratch &scratch) const;
+    // The part of `cell` inside `count` half-spaces (a convex unit's planes
+    // that cut it, when the caller knows which).
+    static SolidPart part_within(const ConvexPolyhedron &cell, const HalfSpace *planes, int count,
+                                 FractionScratch &scratch) {
+        return clip_all(cell, planes, count, scratch).volume_and_centroid();
+    }
 
   private:
     struct Cone {
