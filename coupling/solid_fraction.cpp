@@ -43,22 +43,18 @@ void ConvexPolyhedron::clip(const HalfSpace &h, ConvexPolyhedron &out, std::vect
     if (all_out)
         return;
     // scratch: [0, n) the kept points' new indices; then per face its exit
-    // and entry points; then the crossings found (lo, hi, new index).
+    // and entry points.
     scratch.assign(static_cast<std::size_t>(n + 2 * faces), -1);
     for (int i = 0; i < n; ++i)
         if (side[i] <= 0.0)
             scratch[i] = out.add_point(points[i]);
-    // The crossing of edge ab, found once for both faces that share it and
-    // computed from its lower index, so both get the same point.
+    // The crossing of edge ab, computed from its lower index so that both
+    // faces sharing the edge get the same point (as two indices: faces need
+    // no shared indices, only consistent orientation).
     const auto crossing = [&](int a, int b) {
         const int lo = std::min(a, b), hi = std::max(a, b);
-        for (std::size_t k = n + 2 * faces; k < scratch.size(); k += 3)
-            if (scratch[k] == lo && scratch[k + 1] == hi)
-                return scratch[k + 2];
         const double t = side[lo] / (side[lo] - side[hi]);
-        const int x = out.add_point(points[lo] + t * (points[hi] - points[lo]));
-        scratch.insert(scratch.end(), {lo, hi, x});
-        return x;
+        return out.add_point(points[lo] + t * (points[hi] - points[lo]));
     };
     for (const Edge &e : edges) {
         const bool in_from = side[e.from] <= 0.0, in_to = side[e.to] <= 0.0;
