@@ -232,6 +232,33 @@ TEST(SolidFraction, UniformLoadHasNoMomentAboutTheCentroid) {
     EXPECT_LT(loads.torque[0].norm(), 1e-10 * f.norm());
 }
 
+// A unit that has moved less than 1e-3 of a cell keeps the fractions of the
+// pose they were computed at (their sum is still its volume); beyond that
+// they are recomputed.
+TEST(SolidFraction, FractionsAreKeptUntilTheUnitMovesAThousandthOfACell) {
+    const Shape cube = make_cube_shape(0.3, 0.0, 2400.0);
+    const double h = 0.3 / 4.0;
+    EngineSettings still;
+    still.gravity = Eigen::Vector3d::Zero();
+    auto engine = make_free_body_engine(still);
+    engine->add_template(unit_of(cube));
+    BodyInit body;
+    body.pose.position = Eigen::Vector3d(0.013, 0.021, -0.008);
+    body.velocity = Eigen::Vector3d(0.5e-3 * h, 0.0, 0.0); // per second
+    engine->add_body(body);
+    Coupler coupler(*engine, {unit_of(cube)}, {0}, CouplerSettings{});
+    const CellSet cells = grid_around(body.pose.position, 0.3, h);
+    const std::vector<double> first = coupler.update_mask(cells).chi;
+    engine->advance(1.0); // 5e-4 h: kept
+    const CellMask &kept = coupler.update_mask(cells);
+    EXPECT_EQ(kept.chi, first);
+    EXPECT_NEAR(solid_volume(kept, cells), cube.props.volume, 1e-12 * cube.props.volume);
+    engine->advance(2.0); // 1.5e-3 h from where they were computed: recomputed
+    const CellMask &moved = coupler.update_mask(cells);
+    EXPECT_NE(moved.chi, first);
+    EXPECT_NEAR(solid_volume(moved, cells), cube.props.volume, 1e-12 * cube.props.volume);
+}
+
 // A tilted cube moved slowly through the grid (h/50 per step along a skew
 // line) in a force density that varies in space: the load changes by no
 // more than the volume the unit sweeps in a step times the largest density
