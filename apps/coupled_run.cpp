@@ -675,6 +675,7 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
           {"fluid_density", f.fluid_density},
           {"penalty", f.penalty},
           {"mask", f.mask},
+          {"solid_fraction", f.solid_fraction},
           {"added_mass", f.added_mass}}},
         {"files",
          {{"bodies", "bodies.h5"},

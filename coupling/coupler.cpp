@@ -37,6 +37,7 @@
 #include "distance_grid.h"
 #include "mesh.h"
 #include "shape_query.h"
+#include "solid_fraction.h"
 
 #include <algorithm>
 #include <array>
@@ -52,6 +53,19 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
+// Chords of a clump's spheres are taken along lines this many per radius of
+// its smallest sphere apart (the error it leaves: tests/test_solid_fraction.cpp).
+constexpr double kSphereLinesPerRadius = 16.0;
+
+// Exact fractions are recomputed for a unit once it has moved (at its
+// farthest point) by more than this fraction of the smallest cell since they
+// were last computed; in between it keeps those of that pose. Their sum
+// chi V is the unit's volume at any pose, so buoyancy stays exact: the solid
+// only lags the unit by at most 1e-3 h (0.04 mm on 4 cm cells; the explicit
+// exchange already lags it by a fluid step), and a unit at rest, or creeping
+// on soft contacts, costs nothing most steps.
+constexpr double kRestTolerance = 1e-3;
+
 // A symmetric ramp (chi(d) + chi(-d) = 1) integrates a flat face exactly, so
 // the mask volume differs from the unit volume only through curvature and
 // edges, O(w^2). The cosine is C1 (smooth forces when a face crosses a cell)
@@ -66,12 +80,86 @@ double ramp(double d, double w) {
     return 0.5 - 0.5 * std::sin(kPi * d / w);
 }
 
+// The farthest point of cell i from its centre (m).
+double cell_circumradius(const CellSet &cells, std::size_t i) {
+    if (cells.cell_faces.empty())
+        return 0.5 * std::sqrt(3.0) * std::cbrt(cells.volumes[i]);
+    double r2 = 0.0;
+    for (int f : cells.cell_faces[i])
+        for (int p : cells.faces[f < 0 ? ~f : f])
+            r2 = std::max(r2, (cells.points[p] - cells.centres[i]).squaredNorm());
+    return std::sqrt(r2);
+}
+
+// Half extents (m) of cell i when it is a box along the world axes centred
+// on its centre (every blockMesh hex of an unsheared block), else (-1, -1, -1).
+Eigen::Vector3d cell_box_half(const CellSet &cells, std::size_t i) {
+    if (cells.cell_faces.empty())
+        return Eigen::Vector3d::Constant(0.5 * std::cbrt(cells.volumes[i]));
+    const Eigen::Vector3d no = Eigen::Vector3d::Constant(-1.0);
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(HUGE_VAL), hi = -lo;
+    std::vector<int> ids;
+    for (int f : cells.cell_faces[i])
+        for (int p : cells.faces[f < 0 ? ~f : f]) {
+            if (std::find(ids.begin(), ids.end(), p) == ids.end())
+                ids.push_back(p);
+            lo = lo.cwiseMin(cells.points[p]);
+            hi = hi.cwiseMax(cells.points[p]);
+        }
+    const double tolerance = 1e-9 * (hi - lo).norm();
+    if (ids.size() != 8 || ((lo + hi) / 2 - cells.centres[i]).norm() > tolerance)
+        return no;
+    for (int p : ids)
+        for (int a = 0; a < 3; ++a)
+            if (std::abs(cells.points[p][a] - lo[a]) > tolerance &&
+                std::abs(cells.points[p][a] - hi[a]) > tolerance)
+                return no;
+    return (hi - lo) / 2;
+}
+
+// Cell i (its box half extents `half` when it is one) in the frame of a unit
+// at `position` turned by `to_unit`.
+void cell_in_unit_frame(const CellSet &cells, std::size_t i, const Eigen::Vector3d &half,
+                        const Eigen::Vector3d &position, const Eigen::Matrix3d &to_unit,
+                        ConvexPolyhedron &out, std::vector<int> &ids) {
+    out.clear();
+    if (half.x() >= 0.0) {
+        const Eigen::Vector3d lo = cells.centres[i] - half, hi = cells.centres[i] + half;
+        for (int c = 0; c < 8; ++c)
+            out.add_point(to_unit * (Eigen::Vector3d(c & 1 ? hi.x() : lo.x(), c & 2 ? hi.y() : lo.y(),
+                                                     c & 4 ? hi.z() : lo.z()) -
+                                     position));
+        for (const auto &loop : ConvexPolyhedron::kBoxLoops)
+            out.add_face(loop, 4);
+        return;
+    }
+    // The cell's own points (a hex: 8), each once, so that faces share them.
+    ids.clear();
+    std::vector<int> loop;
+    for (int signed_face : cells.cell_faces[i]) {
+        const std::vector<int> &face = cells.faces[signed_face < 0 ? ~signed_face : signed_face];
+        loop.clear();
+        for (int p : face) {
+            const auto known = std::find(ids.begin(), ids.end(), p);
+            if (known == ids.end()) {
+                ids.push_back(p);
+                out.add_point(to_unit * (cells.points[p] - position));
+            }
+            loop.push_back(static_cast<int>(std::find(ids.begin(), ids.end(), p) - ids.begin()));
+        }
+        if (signed_face < 0)
+            std::reverse(loop.begin(), loop.end());
+        out.add_face(loop.data(), static_cast<int>(loop.size()));
+    }
+}
+
 // What update_mask needs of one unit template, built once.
 struct UnitShape {
     std::optional<Eigen::Vector3d> box; // exact shape, when a box: half extents (m), closed form
     std::unique_ptr<ShapeQuery> query;  // exact shape otherwise: inside test, far distances
     std::unique_ptr<DistanceGrid> near; // exact shape otherwise: the same distances, fast near the unit
     const Clump *spheres = nullptr;     // clump spheres only
+    std::unique_ptr<SolidShape> solid;  // exact solid fractions
     double outer = 0.0;                 // m, every point of the solid lies within this of the origin
     double inner = 0.0;                 // m, the ball of this radius about the origin is solid
 
@@ -97,8 +185,15 @@ struct UnitShape {
 struct CellBins {
     std::vector<Eigen::Vector3d> centres; // the binned cell set, to recognise it
     std::vector<double> volumes;
-    std::vector<double> half_width; // m, half the ramp width per cell
+    // m per cell: how far from its centre the cell can see a unit. The ramp:
+    // half its width; exact fractions: the cell's circumradius.
+    std::vector<double> half_width;
     double max_half_width = 0.0;
+    // Exact fractions: each cell's half extents when it is a box along the
+    // world axes (x < 0 otherwise), and its volume as the clipping sees it.
+    std::vector<Eigen::Vector3d> box_half;
+    std::vector<double> cell_volume;
+    double smallest_cell = 0.0; // m, the least V^(1/3)
     Eigen::Vector3d lower = Eigen::Vector3d::Zero();
     double edge = 1.0; // m, bin edge
     std::array<int, 3> n{{1, 1, 1}};
@@ -107,7 +202,7 @@ struct CellBins {
 
     bool matches(const CellSet &c) const { return c.centres == centres && c.volumes == volumes; }
 
-    void build(const CellSet &c, double smoothing_cells, double largest_outer) {
+    void build(const CellSet &c, std::optional<double> smoothing_cells, double largest_outer) {
         centres = c.centres;
         volumes = c.volumes;
         const std::size_t count = centres.size();
@@ -115,8 +210,22 @@ struct CellBins {
         max_half_width = 0.0;
         lower = Eigen::Vector3d::Constant(HUGE_VAL);
         Eigen::Vector3d upper = Eigen::Vector3d::Constant(-HUGE_VAL);
+        smallest_cell = HUGE_VAL;
+        for (double v : volumes)
+            smallest_cell = std::min(smallest_cell, std::cbrt(v));
+        box_half.assign(smoothing_cells ? 0 : count, Eigen::Vector3d::Constant(-1.0));
+        cell_volume.assign(smoothing_cells ? 0 : count, 0.0);
+        ConvexPolyhedron cell;
+        std::vector<int> ids;
         for (std::size_t i = 0; i < count; ++i) {
-            half_width[i] = 0.5 * smoothing_cells * std::cbrt(volumes[i]);
+            half_width[i] =
+                smoothing_cells ? 0.5 * *smoothing_cells * std::cbrt(volumes[i]) : cell_circumradius(c, i);
+            if (!smoothing_cells) {
+                box_half[i] = cell_box_half(c, i);
+                cell_in_unit_frame(c, i, box_half[i], Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity(),
+                                   cell, ids);
+                cell_volume[i] = cell.volume_and_centroid().volume;
+            }
             max_half_width = std::max(max_half_width, half_width[i]);
             lower = lower.cwiseMin(centres[i]);
             upper = upper.cwiseMax(centres[i]);
@@ -165,6 +274,9 @@ struct Coupler::Impl {
     std::vector<BodyState> states; // at the last update_mask: loads are taken about these centres
     CellMask mask;
     CellBins bins;
+    ConvexPolyhedron cell; // exact fractions: the cell at hand, in the unit frame
+    std::vector<int> cell_points;
+    FractionScratch scratch;
     std::vector<Eigen::Vector3d> a_prev;     // m/s^2, each body's acceleration over the last advance
     std::vector<Eigen::Vector3d> alpha_prev; // rad/s^2
     // Per body: the last fluid force (N) and its last two step changes, and
@@ -174,6 +286,26 @@ struct Coupler::Impl {
 
     Impl(RigidBodyEngine &e, std::vector<UnitTemplate> u, std::vector<int> b, CouplerSettings s)
         : engine(e), units(std::move(u)), body_unit(std::move(b)), settings(std::move(s)) {}
+
+    static bool exact_fraction(Impl &m, const UnitShape &shape, const CellSet &cells, std::size_t i,
+                               const Eigen::Vector3d &position, const Eigen::Matrix3d &to_unit, double reach,
+                               double &chi, Eigen::Vector3d &centroid);
+    // Per body, the cells it reaches with their fractions and solid
+    // centroids, and the pose they were computed at.
+    struct BodyCells {
+        std::vector<int> cell;
+        std::vector<double> chi;
+        std::vector<Eigen::Vector3d> centroid;
+        Pose pose;
+        bool valid = false;
+    };
+    std::vector<BodyCells> body_cells;
+    void cells_of_body(int k, const CellSet &cells, BodyCells &own);
+    // Convex units: each face normal turned into the world, component-wise
+    // |.|, for the body at hand: a box cell of half extents e reaches
+    // |n|_world . e along the normal.
+    std::vector<Eigen::Vector3d> abs_normals;
+    std::vector<HalfSpace> cutting; // the planes that cut the cell at hand
 
     void check_bodies(const char *where) const {
         if (engine.body_count() != static_cast<int>(body_unit.size()))
@@ -210,6 +342,8 @@ Coupler::Coupler(RigidBodyEngine &engine, std::vector<UnitTemplate> units, std::
             // Cubes, the commonest unit, skip the triangle queries: at 100
             // units they were a third of the coupling's cost per step.
             shape.box = axis_aligned_box_half_extents(unit.mesh);
+            if (s.fraction == SolidFraction::exact)
+                shape.solid = std::make_unique<SolidShape>(SolidShape::from_mesh(unit.mesh));
             if (shape.box) {
                 shape.inner = shape.box->minCoeff();
             } else {
@@ -226,10 +360,15 @@ Coupler::Coupler(RigidBodyEngine &engine, std::vector<UnitTemplate> units, std::
             if (unit.clump.empty())
                 throw InputError("coupler: unit '" + unit.name + "' has no clump spheres for the mask");
             shape.spheres = &unit.clump;
+            double smallest = HUGE_VAL;
             for (const Sphere &sp : unit.clump) {
                 shape.outer = std::max(shape.outer, sp.center.norm() + sp.radius);
                 shape.inner = std::max(shape.inner, sp.radius - sp.center.norm());
+                smallest = std::min(smallest, sp.radius);
             }
+            if (s.fraction == SolidFraction::exact)
+                shape.solid = std::make_unique<SolidShape>(
+                    SolidShape::from_spheres(unit.clump, smallest / kSphereLinesPerRadius));
         }
         impl_->shapes.push_back(std::move(shape));
     }
@@ -241,6 +380,116 @@ Coupler::Coupler(RigidBodyEngine &engine, std::vector<UnitTemplate> units, std::
 }
 
 Coupler::~Coupler() = default;
+
+// The exact fraction of cell i (circumradius `reach`) inside a unit at
+// `position` whose frame `to_unit` turns world into unit axes; false when the
+// cell lies wholly outside.
+bool Coupler::Impl::exact_fraction(Impl &m, const UnitShape &shape, const CellSet &cells, std::size_t i,
+                                   const Eigen::Vector3d &position, const Eigen::Matrix3d &to_unit,
+                                   double reach, double &chi, Eigen::Vector3d &centroid) {
+    const Eigen::Vector3d &half = m.bins.box_half[i];
+    if (half.x() >= 0.0 && shape.solid->convex()) {
+        // A box cell against a convex unit: wholly outside when a plane has
+        // the whole box beyond it, inside when every plane has it within;
+        // otherwise some plane cuts it.
+        const Eigen::Vector3d x = to_unit * (cells.centres[i] - position);
+        const std::vector<HalfSpace> &planes = shape.solid->planes();
+        m.cutting.clear();
+        for (std::size_t k = 0; k < planes.size(); ++k) {
+            const double d = planes[k].normal.dot(x) - planes[k].offset, extent = m.abs_normals[k].dot(half);
+            if (d >= extent)
+                return false;
+            if (d > -extent)
+                m.cutting.push_back(planes[k]);
+        }
+        if (m.cutting.empty()) {
+            chi = 1.0;
+            return true;
+        }
+        cell_in_unit_frame(cells, i, half, position, to_unit, m.cell, m.cell_points);
+        const SolidPart part =
+            SolidShape::part_within(m.cell, m.cutting.data(), static_cast<int>(m.cutting.size()), m.scratch);
+        if (!(part.volume > 0.0))
+            return false;
+        chi = std::min(1.0, part.volume / m.bins.cell_volume[i]);
+        centroid = position + to_unit.transpose() * part.centroid;
+        return true;
+    } else {
+        // One distance spares the clipping for cells that do not reach the
+        // surface. Convex units: the largest plane distance, exact inside and
+        // at most the true distance outside. Spheres: the depth inside is at
+        // most the true depth. Both err on the side of clipping.
+        const Eigen::Vector3d x = to_unit * (cells.centres[i] - position);
+        const double d = shape.solid->convex() ? shape.solid->plane_distance(x) : shape.signed_distance(x);
+        if (d >= reach)
+            return false;
+        if (d <= -reach) {
+            chi = 1.0;
+            return true;
+        }
+    }
+    cell_in_unit_frame(cells, i, half, position, to_unit, m.cell, m.cell_points);
+    const SolidPart part = shape.solid->part_inside(m.cell, m.scratch);
+    if (!(part.volume > 0.0))
+        return false;
+    chi = std::min(1.0, part.volume / m.bins.cell_volume[i]);
+    centroid = position + to_unit.transpose() * part.centroid;
+    return true;
+}
+
+void Coupler::Impl::cells_of_body(int k, const CellSet &cells, BodyCells &own) {
+    Impl &m = *this;
+    own.cell.clear();
+    own.chi.clear();
+    own.centroid.clear();
+    const UnitShape &shape = m.shapes[m.body_unit[k]];
+    const Eigen::Vector3d p = m.states[k].pose.position;
+    const Eigen::Quaterniond q_inv = m.states[k].pose.orientation.normalized().conjugate();
+    const Eigen::Matrix3d to_unit = q_inv.toRotationMatrix();
+    if (shape.solid && shape.solid->convex()) {
+        m.abs_normals.clear();
+        for (const HalfSpace &h : shape.solid->planes())
+            m.abs_normals.push_back((to_unit.transpose() * h.normal).cwiseAbs());
+    }
+    const std::vector<double> &half_width = m.bins.half_width;
+    const double body_reach = shape.outer + m.bins.max_half_width;
+    std::array<int, 3> lo{}, hi{};
+    for (int a = 0; a < 3; ++a) {
+        lo[a] = m.bins.index(p - Eigen::Vector3d::Constant(body_reach), a);
+        hi[a] = m.bins.index(p + Eigen::Vector3d::Constant(body_reach), a);
+    }
+    for (int bk = lo[2]; bk <= hi[2]; ++bk)
+        for (int bj = lo[1]; bj <= hi[1]; ++bj)
+            for (int bi = lo[0]; bi <= hi[0]; ++bi) {
+                const int b = m.bins.bin(bi, bj, bk);
+                for (int c = m.bins.first[b]; c < m.bins.first[b + 1]; ++c) {
+                    const auto i = static_cast<std::size_t>(m.bins.cells[c]);
+                    const double hw = half_width[i];
+                    const Eigen::Vector3d r = cells.centres[i] - p;
+                    const double r2 = r.squaredNorm();
+                    // Culling: beyond the bounding sphere plus the ramp (the
+                    // cell's reach) chi is 0; inside the inscribed ball minus
+                    // it, 1. Neither needs a query.
+                    const double reach = shape.outer + hw;
+                    if (r2 >= reach * reach)
+                        continue;
+                    double chi;
+                    Eigen::Vector3d centroid = cells.centres[i];
+                    const double core = shape.inner - hw;
+                    if (core > 0.0 && r2 <= core * core)
+                        chi = 1.0;
+                    else if (!shape.solid)
+                        chi = ramp(shape.signed_distance(q_inv * r), 2.0 * hw);
+                    else if (!exact_fraction(m, shape, cells, i, p, to_unit, hw, chi, centroid))
+                        continue;
+                    if (chi > 0.0) {
+                        own.cell.push_back(static_cast<int>(i));
+                        own.chi.push_back(chi);
+                        own.centroid.push_back(centroid);
+                    }
+                }
+            }
+}
 
 const CellMask &Coupler::update_mask(const CellSet &cells) {
     Impl &m = *impl_;
@@ -254,57 +503,48 @@ const CellMask &Coupler::update_mask(const CellSet &cells) {
     for (int k = 0; k < nb; ++k)
         m.states[k] = m.engine.state(k);
 
+    const bool exact = m.settings.fraction == SolidFraction::exact;
     if (!m.bins.matches(cells)) {
         double largest_outer = 0.0;
         for (const UnitShape &shape : m.shapes)
             largest_outer = std::max(largest_outer, shape.outer);
-        m.bins.build(cells, m.settings.smoothing_cells, largest_outer);
+        m.bins.build(cells, exact ? std::nullopt : std::optional<double>(m.settings.smoothing_cells),
+                     largest_outer);
+        m.body_cells.assign(static_cast<std::size_t>(nb), {});
     }
-    const std::vector<double> &half_width = m.bins.half_width;
+    m.body_cells.resize(static_cast<std::size_t>(nb));
 
     m.mask.chi.assign(n, 0.0);
     m.mask.body.assign(n, -1);
     m.mask.velocity.assign(n, Eigen::Vector3d::Zero());
+    m.mask.centroid.resize(n); // set where a body owns the cell
     if (n == 0)
         return m.mask;
 
     for (int k = 0; k < nb; ++k) {
+        Impl::BodyCells &own = m.body_cells[k];
+        const Pose &pose = m.states[k].pose;
         const UnitShape &shape = m.shapes[m.body_unit[k]];
-        const Eigen::Vector3d p = m.states[k].pose.position;
-        const Eigen::Quaterniond q_inv = m.states[k].pose.orientation.normalized().conjugate();
-        const double body_reach = shape.outer + m.bins.max_half_width;
-        std::array<int, 3> lo{}, hi{};
-        for (int a = 0; a < 3; ++a) {
-            lo[a] = m.bins.index(p - Eigen::Vector3d::Constant(body_reach), a);
-            hi[a] = m.bins.index(p + Eigen::Vector3d::Constant(body_reach), a);
+        // Exact fractions of a unit that has not moved by more than
+        // kRestTolerance of the smallest cell (at its farthest point) since
+        // they were computed are kept (see kRestTolerance).
+        const bool at_rest = exact && own.valid &&
+                             (pose.position - own.pose.position).norm() +
+                                     shape.outer * pose.orientation.angularDistance(own.pose.orientation) <=
+                                 kRestTolerance * m.bins.smallest_cell;
+        if (!at_rest) {
+            m.cells_of_body(k, cells, own);
+            own.pose = pose;
+            own.valid = true;
         }
-        for (int bk = lo[2]; bk <= hi[2]; ++bk)
-            for (int bj = lo[1]; bj <= hi[1]; ++bj)
-                for (int bi = lo[0]; bi <= hi[0]; ++bi) {
-                    const int b = m.bins.bin(bi, bj, bk);
-                    for (int c = m.bins.first[b]; c < m.bins.first[b + 1]; ++c) {
-                        const auto i = static_cast<std::size_t>(m.bins.cells[c]);
-                        const double hw = half_width[i];
-                        const Eigen::Vector3d r = cells.centres[i] - p;
-                        const double r2 = r.squaredNorm();
-                        // Culling: beyond the bounding sphere plus the ramp chi
-                        // is 0; inside the inscribed ball minus the ramp it is
-                        // 1. Neither needs a query.
-                        const double reach = shape.outer + hw;
-                        if (r2 >= reach * reach)
-                            continue;
-                        double chi;
-                        const double core = shape.inner - hw;
-                        if (core > 0.0 && r2 <= core * core)
-                            chi = 1.0;
-                        else
-                            chi = ramp(shape.signed_distance(q_inv * r), 2.0 * hw);
-                        if (chi > m.mask.chi[i]) {
-                            m.mask.chi[i] = chi;
-                            m.mask.body[i] = k;
-                        }
-                    }
-                }
+        for (std::size_t e = 0; e < own.cell.size(); ++e) {
+            const auto i = static_cast<std::size_t>(own.cell[e]);
+            if (own.chi[e] > m.mask.chi[i]) {
+                m.mask.chi[i] = own.chi[e];
+                m.mask.body[i] = k;
+                m.mask.centroid[i] = own.centroid[e];
+            }
+        }
     }
     for (std::size_t i = 0; i < n; ++i) {
         const int k = m.mask.body[i];
@@ -334,7 +574,7 @@ BodyLoads Coupler::integrate_loads(const CellSet &cells,
         if (k < 0)
             continue;
         const double chi_v = m.mask.chi[i] * cells.volumes[i];
-        const Eigen::Vector3d r = cells.centres[i] - m.states[k].pose.position;
+        const Eigen::Vector3d r = m.mask.centroid[i] - m.states[k].pose.position;
         const Eigen::Vector3d f = chi_v * force_density[i];
         loads.force[k] += f;
         loads.torque[k] += r.cross(f);

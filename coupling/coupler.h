@@ -3,13 +3,16 @@
 // Description
 //     Called once per fluid time step by a thin CFD plugin (coupling/openfoam/):
 //       1. poses and velocities from the engine (any RigidBodyEngine),
-//       2. solid volume fraction chi per fluid cell from each unit's exact
-//          shape (signed distance in the unit frame) or its clump spheres,
-//          smoothed over about one cell, and the rigid-body velocity there,
+//       2. solid volume fraction chi per fluid cell: the fraction of the
+//          cell's volume inside the unit's exact shape or its clump spheres
+//          (solid_fraction.h), and the rigid-body velocity there; or, with
+//          SolidFraction::sampled_ramp, a cosine ramp of the signed distance
+//          sampled at the cell centre (the former mask, kept for comparison),
 //       3. the penalisation (Brinkman) coefficients the plugin puts into the
 //          momentum equation: source = -rho K chi (U - U_body),
 //       4. the fluid load on each unit from this rank's cells,
-//              F = sum_i chi_i V_i f_i,   M = sum_i chi_i V_i (x_i - x_c) x f_i,
+//              F = sum_i chi_i V_i f_i,   M = sum_i chi_i V_i (s_i - x_c) x f_i,
+//          s_i the centroid of the solid part of cell i,
 //          with f = -grad p + div(tau) the fluid force density (N/m^3; it
 //          contains buoyancy through the hydrostatic part of grad p),
 //       5. loads summed over MPI ranks by the plugin, handed to the engine,
@@ -39,13 +42,31 @@ namespace armour {
 struct CellSet {
     std::vector<Eigen::Vector3d> centres; // m
     std::vector<double> volumes;          // m^3
+    // Optional cell shapes for the exact solid fraction: the mesh's points
+    // and each cell's faces as loops of point indices; every cell convex (a
+    // blockMesh hex). Left empty, each cell is the axis-aligned cube of edge
+    // V^(1/3) about its centre, which is what a uniform blockMesh grid holds.
+    std::vector<Eigen::Vector3d> points; // m
+    std::vector<std::vector<int>> faces; // loops of indices into points
+    // Per cell, its faces: f where face f's loop runs counter-clockwise seen
+    // from outside the cell (OpenFOAM: the cell owns it), ~f where it runs
+    // the other way (the cell is its neighbour).
+    std::vector<std::vector<int>> cell_faces;
 };
 
 enum class MaskSource { exact_shape, clump_spheres };
 
+// exact: chi = the fraction of the cell's volume inside the unit (exact for
+// meshes, chords for spheres; solid_fraction.h). sampled_ramp: the former
+// mask, a cosine ramp of the signed distance at the cell centre, about
+// smoothing_cells wide (it over-counts edges and depends on where the unit
+// sits in the grid: docs/coupling.md).
+enum class SolidFraction { exact, sampled_ramp };
+
 struct CouplerSettings {
     MaskSource mask = MaskSource::exact_shape;
-    double smoothing_cells = 1.0;              // width of the chi ramp, in cell sizes (V^(1/3))
+    SolidFraction fraction = SolidFraction::exact;
+    double smoothing_cells = 1.0;              // sampled_ramp only: ramp width, in cell sizes (V^(1/3))
     double fluid_density = kFreshWaterDensity; // kg/m^3, for the added mass
     double added_mass_coefficient = 0.0;       // C_a >= 0; 0 = plain explicit coupling
     // m/s^2: the gravity the ENGINE applies. The added-mass correction must
@@ -59,6 +80,7 @@ struct CellMask {
     std::vector<double> chi;               // solid fraction in [0, 1]
     std::vector<int> body;                 // owning body, -1 where chi = 0
     std::vector<Eigen::Vector3d> velocity; // m/s, rigid-body velocity at the cell centre
+    std::vector<Eigen::Vector3d> centroid; // m, of the solid part of an owned cell (ramp: its centre)
 };
 
 struct BodyLoads {

@@ -116,7 +116,8 @@ struct SceneFluid {
     double cell_size = 0.0;                    // m; 0 = `cells` was given
     double penalty = 1e5;                      // K [1/s] of -rho K chi (U - U_body)
     std::string mask = "exact";                // exact | spheres
-    double smoothing_cells = 1.0;              // width of the chi ramp [cells]
+    std::string solid_fraction = "exact";      // exact | ramp (the former sampled cosine ramp)
+    double smoothing_cells = 1.0;              // width of the chi ramp [cells] (solid_fraction = "ramp")
     double added_mass = 0.0;                   // C_a [-]
     int np = 1;                                // MPI ranks of interFoam
     double fluid_density = kFreshWaterDensity; // kg/m^3, water

@@ -116,7 +116,12 @@ const std::vector<Key<SceneFluid>> &fluid_keys() {
             .in(Range::above(0)),
         key("mask", &F::mask, "", "solid fraction from the exact shape or from the clump's spheres")
             .one_of({"exact", "spheres"}),
-        key("smoothing_cells", &F::smoothing_cells, "cells", "width of the solid-fraction ramp")
+        key("solid_fraction", &F::solid_fraction, "",
+            "chi per cell: the cell's volume fraction inside the unit (exact), or the former cosine ramp "
+            "sampled at the cell centre (ramp; depends on where the unit sits in the grid, coupling.md)")
+            .one_of({"exact", "ramp"}),
+        key("smoothing_cells", &F::smoothing_cells, "cells",
+            "width of the solid-fraction ramp (solid_fraction = \"ramp\")")
             .in(Range::open_closed(0, 4)),
         key("added_mass", &F::added_mass, "", "C_a of the added-mass correction (light units, coupling.md)")
             .in(Range::at_least(0)),

@@ -1,6 +1,6 @@
 // The coupler core and the free-body test engine against analytic solutions.
-#include "coupler.h"
 #include "added_mass_problem.h"
+#include "coupler.h"
 #include "free_body_engine.h"
 
 #include <gtest/gtest.h>
@@ -305,7 +305,9 @@ TEST(FreeBody, HingeTakesPushesAboutThePivot) {
 double cube_mask_error(int cells_per_edge) {
     const double a = 1.0;
     const UnitTemplate cube = unit_of(make_cube_shape(a, 0.0, 2400.0));
-    Scene scene({cube}, {body_at(tilted_pose())});
+    CouplerSettings ramp;
+    ramp.fraction = SolidFraction::sampled_ramp;
+    Scene scene({cube}, {body_at(tilted_pose())}, ramp);
     const CellSet cells = cells_around(tilted_pose().position, 0.5 * std::sqrt(3.0) * a, a / cells_per_edge);
     const CellMask &mask = scene.coupler->update_mask(cells);
     return mask_volume(mask, cells) / (a * a * a) - 1.0;
@@ -409,7 +411,8 @@ TEST(Mask, OverlapGoesToTheLargerFraction) {
 
 TEST(Mask, FastForManyCellsAndUnits) {
     // 100 cubes on a 10 x 10 grid, 1e5 cells: culling keeps the distance
-    // queries to the cells near a unit.
+    // queries to the cells near a unit. The former sampled ramp here; the
+    // exact fractions in test_solid_fraction.
     const UnitTemplate cube = unit_of(make_cube_shape(1.0, 0.0, 2400.0));
     std::vector<BodyInit> bodies;
     for (int i = 0; i < 10; ++i)
@@ -418,7 +421,9 @@ TEST(Mask, FastForManyCellsAndUnits) {
             p.position = Eigen::Vector3d(2.0 * i + 1.0, 2.0 * j + 1.0, 0.0);
             bodies.push_back(body_at(p));
         }
-    Scene scene({cube}, bodies);
+    CouplerSettings ramp;
+    ramp.fraction = SolidFraction::sampled_ramp;
+    Scene scene({cube}, bodies, ramp);
     const double h = std::cbrt(20.0 * 20.0 * 3.0 / 1e5);
     const CellSet cells = uniform_cells(Eigen::Vector3d(0, 0, -1.5), Eigen::Vector3d(20, 20, 1.5), h);
     const auto t0 = std::chrono::steady_clock::now();

@@ -11,7 +11,8 @@
 namespace
 {
 
-// This rank's cells for the coupler; copied once: the mesh is static.
+// This rank's cells for the coupler, with their faces for the exact solid
+// fractions; copied once: the mesh is static.
 armour::CellSet cellSet(const Foam::fvMesh& mesh)
 {
     armour::CellSet cells;
@@ -23,6 +24,30 @@ armour::CellSet cellSet(const Foam::fvMesh& mesh)
     {
         cells.centres[i] = armourFoam::toEigen(C[i]);
         cells.volumes[i] = V[i];
+    }
+    const Foam::pointField& points = mesh.points();
+    cells.points.resize(points.size());
+    forAll(points, i)
+    {
+        cells.points[i] = armourFoam::toEigen(points[i]);
+    }
+    const Foam::faceList& faces = mesh.faces();
+    cells.faces.resize(faces.size());
+    forAll(faces, f)
+    {
+        cells.faces[f].assign(faces[f].begin(), faces[f].end());
+    }
+    // A face's points run counter-clockwise seen from outside its owner, so
+    // its neighbour lists it reversed (~f).
+    const Foam::cellList& cellFaces = mesh.cells();
+    const Foam::labelList& owner = mesh.faceOwner();
+    cells.cell_faces.resize(cellFaces.size());
+    forAll(cellFaces, i)
+    {
+        for (const Foam::label f : cellFaces[i])
+        {
+            cells.cell_faces[i].push_back(owner[f] == i ? f : ~f);
+        }
     }
     return cells;
 }
@@ -94,6 +119,10 @@ armourFoam::bodyExchange::bodyExchange
         fluid.mask == "spheres"
       ? armour::MaskSource::clump_spheres
       : armour::MaskSource::exact_shape;
+    cs.fraction =
+        fluid.solid_fraction == "ramp"
+      ? armour::SolidFraction::sampled_ramp
+      : armour::SolidFraction::exact;
     cs.smoothing_cells = fluid.smoothing_cells;
     cs.fluid_density = fluid.fluid_density;
     cs.added_mass_coefficient = fluid.added_mass;
