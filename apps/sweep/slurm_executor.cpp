@@ -92,7 +92,8 @@ void check_slurm_reachable() {
     if (shell("command -v sbatch", text) != 0)
         throw InputError("--executor: slurm: sbatch not found; run on a cluster's login node (or start "
                          "scripts/slurm-local.sh)");
-    if (shell("scontrol ping", text) != 0 || text.find("UP") == std::string::npos)
+    // A missing configuration makes scontrol retry for a minute: 15 s is enough to answer.
+    if (shell("timeout 15 scontrol ping", text) != 0 || text.find("UP") == std::string::npos)
         throw InputError(
             "--executor: slurm: no Slurm controller reachable (scontrol ping: " + first_line(text) + ")");
 }

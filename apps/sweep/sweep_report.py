@@ -160,7 +160,7 @@ def stability_chart(plt, done, folder):
         ax2 = axes[0][1]
         ax2.plot([c["figures"]["Ns"] for c in with_s], [c["figures"]["damage_S"] for c in with_s], "s")
         ax2.set_xlabel("Ns = Hs / (Δ Dn) [-]")
-        ax2.set_ylabel("S = A_e / Dn² [-]")
+        ax2.set_ylabel("S = Ae / Dn² (eroded area) [-]")
         ax2.grid(alpha=0.3)
     save(fig, os.path.join(folder, "figures", "stability_Nod_vs_Ns.png"))
     plt.close(fig)
