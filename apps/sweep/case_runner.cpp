@@ -12,6 +12,7 @@
 #include <fcntl.h>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <sys/file.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
@@ -211,9 +212,11 @@ int run_case(const fs::path &case_dir, const std::string &armour_exe) {
     r.status = ok ? "done" : "failed";
     if (pid < 0)
         r.reason = "cannot start a process (fork failed)";
-    else if (timed_out)
-        r.reason = "timeout after " + std::to_string(static_cast<long>(timeout)) + " s (run.timeout)";
-    else if (stop_signal != 0) {
+    else if (timed_out) {
+        std::ostringstream text;
+        text << "timeout after " << timeout << " s (run.timeout)";
+        r.reason = text.str();
+    } else if (stop_signal != 0) {
         r.reason = "stopped by signal " + std::to_string(stop_signal);
         // Interrupted by hand: the case is not broken, the next sweep runs it
         // again. Under Slurm a signal means a time limit or scancel: failed.

@@ -54,6 +54,13 @@ def number(v):
     return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
 
 
+def first_number(figures, *keys):
+    for k in keys:
+        if number(figures.get(k)):
+            return figures[k]
+    return None
+
+
 def save(fig, path):
     tmp = path + ".tmp.png"
     fig.savefig(tmp, dpi=110, bbox_inches="tight")
@@ -128,8 +135,9 @@ def stability_chart(plt, done, folder):
     points = [c for c in done if number(c["figures"].get("N_od")) and number(c["figures"].get("Ns"))]
     if not points:
         return None
-    waves = [c["figures"]["waves"] for c in points if number(c["figures"].get("waves"))]
-    steep = [c["figures"]["s_om"] for c in points if number(c["figures"].get("s_om"))]
+    # N and s_om: the damage analysis's own, else those of the measured waves.
+    waves = [x for x in (first_number(c["figures"], "waves", "waves.waves") for c in points) if x is not None]
+    steep = [x for x in (first_number(c["figures"], "s_om", "waves.s_om") for c in points) if x is not None]
     cots = [x for x in (slope_cot(folder, c) for c in points) if x is not None]
     with_s = [c for c in points if number(c["figures"].get("damage_S"))]
     fig, axes = plt.subplots(1, 2 if with_s else 1, figsize=(11 if with_s else 6, 4), squeeze=False)

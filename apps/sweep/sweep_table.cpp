@@ -26,6 +26,12 @@ json numbers_of(const fs::path &summary_file) {
             figures[key] = value;
         else if (key == "wall_seconds")
             figures["run_wall_seconds"] = value;
+    // A run that measures its waves keeps them in an object (N, s_om, the
+    // incident height): the stability chart needs them as numbers.
+    if (summary.contains("waves") && summary["waves"].is_object())
+        for (const auto &[key, value] : summary["waves"].items())
+            if (value.is_number())
+                figures["waves." + key] = value;
     return figures;
 }
 
