@@ -14,6 +14,7 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
@@ -338,20 +339,24 @@ class SlurmSweepTest : public SweepTest {
 
 TEST_F(SlurmSweepTest, TiltSweepRunsAsOneJobArray) {
     const fs::path out = dir_ / "out";
-    const Result r = run(env() + kArmour + " sweep " + tilt_sweep().string() + " --out " + out.string() +
-                         " --executor slurm");
+    // Submitted without waiting, gathered with --collect.
+    const Result submitted = run(env() + kArmour + " sweep " + tilt_sweep().string() + " --out " +
+                                 out.string() + " --executor slurm --no-wait");
+    ASSERT_EQ(submitted.status, 0) << submitted.output;
+    EXPECT_NE(submitted.output.find("submitted Slurm job array"), std::string::npos) << submitted.output;
+    const Result r = run(env() + kArmour + " sweep --collect " + out.string());
     ASSERT_EQ(r.status, 0) << r.output << read_text(slurm_dir_ / "slurmctld.log");
     expect_tilt_results(out);
     // Slurm's own record: one array, one completed task per case.
     const std::string job = json::parse(read_text(out / "slurm" / "job.json"))["job_id"];
     std::ifstream log(slurm_dir_ / "jobcomp.txt");
-    std::vector<std::string> tasks;
+    std::multiset<int> tasks;
     for (std::string line; std::getline(log, line);)
         if (line.find(" ArrayJobId=" + job + " ") != std::string::npos) {
             EXPECT_NE(line.find("JobState=COMPLETED"), std::string::npos) << line;
-            tasks.push_back(line.substr(line.find("ArrayTaskId=")));
+            tasks.insert(std::atoi(line.c_str() + line.find("ArrayTaskId=") + 12));
         }
-    EXPECT_EQ(tasks.size(), 4u) << read_text(slurm_dir_ / "jobcomp.txt");
+    EXPECT_EQ(tasks, (std::multiset<int>{0, 1, 2, 3})) << read_text(slurm_dir_ / "jobcomp.txt");
     EXPECT_NE(read_text(out / "slurm" / "array.sbatch").find("#SBATCH --array=0-3"), std::string::npos);
 }
 
