@@ -44,7 +44,7 @@ void check_slurm_reachable();
 std::string slurm_script(const SweepContext &ctx, std::size_t tasks);
 // Writes DIR/slurm/{cases.txt,array.sbatch,job.json}, submits, returns the job id.
 std::string submit_slurm(const SweepContext &ctx, const std::vector<std::size_t> &to_run);
-// The job id of DIR/slurm/job.json while Slurm still lists it; "" otherwise.
+// The job id of DIR/slurm/job.json while Slurm lists it (or cannot answer); "" once it has ended.
 std::string slurm_job_in_queue(const std::filesystem::path &out);
 // Follows the job until Slurm no longer lists it, then records each task's end.
 void follow_slurm(const SweepContext &ctx, const std::set<std::string> &skipped);

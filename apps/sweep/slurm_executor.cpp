@@ -156,7 +156,9 @@ std::string slurm_job_in_queue(const fs::path &out) {
     const std::string id = job["job_id"].get<std::string>();
     std::string text;
     if (shell("squeue -h -j " + id + " -o %i", text) != 0)
-        return ""; // an id Slurm has forgotten has ended
+        // An id Slurm has forgotten has ended; any other failure (the
+        // controller busy or restarting) is no news: ask again later.
+        return text.find("Invalid job id") != std::string::npos ? "" : id;
     return text.find_first_not_of(" \n") == std::string::npos ? "" : id;
 }
 

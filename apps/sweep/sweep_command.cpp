@@ -117,7 +117,8 @@ int collect(const SweepRequest &r) {
 CLI::App *add_sweep_command(CLI::App &app, SweepRequest &r) {
     CLI::App *cmd = app.add_subcommand(
         "sweep",
-        "Run a scene over a grid of key values and seeds (sweep file: TOML, docs/sweeps.md), each case its "
+        "Run a scene over a grid of key values and seeds (sweep file: TOML, SI units, docs/sweeps.md), each "
+        "case its "
         "own "
         "`armour run` in DIR/cases/<id>, locally or as a Slurm job array; writes results.csv, summary.json "
         "and report.md to --out. The same command again resumes.");
