@@ -10,6 +10,7 @@
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <fcntl.h>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -17,6 +18,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <sys/file.h>
 #include <sys/wait.h>
 #include <thread>
 #include <unistd.h>
@@ -202,6 +204,32 @@ TEST_F(SweepTest, KilledSweepLosesOnlyTheRunningCase) {
         rerun += row.at("attempts") == "2";
     }
     EXPECT_LE(rerun, 1) << "only the case running at the kill may run twice";
+}
+
+TEST_F(SweepTest, ACaseLockedByAnotherProcessIsNotRunTwice) {
+    const fs::path out = dir_ / "out", sweep = dir_ / "two.toml";
+    auto write_sweep = [&](double tilt_max) {
+        write(sweep, "scene = \"" + kSource + "/scenes/tilt_cube.toml\"\n[set]\n\"analysis.tilt_max\" = " +
+                         std::to_string(tilt_max) + "\n[vary]\n\"material.0.friction\" = [0.3, 0.5]\n");
+    };
+    write_sweep(60.0);
+    const std::string command = kArmour + " sweep " + sweep.string() + " --out " + out.string() + " --jobs 2";
+    ASSERT_EQ(run(command).status, 0);
+    // Another scene (tilt_max) makes both cases due again; one is held by another process.
+    write_sweep(59.0);
+    const int fd = ::open((out / "cases" / "friction-0.3" / "lock").c_str(), O_RDWR);
+    ASSERT_GE(fd, 0);
+    ASSERT_EQ(::flock(fd, LOCK_EX | LOCK_NB), 0);
+    const Result r = run(command);
+    ::close(fd);
+    EXPECT_EQ(r.status, 1) << r.output; // not every case is done
+    EXPECT_NE(r.output.find("case friction-0.3 is running in another sweep"), std::string::npos) << r.output;
+    const json summary = json::parse(read_text(out / "summary.json"));
+    for (const auto &c : summary["cases"]) {
+        const bool held = c["case"] == "friction-0.3";
+        EXPECT_EQ(c["status"], held ? "pending" : "done") << c.dump();
+        EXPECT_EQ(c["attempts"], held ? 1 : 2) << c.dump();
+    }
 }
 
 TEST_F(SweepTest, BadInputIsOneErrorLineBeforeAnythingRuns) {
