@@ -185,6 +185,23 @@ TEST_F(SweepTest, KilledSweepLosesOnlyTheRunningCase) {
     int status = 0;
     ::waitpid(pid, &status, 0);
     ASSERT_FALSE(first_done.empty()) << "no case finished within 120 s";
+    // The running case's processes die with the sweep (PR_SET_PDEATHSIG) and free its lock.
+    auto any_locked = [&] {
+        for (const auto &entry : fs::directory_iterator(out / "cases")) {
+            const int fd = ::open((entry.path() / "lock").c_str(), O_RDWR);
+            if (fd < 0)
+                continue;
+            const bool held = ::flock(fd, LOCK_EX | LOCK_NB) != 0;
+            ::close(fd);
+            if (held)
+                return true;
+        }
+        return false;
+    };
+    const auto killed = std::chrono::steady_clock::now();
+    while (any_locked() && std::chrono::steady_clock::now() - killed < std::chrono::seconds(10))
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    EXPECT_FALSE(any_locked()) << "a case process outlived its killed sweep by 10 s";
     int started = 0;
     for (const auto &entry : fs::directory_iterator(out / "cases"))
         started += fs::exists(entry.path() / "case.json");
