@@ -34,6 +34,11 @@ SweepTable refresh_tables(const SweepContext &ctx, const std::set<std::string> &
 
 namespace {
 
+volatile std::sig_atomic_t stop_requested = 0;
+extern "C" void on_stop_request(int) {
+    stop_requested = 1;
+}
+
 pid_t start_case(const SweepContext &ctx, const fs::path &dir) {
     std::fflush(nullptr);
     const pid_t pid = ::fork();
@@ -60,8 +65,21 @@ void run_local(const SweepContext &ctx, const std::vector<std::size_t> &to_run, 
     const bool terminal = ::isatty(STDERR_FILENO) != 0;
     std::string last_line;
     bool changed = true;
-    while (next < to_run.size() || !running.empty()) {
-        while (next < to_run.size() && static_cast<int>(running.size()) < jobs) {
+    // Ctrl-C or SIGTERM: no new cases; the running ones are stopped, put
+    // back to pending by their runners, and the tables written whole.
+    stop_requested = 0;
+    std::signal(SIGINT, on_stop_request);
+    std::signal(SIGTERM, on_stop_request);
+    bool stopping = false;
+    while ((next < to_run.size() && !stopping) || !running.empty()) {
+        if (stop_requested && !stopping) {
+            stopping = true;
+            for (const auto &[pid, index] : running)
+                ::kill(pid, SIGTERM);
+            std::fprintf(stderr, "\nsweep: stopping: %zu running case(s) are stopped and left pending\n",
+                         running.size());
+        }
+        while (!stopping && next < to_run.size() && static_cast<int>(running.size()) < jobs) {
             const std::size_t index = to_run[next++];
             const pid_t pid = start_case(ctx, case_dir(ctx.out, ctx.plan.cases[index]));
             if (pid < 0)
@@ -104,6 +122,8 @@ void run_local(const SweepContext &ctx, const std::vector<std::size_t> &to_run, 
         if (done <= 0)
             std::this_thread::sleep_for(std::chrono::milliseconds(100));
     }
+    std::signal(SIGINT, SIG_DFL);
+    std::signal(SIGTERM, SIG_DFL);
     if (terminal)
         std::fputc('\n', stderr);
     if (elsewhere > 0)
