@@ -223,6 +223,39 @@ TEST_F(SweepTest, KilledSweepLosesOnlyTheRunningCase) {
     EXPECT_LE(rerun, 1) << "only the case running at the kill may run twice";
 }
 
+TEST_F(SweepTest, StoppedSweepLeavesItsRunningCasesPending) {
+    const fs::path sweep = tilt_sweep(), out = dir_ / "out";
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        ::freopen("/dev/null", "w", stderr);
+        ::execl(kArmour.c_str(), kArmour.c_str(), "sweep", sweep.c_str(), "--out", out.c_str(), "--jobs", "2",
+                static_cast<char *>(nullptr));
+        ::_exit(127);
+    }
+    // SIGTERM once a case is running.
+    bool running = false;
+    const auto start = std::chrono::steady_clock::now();
+    while (!running && std::chrono::steady_clock::now() - start < std::chrono::seconds(60)) {
+        std::error_code ec;
+        for (const auto &entry : fs::directory_iterator(out / "cases", ec))
+            running =
+                running || read_text(entry.path() / "case.json").find("\"running\"") != std::string::npos;
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    ASSERT_TRUE(running);
+    ::kill(pid, SIGTERM);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 1);
+    const json summary = json::parse(read_text(out / "summary.json"));
+    EXPECT_EQ(summary["failed"], 0);
+    EXPECT_EQ(summary["running"], 0);
+    EXPECT_GT(summary["pending"], 0);
+    for (const auto &c : summary["cases"])
+        EXPECT_TRUE(c["status"] == "done" || c["status"] == "pending") << c.dump();
+}
+
 TEST_F(SweepTest, ACaseLockedByAnotherProcessIsNotRunTwice) {
     const fs::path out = dir_ / "out", sweep = dir_ / "two.toml";
     auto write_sweep = [&](double tilt_max) {
