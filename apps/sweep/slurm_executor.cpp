@@ -208,14 +208,16 @@ void follow_slurm(const SweepContext &ctx, const std::set<std::string> &skipped)
         const fs::path dir = case_dir(ctx.out, *c);
         CaseRecord r = read_case_record(dir);
         const auto state = states.find(std::to_string(task));
-        const std::string slurm_state = state == states.end() ? "UNKNOWN" : state->second;
-        if (r.status == "done" || (r.status == "pending" && r.attempts > 0 && slurm_state == "COMPLETED"))
+        if (r.status == "done")
             continue;
+        // A later --collect, when Slurm has forgotten the job, keeps the state seen first.
+        if (state != states.end() || r.slurm_state.empty())
+            r.slurm_state = state == states.end() ? "UNKNOWN" : state->second;
+        const std::string &slurm_state = r.slurm_state;
         if (r.status != "failed") {
             r.status = "failed";
             r.reason = "the Slurm task ended as " + slurm_state + " before the case finished";
         }
-        r.slurm_state = slurm_state;
         if (r.slurm_job.empty())
             r.slurm_job = id + "_" + std::to_string(task);
         write_case_record(dir, r);
