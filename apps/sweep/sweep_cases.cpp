@@ -181,6 +181,9 @@ SweepPlan plan_sweep(const SweepSpec &spec) {
             } catch (const InputError &e) {
                 throw InputError(spec.file + ": case " + c.id + ": " + e.what());
             }
+            if (spec.np > 0 && !scene.fluid)
+                throw InputError(spec.file + ": key 'run.np': case " + c.id +
+                                 ": only for scenes with [fluid] (MPI ranks of interFoam)");
             if (plan.analysis.empty())
                 plan.analysis = scene.analysis;
             c.scene_text = resolved_scene_toml(scene);
