@@ -300,6 +300,8 @@ TEST_F(SweepTest, BadInputIsOneErrorLineBeforeAnythingRuns) {
         {scene + "[vary]\n\"material.0.friction\" = [0.3]\n", "--executor slurm", "--executor: slurm:"},
         {scene + "[vary]\n\"material.0.friction\" = [0.3]\n", "--executor pbs",
          "--executor: must be local or slurm"},
+        {scene + "[vary]\n\"material.0.friction\" = [0.3]\n[run]\nnp = 2\n", "",
+         "key 'run.np': case friction-0.3: only for scenes with [fluid]"},
     };
     for (const auto &c : cases) {
         write(dir_ / "bad.toml", c.sweep);
