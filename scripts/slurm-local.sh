@@ -97,7 +97,8 @@ start() {
         sleep 0.5
     done
     tail -n 5 "$dir/slurmctld.log" "$dir/slurmd.log" >&2 || true
-    die "the node did not come up within 30 s (logs in $dir)"
+    stop_daemons
+    die "the node did not come up within 30 s (logs in $dir; a port in use? ARMOUR_SLURM_PORT picks others)"
 }
 
 status() {
@@ -124,10 +125,14 @@ stop_pid() {
     kill -9 "$pid" 2> /dev/null || true
 }
 
-stop() {
+stop_daemons() {
     stop_pid "$dir/slurmd.pid"
     stop_pid "$dir/slurmctld.pid"
     stop_pid "$dir/munge/munged.pid"
+}
+
+stop() {
+    stop_daemons
     # Only a folder this script made (it holds our slurm.conf) is removed.
     if [ -f "$dir/slurm.conf" ] && grep -q "scripts/slurm-local.sh" "$dir/slurm.conf"; then
         rm -rf "$dir"

@@ -394,9 +394,10 @@ class SlurmSweepTest : public SweepTest {
             return;
         }
         slurm_dir_ = fs::temp_directory_path() / ("armour-slurm-test-" + std::to_string(::getpid()));
+        started_ = true; // stopped in any case: a failed start may leave a daemon running
         const Result r = run(env() + kSource + "/scripts/slurm-local.sh start");
-        ASSERT_EQ(r.status, 0) << r.output;
-        started_ = true;
+        if (r.status != 0)
+            start_error_ = "scripts/slurm-local.sh start failed:\n" + r.output;
     }
     static void TearDownTestSuite() {
         if (started_)
@@ -405,14 +406,18 @@ class SlurmSweepTest : public SweepTest {
     void SetUp() override {
         if (!skip_.empty())
             GTEST_SKIP() << skip_;
+        if (!start_error_.empty())
+            FAIL() << start_error_; // a Slurm that will not start is a failure, not a skip
         SweepTest::SetUp();
     }
-    // Its own folder and ports, so a Slurm started by hand keeps running.
+    // Its own folder and ports (ctest -j runs each test in its own process,
+    // each starting its own Slurm), so a Slurm started by hand keeps running.
     static std::string env() {
-        return "ARMOUR_SLURM_DIR=" + slurm_dir_.string() +
-               " ARMOUR_SLURM_PORT=6837 SLURM_CONF=" + (slurm_dir_ / "slurm.conf").string() + " ";
+        const int port = 20000 + 2 * static_cast<int>(::getpid() % 5000);
+        return "ARMOUR_SLURM_DIR=" + slurm_dir_.string() + " ARMOUR_SLURM_PORT=" + std::to_string(port) +
+               " SLURM_CONF=" + (slurm_dir_ / "slurm.conf").string() + " ";
     }
-    static inline std::string skip_;
+    static inline std::string skip_, start_error_;
     static inline fs::path slurm_dir_;
     static inline bool started_ = false;
 };
