@@ -5,6 +5,7 @@
 #include "engine_registry.h"
 #include "mesh.h"
 #include "run_command.h"
+#include "sweep_command.h"
 
 #include <CLI/CLI.hpp>
 #include <exception>
@@ -120,6 +121,9 @@ int armour_main(int argc, const char *const *argv) {
     compare_cmd->add_option("--set", compare.overrides, "Override a scene key for every run (TOML syntax)");
     compare_cmd->add_option("--cache", compare.cache, "Clump cache folder");
 
+    SweepRequest sweep;
+    CLI::App *sweep_cmd = add_sweep_command(app, sweep);
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError &e) {
@@ -139,6 +143,8 @@ int armour_main(int argc, const char *const *argv) {
         }
         if (compare_cmd->parsed())
             return run_compare(compare);
+        if (sweep_cmd->parsed())
+            return run_sweep(sweep);
         if (engines_cmd->parsed()) {
             std::cout << describe_engine_styles();
             return 0;

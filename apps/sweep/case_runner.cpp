@@ -1,0 +1,238 @@
+#include "case_runner.h"
+
+#include "mesh.h"
+#include "output_folder.h"
+
+#include <cerrno>
+#include <chrono>
+#include <csignal>
+#include <cstdlib>
+#include <ctime>
+#include <deque>
+#include <fcntl.h>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <sys/file.h>
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
+
+namespace armour {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+volatile std::sig_atomic_t stop_signal = 0;
+extern "C" void on_stop(int sig) {
+    stop_signal = sig;
+}
+
+double now_seconds() {
+    return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
+// The lock is held as long as the descriptor is open in this process; the
+// kernel releases it when the process dies, however it dies.
+int take_lock(const fs::path &case_dir) {
+    const int fd = ::open((case_dir / "lock").c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd < 0)
+        return -1;
+    if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+        ::close(fd);
+        return -1;
+    }
+    return fd;
+}
+
+std::string host_name() {
+    char name[256] = {};
+    ::gethostname(name, sizeof name - 1);
+    return name;
+}
+
+} // namespace
+
+CaseRecord read_case_record(const fs::path &case_dir) {
+    CaseRecord r;
+    r.id = case_dir.filename().string();
+    std::ifstream in(case_dir / "case.json");
+    if (!in)
+        return r;
+    try {
+        const json j = json::parse(in);
+        r.scene_hash = j.value("scene_hash", "");
+        r.status = j.value("status", "pending");
+        r.attempts = j.value("attempts", 0);
+        r.wall_seconds = j.value("wall_seconds", 0.0);
+        r.reason = j.value("reason", "");
+        r.started = j.value("started", 0.0);
+        r.finished = j.value("finished", 0.0);
+        r.host = j.value("host", "");
+        r.slurm_job = j.value("slurm_job", "");
+        r.slurm_state = j.value("slurm_state", "");
+    } catch (const json::exception &) {
+        r.status = "pending"; // a record cut short is a case to run again
+    }
+    return r;
+}
+
+void write_case_record(const fs::path &case_dir, const CaseRecord &r) {
+    const json j = {{"case", r.id},
+                    {"scene_hash", r.scene_hash},
+                    {"status", r.status},
+                    {"attempts", r.attempts},
+                    {"wall_seconds", r.wall_seconds},
+                    {"reason", r.reason},
+                    {"started", r.started},
+                    {"finished", r.finished},
+                    {"host", r.host},
+                    {"slurm_job", r.slurm_job},
+                    {"slurm_state", r.slurm_state},
+                    {"si_units", {{"wall_seconds", "s"}, {"started", "s since 1970-01-01 UTC"}}}};
+    write_text_file(case_dir / "case.json", j.dump(2) + "\n");
+}
+
+bool case_is_locked(const fs::path &case_dir) {
+    if (!fs::exists(case_dir / "lock"))
+        return false;
+    const int fd = take_lock(case_dir);
+    if (fd < 0)
+        return true;
+    ::close(fd);
+    return false;
+}
+
+std::string log_tail(const fs::path &case_dir, int lines) {
+    return log_tail_of(case_dir / "log.txt", lines);
+}
+
+std::string log_tail_of(const fs::path &file, int lines) {
+    std::ifstream in(file);
+    std::deque<std::string> last;
+    for (std::string line; std::getline(in, line);) {
+        last.push_back(line);
+        if (static_cast<int>(last.size()) > lines)
+            last.pop_front();
+    }
+    std::string out;
+    for (const auto &l : last)
+        out += "    " + l + "\n";
+    return out;
+}
+
+int run_case(const fs::path &case_dir, const std::string &armour_exe) {
+    const int lock = take_lock(case_dir);
+    if (lock < 0)
+        return kCaseLocked;
+    CaseRecord r = read_case_record(case_dir);
+    std::ifstream plan_in(case_dir / "plan.json");
+    const json plan = json::parse(plan_in, nullptr, false);
+    if (plan.is_discarded()) {
+        ::close(lock);
+        throw InputError((case_dir / "plan.json").string() + ": cannot read the case's plan");
+    }
+    r.scene_hash = plan.value("scene_hash", "");
+    const int np = plan.value("np", 0);
+    const double timeout = plan.value("timeout", 0.0);
+    r.status = "running";
+    r.attempts += 1;
+    r.reason.clear();
+    r.slurm_state.clear();
+    r.started = now_seconds();
+    r.finished = 0.0;
+    r.host = host_name();
+    if (const char *job = std::getenv("SLURM_ARRAY_JOB_ID"))
+        r.slurm_job = std::string(job) + "_" +
+                      (std::getenv("SLURM_ARRAY_TASK_ID") ? std::getenv("SLURM_ARRAY_TASK_ID") : "");
+    write_case_record(case_dir, r);
+
+    const fs::path log = case_dir / "log.txt";
+    {
+        std::ofstream header(log, std::ios::app);
+        header << "=== armour sweep: attempt " << r.attempts << " on " << r.host << " ===\n";
+    }
+    std::vector<std::string> args = {armour_exe, "run", (case_dir / "scene.toml").string(), "--out",
+                                     (case_dir / "run").string()};
+    if (np > 0) {
+        args.push_back("--np");
+        args.push_back(std::to_string(np));
+    }
+    std::signal(SIGTERM, on_stop);
+    std::signal(SIGINT, on_stop);
+    std::signal(SIGHUP, on_stop);
+    std::fflush(nullptr);
+    const auto start = std::chrono::steady_clock::now();
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        ::setpgid(0, 0);
+        ::prctl(PR_SET_PDEATHSIG, SIGKILL); // the runner killed, the run dies too
+        const int out = ::open(log.c_str(), O_WRONLY | O_APPEND | O_CREAT, 0644);
+        const int null = ::open("/dev/null", O_RDONLY);
+        if (out < 0 || null < 0)
+            ::_exit(126);
+        ::dup2(null, 0);
+        ::dup2(out, 1);
+        ::dup2(out, 2);
+        std::vector<char *> argv;
+        for (auto &a : args)
+            argv.push_back(a.data());
+        argv.push_back(nullptr);
+        ::execv(armour_exe.c_str(), argv.data());
+        ::_exit(127);
+    }
+    int status = 0;
+    bool timed_out = false;
+    double killed_at = -1.0;
+    if (pid > 0) {
+        ::setpgid(pid, pid);
+        for (;;) {
+            const pid_t done = ::waitpid(pid, &status, WNOHANG);
+            if (done == pid || (done < 0 && errno != EINTR))
+                break;
+            const double elapsed =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            if (killed_at < 0.0 && (stop_signal != 0 || (timeout > 0.0 && elapsed > timeout))) {
+                timed_out = stop_signal == 0;
+                ::kill(-pid, SIGTERM);
+                killed_at = elapsed;
+            } else if (killed_at >= 0.0 && elapsed > killed_at + 5.0) {
+                ::kill(-pid, SIGKILL);
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        }
+    }
+    r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    r.finished = now_seconds();
+    const bool ok = pid > 0 && WIFEXITED(status) && WEXITSTATUS(status) == 0 &&
+                    fs::is_regular_file(case_dir / "run" / "summary.json");
+    r.status = ok ? "done" : "failed";
+    if (pid < 0)
+        r.reason = "cannot start a process (fork failed)";
+    else if (timed_out) {
+        std::ostringstream text;
+        text << "timeout after " << timeout << " s (run.timeout)";
+        r.reason = text.str();
+    } else if (stop_signal != 0) {
+        r.reason = "stopped by signal " + std::to_string(stop_signal);
+        // Interrupted by hand: the case is not broken, the next sweep runs it
+        // again. Under Slurm a signal means a time limit or scancel: failed.
+        if (!std::getenv("SLURM_JOB_ID"))
+            r.status = "pending";
+    } else if (WIFSIGNALED(status))
+        r.reason = "killed by signal " + std::to_string(WTERMSIG(status));
+    else if (WIFEXITED(status) && WEXITSTATUS(status) == 127)
+        r.reason = "cannot start " + armour_exe;
+    else if (WIFEXITED(status) && WEXITSTATUS(status) != 0)
+        r.reason = "exit status " + std::to_string(WEXITSTATUS(status));
+    else if (!ok)
+        r.reason = "the run wrote no summary.json";
+    write_case_record(case_dir, r);
+    ::close(lock);
+    return ok ? 0 : 1;
+}
+
+} // namespace armour

@@ -1,0 +1,266 @@
+#include "sweep_command.h"
+
+#include "executors.h"
+#include "mesh.h"
+#include "output_folder.h"
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+namespace armour {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+// Everything a sweep writes at the top of DIR (the output-folder marker lists
+// them, temporary copies included, so a sweep killed mid-write can resume).
+const std::vector<std::string> kEntries = {
+    "sweep.json",   "sweep.toml",       "cases",     "slurm",         "results.csv", "results.csv.tmp",
+    "summary.json", "summary.json.tmp", "report.md", "report.md.tmp", "figures"};
+
+std::string self_exe() {
+    std::error_code ec;
+    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    if (ec)
+        throw InputError("armour sweep: cannot find its own executable (/proc/self/exe)");
+    return exe.string();
+}
+
+json plan_json(const SweepContext &ctx) {
+    json cases = json::array();
+    for (const SweepCase &c : ctx.plan.cases)
+        cases.push_back({{"case", c.id},
+                         {"values", c.column_values},
+                         {"seed", c.seed ? json(*c.seed) : json(nullptr)},
+                         {"scene_hash", c.scene_hash}});
+    return {{"sweep_file", fs::absolute(ctx.plan.spec.file).lexically_normal().string()},
+            {"scene", ctx.plan.spec.scene},
+            {"analysis", ctx.plan.analysis},
+            {"executor", ctx.executor},
+            {"varied", ctx.plan.columns},
+            {"seeds", ctx.plan.spec.seeds},
+            {"np", ctx.plan.spec.np},
+            {"timeout", ctx.plan.spec.timeout},
+            {"armour", ctx.armour_exe},
+            {"cases", cases}};
+}
+
+// The plan as an earlier sweep wrote it into DIR/sweep.json (for --collect).
+SweepContext read_context(const fs::path &out) {
+    std::ifstream in(out / "sweep.json");
+    const json j = in ? json::parse(in, nullptr, false) : json();
+    if (!j.is_object() || !j.contains("cases"))
+        throw InputError("--collect " + out.string() + ": not a sweep's folder (no readable sweep.json)");
+    SweepContext ctx;
+    ctx.out = out;
+    ctx.executor = j.value("executor", "local");
+    ctx.armour_exe = self_exe();
+    ctx.plan.spec.file = j.value("sweep_file", "");
+    ctx.plan.spec.scene = j.value("scene", "");
+    ctx.plan.spec.seeds = j.value("seeds", std::vector<std::int64_t>{});
+    ctx.plan.analysis = j.value("analysis", "");
+    ctx.plan.columns = j.value("varied", std::vector<std::string>{});
+    for (const auto &c : j["cases"]) {
+        SweepCase sc;
+        sc.id = c.value("case", "");
+        sc.column_values = c.value("values", std::vector<std::string>{});
+        if (c.contains("seed") && c["seed"].is_number_integer())
+            sc.seed = c["seed"].get<std::int64_t>();
+        sc.scene_hash = c.value("scene_hash", "");
+        ctx.plan.cases.push_back(sc);
+    }
+    return ctx;
+}
+
+void write_report(const fs::path &out) {
+    const std::string command = std::string("/usr/bin/python3 '") + ARMOUR_SOURCE_DIR +
+                                "/apps/sweep/sweep_report.py' '" + out.string() + "' >&2";
+    std::fflush(nullptr);
+    if (std::system(command.c_str()) != 0)
+        std::fprintf(stderr,
+                     "armour: warning: %s: the report's charts could not be drawn (python3 + "
+                     "matplotlib); results.csv and summary.json are complete\n",
+                     (out / "report.md").c_str());
+}
+
+int finish(const SweepContext &ctx, const std::set<std::string> &skipped) {
+    const SweepTable table = refresh_tables(ctx, skipped);
+    write_report(ctx.out);
+    const int failed = table.count("failed");
+    std::printf(
+        "sweep: %d of %zu cases done (%zu skipped as done before), %d failed, %d not finished -> %s\n",
+        table.count("done"), table.rows.size(), skipped.size(), failed,
+        table.count("pending") + table.count("running"), ctx.out.c_str());
+    if (failed > 0)
+        std::fprintf(stderr,
+                     "sweep: %d case(s) failed (results.csv says which, cases/<id>/log.txt why); run the "
+                     "same command with --retry-failed to run them again\n",
+                     failed);
+    return failed > 0 || table.count("done") != static_cast<int>(table.rows.size()) ? 1 : 0;
+}
+
+int collect(const SweepRequest &r) {
+    SweepContext ctx = read_context(fs::absolute(r.collect).lexically_normal());
+    if (ctx.executor == "slurm" && fs::exists(ctx.out / "slurm" / "job.json"))
+        follow_slurm(ctx, {});
+    return finish(ctx, {});
+}
+
+} // namespace
+
+CLI::App *add_sweep_command(CLI::App &app, SweepRequest &r) {
+    CLI::App *cmd = app.add_subcommand(
+        "sweep",
+        "Run a scene over a grid of key values and seeds (sweep file: TOML, SI units, docs/sweeps.md), each "
+        "case its "
+        "own "
+        "`armour run` in DIR/cases/<id>, locally or as a Slurm job array; writes results.csv, summary.json "
+        "and report.md to --out. The same command again resumes.");
+    cmd->add_option("sweep", r.sweep_file, "Sweep file (.toml)");
+    cmd->add_option("--out", r.out,
+                    "Output folder: new, empty, or an earlier result of this sweep (resumed)");
+    cmd->add_option("--executor", r.executor, "local (processes on this machine) or slurm (one job array)")
+        ->capture_default_str();
+    cmd->add_option("--jobs", r.jobs, "local: cases run at once (default: cores / run.np)");
+    cmd->add_flag("--dry-run", r.dry_run, "Check every case and list what would run; write nothing");
+    cmd->add_flag("--retry-failed", r.retry_failed, "Run failed cases again (finished ones are always kept)");
+    cmd->add_flag("--no-wait", r.no_wait,
+                  "slurm: submit and return; `armour sweep --collect DIR` gathers later");
+    cmd->add_option("--collect", r.collect,
+                    "Gather the results of a sweep submitted earlier into DIR (waits for "
+                    "its Slurm job to end)");
+    cmd->add_option("--run-case", r.run_case, "Internal: run one case folder")->group("");
+    return cmd;
+}
+
+int run_sweep(const SweepRequest &r) {
+    if (!r.run_case.empty()) {
+        const int status = run_case(fs::absolute(r.run_case).lexically_normal(), self_exe());
+        if (status == kCaseLocked)
+            std::fprintf(stderr, "armour: %s: the case is running in another process\n", r.run_case.c_str());
+        return status;
+    }
+    if (!r.collect.empty()) {
+        if (!r.sweep_file.empty() || !r.out.empty())
+            throw InputError("--collect: takes the sweep's folder alone (no SWEEP.toml, no --out)");
+        return collect(r);
+    }
+    if (r.sweep_file.empty())
+        throw InputError("sweep: a sweep file is required (or --collect DIR)");
+    if (r.out.empty())
+        throw InputError("--out: an output folder is required");
+    if (r.executor != "local" && r.executor != "slurm")
+        throw InputError("--executor: must be local or slurm (got '" + r.executor + "')");
+    if (r.jobs < 0)
+        throw InputError("--jobs: must be at least 1 (0 = cores / run.np)");
+    if (r.no_wait && r.executor != "slurm")
+        throw InputError("--no-wait: only with --executor slurm");
+
+    SweepContext ctx;
+    ctx.plan = plan_sweep(read_sweep_file(r.sweep_file)); // every case checked before anything runs
+    ctx.out = fs::absolute(r.out).lexically_normal();
+    ctx.executor = r.executor;
+    ctx.armour_exe = self_exe();
+    const OutputFolder folder(ctx.out, "armour sweep",
+                              OutputFolder::Mode::streaming); // refuses foreign folders
+    if (r.executor == "slurm") {
+        check_slurm_reachable();
+        if (!r.dry_run && fs::exists(ctx.out / "sweep.json")) {
+            const std::string job = slurm_job_in_queue(ctx.out);
+            if (!job.empty())
+                throw InputError("--out " + ctx.out.string() + ": its Slurm job " + job +
+                                 " is still queued or running; wait for it or `armour sweep --collect " +
+                                 ctx.out.string() + "`");
+        }
+    }
+
+    const SweepTable before = read_sweep_table(ctx.out, ctx.plan);
+    std::vector<std::size_t> to_run;
+    std::set<std::string> skipped;
+    std::ostringstream listing;
+    for (std::size_t i = 0; i < ctx.plan.cases.size(); ++i) {
+        const SweepCase &c = ctx.plan.cases[i];
+        const std::string &status = before.rows[i].status;
+        std::string action = "run";
+        if (status == "done") {
+            action = "skip: done";
+            skipped.insert(c.id);
+        } else if (status == "running") {
+            action = "skip: running in another sweep";
+        } else if (status == "failed" && !r.retry_failed) {
+            action = "skip: failed before (--retry-failed runs it)";
+        }
+        if (action == "run")
+            to_run.push_back(i);
+        listing << "  " << c.id << "  scene " << c.scene_hash << "  " << action << "\n";
+    }
+    if (r.dry_run) {
+        std::printf("sweep: %zu cases of %s, all checked; %zu would run:\n%s", ctx.plan.cases.size(),
+                    ctx.plan.spec.scene.c_str(), to_run.size(), listing.str().c_str());
+        if (r.executor == "slurm" && !to_run.empty())
+            std::printf("--- %s ---\n%s", (ctx.out / "slurm" / "array.sbatch").c_str(),
+                        slurm_script(ctx, to_run.size()).c_str());
+        return 0;
+    }
+
+    fs::create_directories(ctx.out / "cases");
+    std::string marker = "armour sweep\n";
+    for (const auto &e : kEntries)
+        marker += e + "\n";
+    write_text_file(ctx.out / ".armour-output", marker);
+    write_text_file(ctx.out / "sweep.json", plan_json(ctx).dump(2) + "\n");
+    {
+        std::ifstream in(r.sweep_file);
+        std::stringstream text;
+        text << in.rdbuf();
+        write_text_file(ctx.out / "sweep.toml", text.str());
+    }
+    for (const std::size_t i : to_run) {
+        const SweepCase &c = ctx.plan.cases[i];
+        const fs::path dir = case_dir(ctx.out, c);
+        fs::create_directories(dir);
+        write_text_file(dir / "scene.toml", c.scene_text);
+        json values = json::object();
+        for (std::size_t k = 0; k < ctx.plan.columns.size(); ++k)
+            values[ctx.plan.columns[k]] = c.column_values[k];
+        write_text_file(dir / "plan.json", json{{"case", c.id},
+                                                {"values", values},
+                                                {"seed", c.seed ? json(*c.seed) : json(nullptr)},
+                                                {"overrides", c.overrides},
+                                                {"scene_hash", c.scene_hash},
+                                                {"np", ctx.plan.spec.np},
+                                                {"timeout", ctx.plan.spec.timeout},
+                                                {"si_units", {{"timeout", "s"}}}}
+                                                   .dump(2) +
+                                               "\n");
+    }
+    std::fprintf(stderr, "sweep: %zu cases, %zu to run, %zu done before -> %s\n", ctx.plan.cases.size(),
+                 to_run.size(), skipped.size(), ctx.out.c_str());
+    refresh_tables(ctx, skipped);
+    if (to_run.empty())
+        return finish(ctx, skipped);
+
+    if (r.executor == "local") {
+        const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+        const int jobs = r.jobs > 0 ? r.jobs : std::max(1, cores / std::max(1, ctx.plan.spec.np));
+        run_local(ctx, to_run, jobs, skipped);
+        return finish(ctx, skipped);
+    }
+    submit_slurm(ctx, to_run);
+    if (r.no_wait) {
+        std::printf(
+            "sweep: submitted; `armour sweep --collect %s` gathers the results when the job has ended\n",
+            ctx.out.c_str());
+        return 0;
+    }
+    follow_slurm(ctx, skipped);
+    return finish(ctx, skipped);
+}
+
+} // namespace armour

@@ -1,0 +1,43 @@
+// `armour sweep SWEEP.toml --out DIR [--executor local|slurm] [--jobs N] [--dry-run]
+//  [--retry-failed] [--no-wait]` and `armour sweep --collect DIR`.
+//
+// Description
+//     Runs every case of a sweep file (sweep_file.h, docs/sweeps.md) as its own
+//     `armour run`, in DIR/cases/<id>/, locally or as one Slurm job array;
+//     keeps DIR/results.csv and DIR/summary.json current as cases finish and
+//     ends with DIR/report.md (charts by sweep_report.py). Every case's scene
+//     is checked before anything runs. Running the same command again resumes:
+//     finished cases with the same scene hash are skipped, failed ones are run
+//     again only with --retry-failed.
+//
+// Usage
+//     SweepRequest r;  r.sweep_file = "studies/tilt_friction.toml";  r.out = "tilt-sweep";
+//     return run_sweep(r);   // 0 when every case is done
+#pragma once
+
+#include <string>
+
+namespace CLI {
+class App;
+}
+
+namespace armour {
+
+struct SweepRequest {
+    std::string sweep_file;
+    std::string out;
+    std::string executor = "local"; // local | slurm
+    int jobs = 0;                   // local: parallel cases; 0 = cores / np
+    bool dry_run = false;
+    bool retry_failed = false;
+    bool no_wait = false; // slurm: submit and return
+    std::string collect;  // DIR: gather a sweep submitted earlier
+    std::string run_case; // internal: run one case folder (what each executor starts)
+};
+
+// Adds the `sweep` subcommand to `app`, filling `request`.
+CLI::App *add_sweep_command(CLI::App &app, SweepRequest &request);
+
+int run_sweep(const SweepRequest &request);
+
+} // namespace armour

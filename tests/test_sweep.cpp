@@ -1,0 +1,466 @@
+// `armour sweep`: the tilt scene over friction x spheres per clump through the
+// local executor and a real single-node Slurm (scripts/slurm-local.sh),
+// resume after kill -9, bad input, and the report's stability chart on
+// synthetic damage summaries. The armour binary runs as a separate process,
+// as users run it.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <fcntl.h>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <string>
+#include <sys/file.h>
+#include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
+#include <vector>
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+const std::string kArmour = ARMOUR_EXE;
+const std::string kSource = ARMOUR_SOURCE_DIR;
+constexpr double kPi = 3.14159265358979323846;
+
+struct Result {
+    int status = -1;
+    std::string output; // stdout and stderr
+};
+
+Result run(const std::string &command) {
+    Result r;
+    std::FILE *pipe = ::popen((command + " 2>&1").c_str(), "r");
+    char buffer[4096];
+    std::size_t n = 0;
+    while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0)
+        r.output.append(buffer, n);
+    const int status = ::pclose(pipe);
+    r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+}
+
+std::string read_text(const fs::path &path) {
+    std::ifstream in(path);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+void write(const fs::path &path, const std::string &text) {
+    fs::create_directories(path.parent_path());
+    std::ofstream(path) << text;
+}
+
+using Row = std::map<std::string, std::string>;
+
+std::vector<Row> read_csv(const fs::path &path) {
+    std::ifstream in(path);
+    std::vector<std::string> header;
+    std::vector<Row> rows;
+    for (std::string line; std::getline(in, line);) {
+        std::vector<std::string> cells;
+        std::stringstream s(line);
+        for (std::string cell; std::getline(s, cell, ',');)
+            cells.push_back(cell);
+        if (!line.empty() && line.back() == ',')
+            cells.emplace_back();
+        if (header.empty()) {
+            header = cells;
+            continue;
+        }
+        Row row;
+        for (std::size_t i = 0; i < header.size() && i < cells.size(); ++i)
+            row[header[i]] = cells[i];
+        rows.push_back(row);
+    }
+    return rows;
+}
+
+class SweepTest : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        dir_ =
+            fs::temp_directory_path() /
+            ("armour-sweep-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
+             "-" + std::to_string(::getpid()));
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    // The tilt scene over friction 0.3/0.5 x 20/50 spheres per clump (the
+    // clump's resolution: the scene has no other size of clump to vary).
+    fs::path tilt_sweep(const std::string &extra = "") {
+        const fs::path file = dir_ / "tilt.toml";
+        write(file, "scene = \"" + kSource + "/scenes/tilt_cube.toml\"\n" + extra +
+                        "[vary]\n\"material.0.friction\" = [0.3, 0.5]\n\"unit.0.spheres\" = [20, 50]\n");
+        return file;
+    }
+
+    // Every case done once, slide angle atan(mu) within 0.5 degree.
+    void expect_tilt_results(const fs::path &out) {
+        const std::vector<Row> rows = read_csv(out / "results.csv");
+        ASSERT_EQ(rows.size(), 4u) << read_text(out / "results.csv");
+        std::map<std::string, int> seen;
+        for (const Row &row : rows) {
+            EXPECT_EQ(row.at("status"), "done") << row.at("case");
+            EXPECT_EQ(row.at("attempts"), "1") << row.at("case");
+            const double mu = std::stod(row.at("material.0.friction"));
+            ++seen[row.at("material.0.friction") + "/" + row.at("unit.0.spheres")];
+            ASSERT_FALSE(row.at("slide_angle_deg").empty()) << row.at("case") << ": the cube never slid";
+            EXPECT_NEAR(std::stod(row.at("slide_angle_deg")), std::atan(mu) * 180.0 / kPi, 0.5)
+                << row.at("case");
+            EXPECT_GT(std::stod(row.at("wall_seconds")), 0.0);
+        }
+        EXPECT_EQ(seen.size(), 4u);
+        EXPECT_TRUE(fs::exists(out / "cases" / "friction-0.3_spheres-20" / "run" / "summary.json"));
+        const json summary = json::parse(read_text(out / "summary.json"));
+        EXPECT_EQ(summary["done"], 4);
+        EXPECT_EQ(summary["failed"], 0);
+        const std::string report = read_text(out / "report.md");
+        EXPECT_NE(report.find("figures/slide_angle_deg_vs_material.0.friction.png"), std::string::npos)
+            << report;
+        EXPECT_TRUE(fs::exists(out / "figures" / "slide_angle_deg_vs_material.0.friction.png"));
+    }
+
+    fs::path dir_;
+};
+
+TEST_F(SweepTest, LocalTiltSweepFollowsAtanMuAndResumesWithoutRerunning) {
+    const fs::path sweep = tilt_sweep(), out = dir_ / "out";
+    const std::string command = kArmour + " sweep " + sweep.string() + " --out " + out.string() + " --jobs 2";
+    const Result first = run(command);
+    ASSERT_EQ(first.status, 0) << first.output;
+    expect_tilt_results(out);
+    EXPECT_NE(first.output.find("sweep: 4/4 done, 0 running, 0 failed, 0 pending"), std::string::npos)
+        << first.output;
+
+    // The same command again: every case is done with the same scene, none runs.
+    const Result again = run(command);
+    ASSERT_EQ(again.status, 0) << again.output;
+    EXPECT_NE(again.output.find("4 cases, 0 to run, 4 done before"), std::string::npos) << again.output;
+    expect_tilt_results(out); // attempts still 1
+}
+
+TEST_F(SweepTest, DryRunChecksEveryCaseAndWritesNothing) {
+    const Result r =
+        run(kArmour + " sweep " + tilt_sweep().string() + " --out " + (dir_ / "out").string() + " --dry-run");
+    ASSERT_EQ(r.status, 0) << r.output;
+    for (const char *id : {"friction-0.3_spheres-20", "friction-0.3_spheres-50", "friction-0.5_spheres-20",
+                           "friction-0.5_spheres-50"})
+        EXPECT_NE(r.output.find(id), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir_ / "out"));
+}
+
+TEST_F(SweepTest, KilledSweepLosesOnlyTheRunningCase) {
+    const fs::path sweep = tilt_sweep(), out = dir_ / "out";
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        ::freopen("/dev/null", "w", stderr);
+        ::execl(kArmour.c_str(), kArmour.c_str(), "sweep", sweep.c_str(), "--out", out.c_str(), "--jobs", "1",
+                static_cast<char *>(nullptr));
+        ::_exit(127);
+    }
+    // Kill -9 the sweep once its first case is done (the second is then running).
+    std::string first_done;
+    const auto start = std::chrono::steady_clock::now();
+    while (first_done.empty() && std::chrono::steady_clock::now() - start < std::chrono::seconds(120)) {
+        for (const Row &row : read_csv(out / "results.csv"))
+            if (row.at("status") == "done")
+                first_done = row.at("case");
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    ::kill(pid, SIGKILL);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    ASSERT_FALSE(first_done.empty()) << "no case finished within 120 s";
+    // The running case's processes die with the sweep (PR_SET_PDEATHSIG) and free its lock.
+    auto any_locked = [&] {
+        for (const auto &entry : fs::directory_iterator(out / "cases")) {
+            const int fd = ::open((entry.path() / "lock").c_str(), O_RDWR);
+            if (fd < 0)
+                continue;
+            const bool held = ::flock(fd, LOCK_EX | LOCK_NB) != 0;
+            ::close(fd);
+            if (held)
+                return true;
+        }
+        return false;
+    };
+    const auto killed = std::chrono::steady_clock::now();
+    while (any_locked() && std::chrono::steady_clock::now() - killed < std::chrono::seconds(10))
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    EXPECT_FALSE(any_locked()) << "a case process outlived its killed sweep by 10 s";
+    int started = 0;
+    for (const auto &entry : fs::directory_iterator(out / "cases"))
+        started += fs::exists(entry.path() / "case.json");
+    EXPECT_LT(started, 4) << "the sweep ran every case before it was killed; the test proves nothing";
+
+    const Result resumed = run(kArmour + " sweep " + sweep.string() + " --out " + out.string() + " --jobs 1");
+    ASSERT_EQ(resumed.status, 0) << resumed.output;
+    const std::vector<Row> rows = read_csv(out / "results.csv");
+    ASSERT_EQ(rows.size(), 4u);
+    int rerun = 0;
+    for (const Row &row : rows) {
+        EXPECT_EQ(row.at("status"), "done") << row.at("case");
+        EXPECT_FALSE(row.at("slide_angle_deg").empty()) << row.at("case");
+        if (row.at("case") == first_done) {
+            EXPECT_EQ(row.at("attempts"), "1") << "the finished case ran again";
+        }
+        rerun += row.at("attempts") == "2";
+    }
+    EXPECT_LE(rerun, 1) << "only the case running at the kill may run twice";
+}
+
+TEST_F(SweepTest, StoppedSweepLeavesItsRunningCasesPending) {
+    const fs::path sweep = tilt_sweep(), out = dir_ / "out";
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        ::freopen("/dev/null", "w", stderr);
+        ::execl(kArmour.c_str(), kArmour.c_str(), "sweep", sweep.c_str(), "--out", out.c_str(), "--jobs", "2",
+                static_cast<char *>(nullptr));
+        ::_exit(127);
+    }
+    // SIGTERM once a case is running.
+    bool running = false;
+    const auto start = std::chrono::steady_clock::now();
+    while (!running && std::chrono::steady_clock::now() - start < std::chrono::seconds(60)) {
+        std::error_code ec;
+        for (const auto &entry : fs::directory_iterator(out / "cases", ec))
+            running =
+                running || read_text(entry.path() / "case.json").find("\"running\"") != std::string::npos;
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    ASSERT_TRUE(running);
+    ::kill(pid, SIGTERM);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 1);
+    const json summary = json::parse(read_text(out / "summary.json"));
+    EXPECT_EQ(summary["failed"], 0);
+    EXPECT_EQ(summary["running"], 0);
+    EXPECT_GT(summary["pending"], 0);
+    for (const auto &c : summary["cases"])
+        EXPECT_TRUE(c["status"] == "done" || c["status"] == "pending") << c.dump();
+}
+
+TEST_F(SweepTest, ACaseLockedByAnotherProcessIsNotRunTwice) {
+    const fs::path out = dir_ / "out", sweep = dir_ / "two.toml";
+    auto write_sweep = [&](double tilt_max) {
+        write(sweep, "scene = \"" + kSource + "/scenes/tilt_cube.toml\"\n[set]\n\"analysis.tilt_max\" = " +
+                         std::to_string(tilt_max) + "\n[vary]\n\"material.0.friction\" = [0.3, 0.5]\n");
+    };
+    write_sweep(60.0);
+    const std::string command = kArmour + " sweep " + sweep.string() + " --out " + out.string() + " --jobs 2";
+    ASSERT_EQ(run(command).status, 0);
+    // Another scene (tilt_max) makes both cases due again; one is held by another process.
+    write_sweep(59.0);
+    const int fd = ::open((out / "cases" / "friction-0.3" / "lock").c_str(), O_RDWR);
+    ASSERT_GE(fd, 0);
+    ASSERT_EQ(::flock(fd, LOCK_EX | LOCK_NB), 0);
+    const Result r = run(command);
+    ::close(fd);
+    EXPECT_EQ(r.status, 1) << r.output; // not every case is done
+    EXPECT_NE(r.output.find("case friction-0.3 is running in another sweep"), std::string::npos) << r.output;
+    const json summary = json::parse(read_text(out / "summary.json"));
+    for (const auto &c : summary["cases"]) {
+        const bool held = c["case"] == "friction-0.3";
+        EXPECT_EQ(c["status"], held ? "pending" : "done") << c.dump();
+        EXPECT_EQ(c["attempts"], held ? 1 : 2) << c.dump();
+    }
+}
+
+TEST_F(SweepTest, BadInputIsOneErrorLineBeforeAnythingRuns) {
+    const std::string scene = "scene = \"" + kSource + "/scenes/tilt_cube.toml\"\n";
+    write(dir_ / "dead-slurm.conf", "ClusterName=none\nSlurmctldHost=localhost(127.0.0.1)\nSlurmctldPort=9\n"
+                                    "NodeName=localhost CPUs=1\nPartitionName=p Nodes=localhost\n");
+    const struct {
+        std::string sweep, options, expected;
+    } cases[] = {
+        {scene + "[vary]\n\"material.0.frction\" = [0.3]\n", "",
+         "case frction-0.3: --set 'material.0.frction=0.3': unknown key"},
+        {scene + "[vary]\n\"material.0.friction\" = []\n", "",
+         "key 'vary.\"material.0.friction\"': empty list"},
+        {scene + "[vary]\n\"material.0.friction\" = [0.3, -1.0]\n", "",
+         "case friction--1.0: --set: key 'material.0.friction': must be >= 0"},
+        {"scene = \"no-such-scene.toml\"\n[vary]\n\"material.0.friction\" = [0.3]\n", "",
+         "key 'scene': no such file"},
+        {scene + "[vary]\n\"material.0.friction\" = [0.3]\n", "--executor slurm", "--executor: slurm:"},
+        {scene + "[vary]\n\"material.0.friction\" = [0.3]\n", "--executor pbs",
+         "--executor: must be local or slurm"},
+        {scene + "[vary]\n\"material.0.friction\" = [0.3]\n[run]\nnp = 2\n", "",
+         "key 'run.np': case friction-0.3: only for scenes with [fluid]"},
+    };
+    for (const auto &c : cases) {
+        write(dir_ / "bad.toml", c.sweep);
+        const Result r =
+            run("SLURM_CONF=" + (dir_ / "dead-slurm.conf").string() + " " + kArmour + " sweep " +
+                (dir_ / "bad.toml").string() + " --out " + (dir_ / "out").string() + " " + c.options);
+        EXPECT_EQ(r.status, 2) << r.output;
+        EXPECT_EQ(r.output.rfind("armour: error: ", 0), 0u) << r.output;
+        EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+        EXPECT_NE(r.output.find(c.expected), std::string::npos)
+            << "expected '" << c.expected << "' in " << r.output;
+        EXPECT_FALSE(fs::exists(dir_ / "out")) << c.sweep;
+    }
+    const Result missing =
+        run(kArmour + " sweep " + (dir_ / "none.toml").string() + " --out " + (dir_ / "out").string());
+    EXPECT_EQ(missing.status, 2);
+    EXPECT_NE(missing.output.find("none.toml: cannot read the sweep file"), std::string::npos)
+        << missing.output;
+}
+
+// The report's damage chart on summaries as the damage analysis writes them.
+TEST_F(SweepTest, ReportDrawsDamageAgainstVanDerMeerAndHudson) {
+    const fs::path out = dir_ / "out";
+    json cases = json::array();
+    const double hs[] = {1.6, 1.9, 2.2, 2.5};
+    for (int k = 0; k < 4; ++k)
+        for (int seed = 1; seed <= 2; ++seed) {
+            const std::string id = "Hs-" + std::to_string(k) + "_seed-" + std::to_string(seed);
+            write(out / "cases" / id / "scene.toml",
+                  "[[wall]]\nname = \"slope\"\ntype = \"slope\"\ncot = 2.0\n");
+            const double Ns = hs[k];
+            cases.push_back({{"case", id},
+                             {"folder", "cases/" + id},
+                             {"values", {{"fluid.wave_height", hs[k]}}},
+                             {"seed", seed},
+                             {"status", "done"},
+                             {"figures",
+                              {{"Ns", Ns},
+                               {"N_od", 0.1 * std::pow(Ns, 3) * (0.9 + 0.1 * seed)},
+                               {"waves", 1000},
+                               {"s_om", 0.03},
+                               {"damage_S", 0.5 * Ns}}}});
+        }
+    write(out / "summary.json", json{{"sweep_file", "stability.toml"},
+                                     {"scene", "stability_cubes.toml"},
+                                     {"analysis", "damage"},
+                                     {"executor", "local"},
+                                     {"varied", {"fluid.wave_height"}},
+                                     {"headline", {"N_od", "Ns"}},
+                                     {"total", 8},
+                                     {"done", 8},
+                                     {"failed", 0},
+                                     {"pending", 0},
+                                     {"running", 0},
+                                     {"cases", cases}}
+                                    .dump());
+    const Result r = run("/usr/bin/python3 " + kSource + "/apps/sweep/sweep_report.py " + out.string());
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_GT(fs::file_size(out / "figures" / "stability_Nod_vs_Ns.png"), 10000u);
+    EXPECT_TRUE(fs::exists(out / "figures" / "N_od_vs_fluid.wave_height.png"));
+    const std::string report = read_text(out / "report.md");
+    EXPECT_NE(report.find("Van der Meer curve for N = 1000 waves, s_om = 0.03"), std::string::npos) << report;
+    EXPECT_NE(report.find("Hudson lines for cot α = 2"), std::string::npos) << report;
+
+    // The formulas the chart draws (stability.md): Van der Meer for cubes and Hudson.
+    const Result f = run("cd " + kSource +
+                         "/apps/sweep && /usr/bin/python3 -c 'import sweep_report as s; "
+                         "print(\"%.12f %.12f\" % (s.van_der_meer_ns(0.5, 1000, 0.03), "
+                         "s.hudson_ns(6.5, 1.5)))'");
+    ASSERT_EQ(f.status, 0) << f.output;
+    double vdm = 0.0, hudson = 0.0;
+    ASSERT_EQ(std::sscanf(f.output.c_str(), "%lf %lf", &vdm, &hudson), 2) << f.output;
+    EXPECT_NEAR(vdm, (6.7 * std::pow(0.5, 0.4) / std::pow(1000.0, 0.3) + 1.0) * std::pow(0.03, -0.1), 1e-9);
+    EXPECT_NEAR(vdm, 2.3277, 1e-3);
+    EXPECT_NEAR(hudson, std::cbrt(6.5 * 1.5), 1e-9);
+}
+
+// A real single-node Slurm (scripts/slurm-local.sh), started for these tests.
+class SlurmSweepTest : public SweepTest {
+  protected:
+    static void SetUpTestSuite() {
+        if (run("command -v slurmctld || test -x /usr/sbin/slurmctld").status != 0 ||
+            run("test -x /usr/sbin/munged").status != 0) {
+            skip_ = "slurmctld or munged is not installed (apt-get install slurm-wlm munge; "
+                    "scripts/debian-packages.txt lists them)";
+            return;
+        }
+        if (::geteuid() != 0) {
+            skip_ = "scripts/slurm-local.sh needs root (slurmd runs jobs as their user)";
+            return;
+        }
+        slurm_dir_ = fs::temp_directory_path() / ("armour-slurm-test-" + std::to_string(::getpid()));
+        started_ = true; // stopped in any case: a failed start may leave a daemon running
+        const Result r = run(env() + kSource + "/scripts/slurm-local.sh start");
+        if (r.status != 0)
+            start_error_ = "scripts/slurm-local.sh start failed:\n" + r.output;
+    }
+    static void TearDownTestSuite() {
+        if (started_)
+            run(env() + kSource + "/scripts/slurm-local.sh stop");
+    }
+    void SetUp() override {
+        if (!skip_.empty())
+            GTEST_SKIP() << skip_;
+        if (!start_error_.empty())
+            FAIL() << start_error_; // a Slurm that will not start is a failure, not a skip
+        SweepTest::SetUp();
+    }
+    // Its own folder and ports (ctest -j runs each test in its own process,
+    // each starting its own Slurm), so a Slurm started by hand keeps running.
+    static std::string env() {
+        const int port = 20000 + 2 * static_cast<int>(::getpid() % 5000);
+        return "ARMOUR_SLURM_DIR=" + slurm_dir_.string() + " ARMOUR_SLURM_PORT=" + std::to_string(port) +
+               " SLURM_CONF=" + (slurm_dir_ / "slurm.conf").string() + " ";
+    }
+    static inline std::string skip_, start_error_;
+    static inline fs::path slurm_dir_;
+    static inline bool started_ = false;
+};
+
+TEST_F(SlurmSweepTest, TiltSweepRunsAsOneJobArray) {
+    const fs::path out = dir_ / "out";
+    // Submitted without waiting, gathered with --collect.
+    const Result submitted = run(env() + kArmour + " sweep " + tilt_sweep().string() + " --out " +
+                                 out.string() + " --executor slurm --no-wait");
+    ASSERT_EQ(submitted.status, 0) << submitted.output;
+    EXPECT_NE(submitted.output.find("submitted Slurm job array"), std::string::npos) << submitted.output;
+    const Result r = run(env() + kArmour + " sweep --collect " + out.string());
+    ASSERT_EQ(r.status, 0) << r.output << read_text(slurm_dir_ / "slurmctld.log");
+    expect_tilt_results(out);
+    // Slurm's own record: one array, one completed task per case.
+    const std::string job = json::parse(read_text(out / "slurm" / "job.json"))["job_id"];
+    std::ifstream log(slurm_dir_ / "jobcomp.txt");
+    std::multiset<int> tasks;
+    for (std::string line; std::getline(log, line);)
+        if (line.find(" ArrayJobId=" + job + " ") != std::string::npos) {
+            EXPECT_NE(line.find("JobState=COMPLETED"), std::string::npos) << line;
+            tasks.insert(std::atoi(line.c_str() + line.find("ArrayTaskId=") + 12));
+        }
+    EXPECT_EQ(tasks, (std::multiset<int>{0, 1, 2, 3})) << read_text(slurm_dir_ / "jobcomp.txt");
+    EXPECT_NE(read_text(out / "slurm" / "array.sbatch").find("#SBATCH --array=0-3"), std::string::npos);
+}
+
+TEST_F(SlurmSweepTest, FailedTaskIsReportedWithSlurmStateAndLogTail) {
+    // A cube placed into the plate: the scene reads, the run refuses it.
+    const fs::path sweep = dir_ / "bad-pose.toml", out = dir_ / "out";
+    write(sweep, "scene = \"" + kSource +
+                     "/scenes/tilt_cube.toml\"\n[vary]\n\"body.0.position\" = [[0.0, 0.0, 0.05]]\n");
+    const Result r =
+        run(env() + kArmour + " sweep " + sweep.string() + " --out " + out.string() + " --executor slurm");
+    EXPECT_EQ(r.status, 1) << r.output;
+    EXPECT_NE(r.output.find("Slurm task"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("FAILED"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("cuts into wall 'plate'"), std::string::npos) << "no log tail in: " << r.output;
+    const json summary = json::parse(read_text(out / "summary.json"));
+    ASSERT_EQ(summary["cases"].size(), 1u);
+    EXPECT_EQ(summary["cases"][0]["status"], "failed");
+    EXPECT_EQ(summary["failed"], 1);
+    EXPECT_EQ(summary["cases"][0]["slurm_state"], "FAILED");
+}
+
+} // namespace
