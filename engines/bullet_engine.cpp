@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <sstream>
 
 namespace armour {
@@ -83,18 +84,19 @@ std::vector<WallFace> wall_faces(const TriangleMesh &surface) {
         }
         faces.push_back(f);
     }
+    // Edges by their (sorted) vertex pair: an edge two coplanar faces share is not open.
+    std::map<std::pair<int, int>, std::vector<std::pair<std::size_t, int>>> edges;
     for (std::size_t i = 0; i < faces.size(); ++i)
-        for (std::size_t j = 0; j < faces.size(); ++j) {
-            if (i == j || std::abs(faces[i].normal.dot(faces[j].normal)) < 1.0 - 1e-12)
-                continue;
-            const auto &a = surface.triangles[i], &b = surface.triangles[j];
-            for (std::size_t k = 0; k < 3; ++k)
-                for (std::size_t l = 0; l < 3; ++l)
-                    if (a[k] == b[(l + 1) % 3] && a[(k + 1) % 3] == b[l])
-                        faces[i].open[k] = false;
-                    else if (a[k] == b[l] && a[(k + 1) % 3] == b[(l + 1) % 3])
-                        faces[i].open[k] = false;
+        for (int k = 0; k < 3; ++k) {
+            const auto &t = surface.triangles[i];
+            const int a = t[static_cast<std::size_t>(k)], b = t[static_cast<std::size_t>((k + 1) % 3)];
+            edges[{std::min(a, b), std::max(a, b)}].push_back({i, k});
         }
+    for (const auto &[edge, sides] : edges)
+        for (const auto &[i, k] : sides)
+            for (const auto &[j, l] : sides)
+                if (i != j && std::abs(faces[i].normal.dot(faces[j].normal)) > 1.0 - 1e-12)
+                    faces[i].open[k] = false;
     return faces;
 }
 
