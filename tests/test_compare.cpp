@@ -62,8 +62,37 @@ TEST(Compare, TinySceneProducesAllFilesWithConsistentEntries) {
         }
         EXPECT_NE(report.str().find(run["label"].get<std::string>()), std::string::npos);
     }
-    for (const auto &run : s["dt_sweep"])
+    for (const auto &run : s["dt_sweep"]) {
         EXPECT_TRUE(run["status"] == "ok" || run.contains("failure")) << run.dump();
+        if (!run.contains("dt_limit"))
+            continue; // crashed: no summary of its own
+        // Every point on its own run's limit: the factor asked for is the one run.
+        EXPECT_NEAR(run["dt"].get<double>() / run["dt_limit"].get<double>(),
+                    run["dt_factor_requested"].get<double>(), 1e-9 * run["dt_factor_requested"].get<double>())
+            << run.dump();
+        EXPECT_NEAR(run["energy_gain"].get<double>(),
+                    (run["energy_max"].get<double>() - run["energy_initial"].get<double>()) /
+                        run["energy_scale"].get<double>(),
+                    1e-12);
+        if (run["energy_gain"].get<double>() > s["blow_up_gain"].get<double>()) {
+            EXPECT_EQ(run["status"], "failed") << "a blow-up is a failure";
+        }
+    }
+    for (const auto &run : s["runs"]) {
+        EXPECT_GT(run["dt"].get<double>(), 0.0);
+        EXPECT_GT(run["dt_limit"].get<double>(), 0.0);
+    }
+    // One group per engine and sphere count, and advice for the headline figure.
+    ASSERT_EQ(s["groups"].size(), 2u + (exact ? 1u : 0u));
+    for (const auto &g : s["groups"]) {
+        EXPECT_EQ(g["n_runs"], 1);
+        for (const char *k : {"mean", "std", "ci95", "error_vs_exact_mean", "error_vs_exact_ci95"})
+            EXPECT_TRUE(g["figures"]["bounce_height_ratio"].contains(k)) << k;
+    }
+    const auto &advice = s["advice"]["bounce_height_ratio"];
+    EXPECT_DOUBLE_EQ(advice["tolerance"].get<double>(), 0.05);
+    EXPECT_TRUE(advice.contains("choice"));
+    EXPECT_FALSE(advice["reason"].get<std::string>().empty());
     fs::remove_all(dir);
 }
 
