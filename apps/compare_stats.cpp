@@ -231,7 +231,8 @@ json compare_advice(const json &groups, const std::vector<std::string> &keys,
             const json &f = g["figures"][key];
             const double e = as_number(f.value(field + "_mean", json(nullptr)));
             const double ci = as_number(f.value(field + "_ci95", json(nullptr)));
-            const bool is_reference = !analytic && g["engine"] == exact_engine && g["spheres"] == 0;
+            const bool is_reference =
+                !analytic && g["engine"] == exact_engine && g["spheres"] == 0 && f["n"].get<int>() > 0;
             std::string verdict;
             if (is_reference)
                 verdict = "reference";
@@ -260,16 +261,18 @@ json compare_advice(const json &groups, const std::vector<std::string> &keys,
             a["choice"] = (*best)["label"];
             a["engine"] = (*best)["engine"];
             a["spheres"] = (*best)["spheres"];
-            reason << (*best)["label"].get<std::string>() << ": the cheapest group whose whole 95 % interval "
-                   << "meets " << tol;
+            reason << (*best)["label"].get<std::string>() << ": the cheapest group that meets " << tol;
             for (const json &v : verdicts)
-                if (v["label"] == (*best)["label"] && v["verdict"] == "meets") {
-                    reason << " (error " << fmt(v["error_mean"].get<double>(), "%+.3g");
-                    if (v["error_ci95"].is_number())
-                        reason << " +- " << fmt(v["error_ci95"].get<double>());
+                if (v["label"] == (*best)["label"]) {
+                    if (v["verdict"] == "reference")
+                        reason << " by definition (the reference)";
+                    else if (v["error_ci95"].is_number())
+                        reason << " over its whole 95 % interval (error "
+                               << fmt(v["error_mean"].get<double>(), "%+.3g") << " +- "
+                               << fmt(v["error_ci95"].get<double>()) << ")";
                     else
-                        reason << ", one run: no interval";
-                    reason << ")";
+                        reason << " (error " << fmt(v["error_mean"].get<double>(), "%+.3g")
+                               << "; one run: a point value, no interval)";
                 }
             reason << ", at " << fmt((*best)["cost"]["mean"].get<double>()) << " wall s per simulated s";
         } else {

@@ -49,7 +49,7 @@ def reference_field(key):
 
 
 def panels(n):
-    fig, axes = plt.subplots(1, max(n, 1), figsize=(5.2 * max(n, 1), 4.3), squeeze=False)
+    fig, axes = plt.subplots(1, max(n, 1), figsize=(max(6.5, 5.2 * n), 4.5), squeeze=False)
     return fig, axes[0]
 
 
@@ -77,7 +77,7 @@ for ax, key in zip(axes, keys):
     ax.set_title(f"{key}: advice {choice or 'none'}", fontsize=9)
     ax.grid(True, which="both", lw=0.3)
     ax.legend(fontsize=7)
-fig.suptitle(f"{s['scene']}: accuracy against cost (group mean, 95 % interval over seeds)", fontsize=10)
+fig.suptitle(f"{s['scene']}: accuracy against cost (mean, 95 % interval over seeds)", fontsize=10)
 fig.tight_layout()
 fig.savefig(f"{out}/pareto.png", dpi=110)
 
@@ -105,6 +105,8 @@ for k, engine in enumerate(engines):
         ax.scatter(xs, [top] * len(crashed), marker=fail_marker, s=70, color=colour, lw=2,
                    label=f"{engine}: run failed (left the domain)")
 ax.axhline(threshold, color="tab:red", ls="--", lw=0.8, label=f"blow-up threshold {threshold:g}")
+gains = [r["energy_gain"] for r in s["dt_sweep"] if r.get("energy_gain") is not None]
+ax.set_ylim(bottom=min(gains + [-1e-3]) * 1.5, top=top * 3.0)
 ax.axvline(1.0, color="tab:red", ls=":", label="each run's own stability limit")
 ax.set_xscale("log")
 ax.set_yscale("symlog", linthresh=1e-4)

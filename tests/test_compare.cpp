@@ -305,8 +305,21 @@ TEST(CompareStats, OneRunPerGroupHasNoIntervalAndSaysSo) {
     const json advice =
         armour::compare_advice(groups, {"packing_density"}, {{"packing_density", 0.05}}, "bullet");
     EXPECT_EQ(advice["packing_density"]["choice"], "10 spheres");
-    EXPECT_NE(advice["packing_density"]["reason"].get<std::string>().find("one run: no interval"),
-              std::string::npos);
+    EXPECT_NE(
+        advice["packing_density"]["reason"].get<std::string>().find("one run: a point value, no interval"),
+        std::string::npos);
+}
+
+TEST(CompareStats, NoAdviceWhereNoRunHasTheFigure) {
+    // A tilt at low friction: nothing topples, so nothing meets a topple tolerance.
+    json runs = json::array({run("bullet", 0, 0.0, 1.0), run("liggghts", 20, 0.0, 0.5)});
+    for (json &r : runs)
+        r["figures"] = {{"topple_angle_deg", nullptr}};
+    const json groups = armour::compare_groups(runs, {"topple_angle_deg"}, "bullet");
+    EXPECT_EQ(group(groups, "bullet", 0)["figures"]["topple_angle_deg"]["n"], 0);
+    const json advice = armour::compare_advice(groups, {"topple_angle_deg"}, {}, "bullet");
+    EXPECT_TRUE(advice["topple_angle_deg"]["choice"].is_null()) << advice.dump(2);
+    EXPECT_EQ(verdict(advice, "topple_angle_deg", "exact hulls")["verdict"], "no value");
 }
 
 TEST(Compare, RefusesAToleranceForAFigureTheAnalysisHasNot) {
