@@ -16,6 +16,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.ticker import NullFormatter  # noqa: E402
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "analysis"))
 from armour_results import read_summary  # noqa: E402
@@ -71,6 +72,7 @@ for ax, key in zip(axes, keys):
         ax.annotate(f"{g['label']} (n={f['n']})", (cost, e), fontsize=7, xytext=(4, 3), textcoords="offset points")
     choice = advice.get(key, {}).get("choice")
     ax.set_xscale("log")
+    ax.xaxis.set_minor_formatter(NullFormatter())  # a narrow cost range crowds the minor labels
     ax.set_xlabel("cost: wall seconds per simulated second")
     ref = "analytic" if field == "error_vs_analytic" else "exact hulls"
     ax.set_ylabel(f"signed error of {key} vs {ref}")
@@ -199,7 +201,7 @@ else:
     for r in s["dt_sweep"]:
         status = "ok" if r["status"] == "ok" else ("blow-up" if r.get("blow_up") else f"failed: {r['failure']}")
         lines.append(f"| {r['label']} | {r['spheres']} | {fmt(r.get('dt'))} | {fmt(r.get('dt_limit'))} | "
-                     f"{fmt(r.get('dt_factor'))} | {status} | {fmt(r.get('energy_gain'))} |")
+                     f"{fmt(r.get('dt_factor') or r.get('dt_factor_requested'))} | {status} | {fmt(r.get('energy_gain'))} |")
 lines += ["", "![bumpiness](bumpiness.png)", ""]
 with open(f"{out}/report.md", "w") as f:
     f.write("\n".join(lines) + "\n")
