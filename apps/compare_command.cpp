@@ -81,20 +81,14 @@ int run_compare(const CompareRequest &r) {
     if (!(r.blow_up_gain > 0.0) || !std::isfinite(r.blow_up_gain))
         throw InputError("--blow-up-gain: must be a positive number (energy / sum(m g Dn))");
     const std::map<std::string, double> tolerances = parse_tolerances(r.tolerance);
-    {
-        const std::vector<std::string> &keys = analysis_style(scene.analysis).headline_keys;
-        for (const auto &[key, value] : tolerances)
-            if (std::find(keys.begin(), keys.end(), key) == keys.end())
-                throw InputError("--tolerance: " + key + ": not a headline figure of analysis '" +
-                                 scene.analysis + "' (" +
-                                 [&] {
-                                     std::string list;
-                                     for (const auto &k : keys)
-                                         list += (list.empty() ? "" : ", ") + k;
-                                     return list.empty() ? std::string("none") : list;
-                                 }() +
-                                 ")");
-    }
+    const std::vector<std::string> &headline = analysis_style(scene.analysis).headline_keys;
+    std::string known;
+    for (const auto &k : headline)
+        known += (known.empty() ? "" : ", ") + k;
+    for (const auto &[key, value] : tolerances)
+        if (std::find(headline.begin(), headline.end(), key) == headline.end())
+            throw InputError("--tolerance: " + key + ": not a headline figure of analysis '" +
+                             scene.analysis + "' (" + (known.empty() ? "none" : known) + ")");
     std::vector<std::uint64_t> seeds = r.seeds;
     if (seeds.empty())
         seeds = scene.drops.empty() ? std::vector<std::uint64_t>{1} : std::vector<std::uint64_t>{1, 2, 3};
