@@ -38,7 +38,11 @@ class NoAnalysis : public Analysis {
 // with v = k (theta - theta0)^2, so sqrt(v) is linear in theta and the line
 // through the first two moving samples meets zero at theta0. At 5 deg/s the
 // last still sample lies 0.26-0.51 deg after the onset (v reaches 5 mm/s
-// 0.5 deg after it), which alone would eat a 0.5 deg tolerance.
+// 0.5 deg after it), which alone would eat a 0.5 deg tolerance. The line is
+// trusted only where its slope is a Coulomb block's, sqrt(v) growing at
+// sqrt(g w / (2 cos theta)) per second (w: tilt rate, rad/s), within a factor
+// of 2: a soft clump that creeps into its slide (sqrt(v) growing 4 times
+// slower at 20 deg/s) keeps the last still sample.
 class TiltAnalysis : public Analysis {
   public:
     explicit TiltAnalysis(const AnalysisContext &c)
@@ -107,6 +111,11 @@ class TiltAnalysis : public Analysis {
         const auto &[t2, v2] = moving_[1];
         const double r1 = std::sqrt(v1), r2 = std::sqrt(v2);
         if (!(r2 > r1) || !(t2 > t1))
+            return last_still_slide_;
+        const double w = rate_ * kPi / 180.0; // rad/s
+        const double coulomb = std::sqrt(g_ * w / (2.0 * std::cos(t1 * kPi / 180.0))),
+                     slope = (r2 - r1) / ((t2 - t1) / rate_); // sqrt(m/s) per s
+        if (!(slope > 0.5 * coulomb && slope < 2.0 * coulomb))
             return last_still_slide_;
         const double onset = t1 - r1 * (t2 - t1) / (r2 - r1);
         return std::clamp(onset, last_still_slide_ - 1.0, last_still_slide_);
