@@ -345,3 +345,45 @@ TEST(Compare, RefusesAToleranceForAFigureTheAnalysisHasNot) {
     EXPECT_FALSE(fs::exists(out)); // nothing written
     fs::remove_all(dir);
 }
+
+TEST(Compare, CountsABlowUpAsAFailureOutOfTheStatistics) {
+    // A threshold far below any real gain: every run that gained energy blew up.
+    const fs::path dir = fs::temp_directory_path() / "armour_compare_blow_up";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    std::ofstream(dir / "scene.toml")
+        << "name = \"tiny\"\n[run]\nduration = 0.3\noutput_interval = 0.005\ndomain_min = [-1, -1, -0.5]\n"
+           "domain_max = [1, 1, 1.5]\n[analysis]\nkind = \"bounce\"\n[[material]]\nname = \"concrete\"\n"
+           "[[unit]]\nname = \"cube\"\nshape = \"cube\"\nsize = 0.2\nspheres = 8\n"
+           "[[wall]]\nname = \"floor\"\ntype = \"plane\"\npoint = [0, 0, 0]\nnormal = [0, 0, 1]\nsize = 2\n"
+           "[[body]]\nunit = \"cube\"\nposition = [0, 0, 0.4]\n";
+    const std::string scene = (dir / "scene.toml").string(), out = (dir / "out").string(),
+                      cache = (dir / "cache").string();
+    const std::vector<const char *> argv = {"armour",      "compare",      scene.c_str(), "--spheres",
+                                            "4",           "--out",        out.c_str(),   "--cache",
+                                            cache.c_str(), "--dt-factors", "2",           "--blow-up-gain",
+                                            "1e-12"};
+    ::testing::internal::CaptureStderr();
+    const int code = armour::armour_main(static_cast<int>(argv.size()), argv.data());
+    const std::string err = ::testing::internal::GetCapturedStderr();
+    ASSERT_EQ(code, 0) << err;
+    std::ifstream in(fs::path(out) / "summary.json");
+    const auto s = nlohmann::json::parse(in);
+    int blown = 0;
+    for (const auto *set : {&s["runs"], &s["dt_sweep"]})
+        for (const auto &run : *set)
+            if (run.contains("energy_gain") && run["energy_gain"].is_number() &&
+                run["energy_gain"].get<double>() > 1e-12) {
+                ++blown;
+                EXPECT_EQ(run["status"], "failed") << run.dump();
+                EXPECT_EQ(run["blow_up"], true);
+                EXPECT_NE(run["failure"].get<std::string>().find("blow-up"), std::string::npos);
+            }
+    ASSERT_GT(blown, 0) << "the clumps' soft contacts always gain a little";
+    for (const auto &g : s["groups"])
+        if (g["spheres"].get<int>() > 0) {
+            EXPECT_EQ(g["n_failed"], g["n_runs"]); // the clump run gained energy: out of the figures
+            EXPECT_EQ(g["figures"]["bounce_height_ratio"]["n"], 0);
+        }
+    fs::remove_all(dir);
+}
