@@ -33,7 +33,16 @@ class NoAnalysis : public Analysis {
 // (moves along x by 1 % of Dn without turning) and first topples (turns by
 // 10 degrees), each taken back to the last sample at which it was still at
 // rest: slower than 5 mm/s (soft contacts creep at ~0.1-1 mm/s well before
-// sliding) or turning slower than 0.05 rad/s.
+// sliding) or turning slower than 0.05 rad/s. A slide is taken back further,
+// to its onset: under a tilt rising at a steady rate a Coulomb slide starts
+// with v = k (theta - theta0)^2, so sqrt(v) is linear in theta and the line
+// through the first two moving samples meets zero at theta0. At 5 deg/s the
+// last still sample lies 0.26-0.51 deg after the onset (v reaches 5 mm/s
+// 0.5 deg after it), which alone would eat a 0.5 deg tolerance. The line is
+// trusted only where its slope is a Coulomb block's, sqrt(v) growing at
+// sqrt(g w / (2 cos theta)) per second (w: tilt rate, rad/s), within a factor
+// of 2: a soft clump that creeps into its slide (sqrt(v) growing 4 times
+// slower at 20 deg/s) keeps the last still sample.
 class TiltAnalysis : public Analysis {
   public:
     explicit TiltAnalysis(const AnalysisContext &c)
@@ -64,12 +73,16 @@ class TiltAnalysis : public Analysis {
         }
         const double moved = s.pose.position.x() - reference_->position.x();
         const double turned = rotation_deg(s.pose.orientation, reference_->orientation);
-        if (std::abs(s.velocity.x()) < 5e-3 && !slide_)
+        if (std::abs(s.velocity.x()) < 5e-3 && !slide_) {
             last_still_slide_ = theta;
+            moving_.clear();
+        } else if (!slide_ && moving_.size() < 2 && theta < max_) {
+            moving_.push_back({theta, std::abs(s.velocity.x())});
+        }
         if (s.angular_velocity.norm() < 5e-2 && !topple_)
             last_still_turn_ = theta;
         if (!slide_ && moved > 0.01 * Dn_ && turned < 5.0)
-            slide_ = last_still_slide_;
+            slide_ = slide_onset();
         if (!topple_ && turned > 10.0)
             topple_ = last_still_turn_;
         // Slid a whole Dn or turned past 45 degrees: nothing more to learn.
@@ -88,9 +101,29 @@ class TiltAnalysis : public Analysis {
 
   private:
     double angle(double t) const { return std::min(rate_ * t, max_); } // deg
+
+    // theta0 from the first two moving samples (see above), kept between one
+    // degree before the last still sample and that sample.
+    double slide_onset() const {
+        if (moving_.size() < 2)
+            return last_still_slide_;
+        const auto &[t1, v1] = moving_[0];
+        const auto &[t2, v2] = moving_[1];
+        const double r1 = std::sqrt(v1), r2 = std::sqrt(v2);
+        if (!(r2 > r1) || !(t2 > t1))
+            return last_still_slide_;
+        const double w = rate_ * kPi / 180.0; // rad/s
+        const double coulomb = std::sqrt(g_ * w / (2.0 * std::cos(t1 * kPi / 180.0))),
+                     slope = (r2 - r1) / ((t2 - t1) / rate_); // sqrt(m/s) per s
+        if (!(slope > 0.5 * coulomb && slope < 2.0 * coulomb))
+            return last_still_slide_;
+        const double onset = t1 - r1 * (t2 - t1) / (r2 - r1);
+        return std::clamp(onset, last_still_slide_ - 1.0, last_still_slide_);
+    }
     double rate_, max_, g_, Dn_, mu_ = 0.0;
     std::optional<Pose> reference_;
     double last_still_slide_ = 0.0, last_still_turn_ = 0.0;
+    std::vector<std::pair<double, double>> moving_; // (deg, m/s) since the last still sample, first two
     std::optional<double> slide_, topple_;
     bool finished_ = false;
 };

@@ -116,7 +116,16 @@ int armour_main(int argc, const char *const *argv) {
         ->delimiter(',')
         ->capture_default_str();
     compare_cmd
-        ->add_option("--dt-sweep-spheres", compare.dt_sweep_spheres, "Spheres per unit in the dt sweep")
+        ->add_option("--dt-sweep-spheres", compare.dt_sweep_spheres,
+                     "Spheres per unit in the dt sweep (0: the --spheres count nearest 20)")
+        ->capture_default_str();
+    compare_cmd->add_option(
+        "--tolerance", compare.tolerance,
+        "Advice tolerances per headline figure, KEY=VALUE,... in the figure's own unit, e.g. "
+        "slide_angle_deg=0.5,packing_density=0.05 (defaults: docs/comparison.md)");
+    compare_cmd
+        ->add_option("--blow-up-gain", compare.blow_up_gain,
+                     "Energy gain (E_max - E_0) / sum(m g Dn) [-] above which a run counts as blown up")
         ->capture_default_str();
     compare_cmd->add_option("--set", compare.overrides, "Override a scene key for every run (TOML syntax)");
     compare_cmd->add_option("--cache", compare.cache, "Clump cache folder");

@@ -5,6 +5,7 @@
 #include "compare_command.h"
 
 #include "analysis.h"
+#include "compare_stats.h"
 #include "engine_registry.h"
 #include "output_folder.h"
 #include "run_command.h"
@@ -16,6 +17,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <utility>
 
@@ -36,6 +38,8 @@ struct Run {
     double dt_factor; // 0: the default step
     json summary;     // null if the run failed
     std::string failure;
+    bool blew_up = false; // ran to the end, but gained energy beyond --blow-up-gain
+    bool ok() const { return summary.is_object() && !blew_up; }
 };
 
 Run execute(const CompareRequest &r, const fs::path &runs, Run run, std::vector<std::string> overrides) {
@@ -74,6 +78,17 @@ int run_compare(const CompareRequest &r) {
     for (double f : r.dt_factors)
         if (!(f > 0.0))
             throw InputError("--dt-factors: every factor must be > 0");
+    if (!(r.blow_up_gain > 0.0) || !std::isfinite(r.blow_up_gain))
+        throw InputError("--blow-up-gain: must be a positive number (energy / sum(m g Dn))");
+    const std::map<std::string, double> tolerances = parse_tolerances(r.tolerance);
+    const std::vector<std::string> &headline = analysis_style(scene.analysis).headline_keys;
+    std::string known;
+    for (const auto &k : headline)
+        known += (known.empty() ? "" : ", ") + k;
+    for (const auto &[key, value] : tolerances)
+        if (std::find(headline.begin(), headline.end(), key) == headline.end())
+            throw InputError("--tolerance: " + key + ": not a headline figure of analysis '" +
+                             scene.analysis + "' (" + (known.empty() ? "none" : known) + ")");
     std::vector<std::uint64_t> seeds = r.seeds;
     if (seeds.empty())
         seeds = scene.drops.empty() ? std::vector<std::uint64_t>{1} : std::vector<std::uint64_t>{1, 2, 3};
@@ -130,36 +145,75 @@ int run_compare(const CompareRequest &r) {
 
     // Time step past the limit, for both engines (first seed, one clump size).
     // Its measure is the energy gain, which needs fixed gravity: a tilt scene
-    // turns gravity, so it gets no sweep (the report says so).
+    // turns gravity, so it gets no sweep (the report says so). Each factor
+    // multiplies the limit of the very body the sweep runs (the clump of
+    // --dt-sweep-spheres, run at its default step first if --spheres lacks it).
     std::vector<Run> sweep;
     const AnalysisStyle &analysis = analysis_style(scene.analysis);
     const std::vector<std::string> sweep_engines =
         analysis.turns_gravity ? std::vector<std::string>{} : engines;
+    int sweep_spheres = r.dt_sweep_spheres;
+    if (sweep_spheres <= 0)
+        for (int n : r.spheres)
+            if (sweep_spheres <= 0 || std::abs(n - 20) < std::abs(sweep_spheres - 20))
+                sweep_spheres = n;
     for (const std::string &engine : sweep_engines) {
+        const int spheres = engine == clump_engine ? sweep_spheres : 0;
+        auto sweep_overrides = [&] {
+            auto o = seed_overrides(seeds.front());
+            if (spheres > 0) {
+                const auto s = spheres_overrides(spheres);
+                o.insert(o.end(), s.begin(), s.end());
+            }
+            o.push_back("run.engine=\"" + engine + "\"");
+            return o;
+        };
         double limit = 0.0;
         for (const Run &run : results)
-            if (run.engine == engine && run.summary.is_object())
+            if (run.engine == engine && run.spheres == spheres && run.seed == seeds.front() &&
+                run.summary.is_object())
                 limit = run.summary["dt_limit"].get<double>();
+        if (limit <= 0.0 && !r.dt_factors.empty()) {
+            Run probe("dt_" + engine + "_default", engine, spheres, seeds.front());
+            sweep.push_back(execute(r, runs, probe, sweep_overrides()));
+            if (sweep.back().summary.is_object())
+                limit = sweep.back().summary["dt_limit"].get<double>();
+        }
         if (limit <= 0.0)
             continue;
         for (double f : r.dt_factors) {
-            auto o = seed_overrides(seeds.front());
-            if (engine == clump_engine) {
-                const auto s = spheres_overrides(r.dt_sweep_spheres);
-                o.insert(o.end(), s.begin(), s.end());
-            }
+            auto o = sweep_overrides();
             char step[64];
             std::snprintf(step, sizeof step, "run.time_step=%.17g", f * limit);
             char interval[64];
             std::snprintf(interval, sizeof interval, "run.output_interval=%.17g",
                           std::max(scene.output_interval, f * limit));
-            o.insert(o.end(), {"run.engine=\"" + engine + "\"", step, interval, "run.force_time_step=true"});
+            o.insert(o.end(), {step, interval, "run.force_time_step=true"});
             char label[64];
             std::snprintf(label, sizeof label, "dt_%s_x%g", engine.c_str(), f);
-            Run run(label, engine, engine == clump_engine ? r.dt_sweep_spheres : 0, seeds.front(), f);
-            sweep.push_back(execute(r, runs, run, o));
+            sweep.push_back(execute(r, runs, Run(label, engine, spheres, seeds.front(), f), o));
         }
     }
+
+    // A run that gains energy beyond the threshold blew up: a failure, kept
+    // out of the statistics. Only where gravity is fixed (else the energy
+    // balance means nothing).
+    auto energy_gain = [](const json &s) {
+        const double scale = number_or_nan(s, "energy_scale");
+        return (number_or_nan(s, "energy_max") - number_or_nan(s, "energy_initial")) /
+               (scale > 0.0 ? scale : std::nan(""));
+    };
+    if (!analysis.turns_gravity)
+        for (std::vector<Run> *set : {&results, &sweep})
+            for (Run &run : *set)
+                if (run.summary.is_object() && energy_gain(run.summary) > r.blow_up_gain) {
+                    char why[160];
+                    std::snprintf(why, sizeof why,
+                                  "blow-up: energy gain %.3g x sum(m g Dn) > %.3g (--blow-up-gain)",
+                                  energy_gain(run.summary), r.blow_up_gain);
+                    run.failure = why;
+                    run.blew_up = true;
+                }
 
     // Errors against the exact runs (mean over seeds) and against analytic values.
     const std::vector<std::string> &keys = analysis.headline_keys;
@@ -168,7 +222,7 @@ int run_compare(const CompareRequest &r) {
         double sum = 0.0;
         int n = 0;
         for (const Run &run : results)
-            if (run.engine == exact_engine && std::isfinite(number_or_nan(run.summary, key))) {
+            if (run.engine == exact_engine && run.ok() && std::isfinite(number_or_nan(run.summary, key))) {
                 sum += number_or_nan(run.summary, key);
                 ++n;
             }
@@ -179,17 +233,26 @@ int run_compare(const CompareRequest &r) {
                   {"engine", run.engine},
                   {"spheres", run.spheres},
                   {"seed", run.seed},
-                  {"status", run.summary.is_object() ? "ok" : "failed"}};
-        if (run.dt_factor > 0.0)
-            e["dt_factor"] = run.dt_factor;
-        if (!run.summary.is_object()) {
+                  {"status", run.ok() ? "ok" : "failed"}};
+        if (!run.ok())
             e["failure"] = run.failure;
+        if (run.blew_up)
+            e["blow_up"] = true;
+        if (run.dt_factor > 0.0)
+            e["dt_factor_requested"] = run.dt_factor;
+        if (!run.summary.is_object())
             return e;
-        }
         const json &s = run.summary;
-        for (const char *k : {"wall_seconds", "wall_seconds_per_simulated_second", "seconds_per_unit_step",
-                              "dt", "dt_limit", "steps", "energy_initial", "energy_max", "energy_final"})
+        for (const char *k :
+             {"wall_seconds", "wall_seconds_per_simulated_second", "seconds_per_unit_step", "dt", "dt_limit",
+              "steps", "energy_initial", "energy_max", "energy_final", "energy_scale"})
             e[k] = s.value(k, json(nullptr));
+        const double gain = energy_gain(s);
+        e["energy_gain"] = std::isfinite(gain) ? json(gain) : json(nullptr);
+        // The step as a multiple of this run's own limit (what the charts show).
+        const double dt = number_or_nan(s, "dt"), dt_limit = number_or_nan(s, "dt_limit");
+        if (dt > 0.0 && dt_limit > 0.0)
+            e["dt_factor"] = dt / dt_limit;
         json figures = json::object(), vs_exact = json::object(), vs_analytic = json::object();
         for (const auto &key : keys) {
             const double v = number_or_nan(s, key);
@@ -212,6 +275,8 @@ int run_compare(const CompareRequest &r) {
         entries.push_back(entry(run));
     for (const Run &run : sweep)
         sweep_entries.push_back(entry(run));
+    const json groups = compare_groups(entries, keys, exact_engine);
+    const json advice = compare_advice(groups, keys, tolerances, exact_engine);
     const json summary = {
         {"command", "compare"},
         {"scene", scene.name},
@@ -222,12 +287,18 @@ int run_compare(const CompareRequest &r) {
         {"seeds", seeds},
         {"runs", entries},
         {"dt_sweep", sweep_entries},
+        {"groups", groups},
+        {"advice", advice},
+        {"blow_up_gain", r.blow_up_gain},
         {"units",
          {{"wall_seconds", "s"},
           {"seconds_per_unit_step", "s"},
           {"dt", "s"},
           {"energy", "J"},
-          {"errors", "in the figure's own unit (deg, -), run minus exact mean / minus analytic"}}}};
+          {"energy_gain", "(E_max - E_0) / sum(m g Dn), -"},
+          {"cost", "wall seconds per simulated second"},
+          {"ci95", "half-width of the 95 % interval of the mean (Student t)"},
+          {"errors", "in the figure's own unit (deg, -), signed: run minus exact mean / minus analytic"}}}};
     write_text_file(out.claim("summary.json"), summary.dump(2) + "\n");
     const std::string plot = std::string("/usr/bin/python3 '") + ARMOUR_SOURCE_DIR +
                              "/comparison/compare_report.py' '" + out.dir().string() + "'";

@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <sstream>
 
 namespace armour {
@@ -51,12 +52,53 @@ struct PairTable {
     std::vector<double> friction, restitution, rolling;
 };
 
+// A wall triangle as the contact fix needs it (World::snap_wall_contacts):
+// unit normal, vertices, and per edge (v0v1, v1v2, v2v0) the in-plane unit
+// vector pointing inward and whether the edge is open (a boundary or a
+// crease, not shared with a coplanar neighbour).
+struct WallFace {
+    Eigen::Vector3d normal, v[3], inward[3];
+    bool open[3];
+};
+
 // Hung on every Bullet collision object (user pointer).
 struct ObjectInfo {
     const PairTable *table = nullptr;
     int material = 0;
-    double radius = 0.0; // m, volume-equivalent sphere radius; 0 for walls
+    double radius = 0.0;                          // m, volume-equivalent sphere radius; 0 for walls
+    const std::vector<WallFace> *faces = nullptr; // walls only
 };
+
+std::vector<WallFace> wall_faces(const TriangleMesh &surface) {
+    std::vector<WallFace> faces;
+    for (const auto &t : surface.triangles) {
+        WallFace f;
+        for (std::size_t k = 0; k < 3; ++k)
+            f.v[k] = surface.vertices[static_cast<std::size_t>(t[k])];
+        f.normal = (f.v[1] - f.v[0]).cross(f.v[2] - f.v[0]).normalized();
+        for (int k = 0; k < 3; ++k) {
+            f.inward[k] = f.normal.cross(f.v[(k + 1) % 3] - f.v[k]).normalized();
+            if (f.inward[k].dot(f.v[(k + 2) % 3] - f.v[k]) < 0.0)
+                f.inward[k] = -f.inward[k];
+            f.open[k] = true;
+        }
+        faces.push_back(f);
+    }
+    // Edges by their (sorted) vertex pair: an edge two coplanar faces share is not open.
+    std::map<std::pair<int, int>, std::vector<std::pair<std::size_t, int>>> edges;
+    for (std::size_t i = 0; i < faces.size(); ++i)
+        for (int k = 0; k < 3; ++k) {
+            const auto &t = surface.triangles[i];
+            const int a = t[static_cast<std::size_t>(k)], b = t[static_cast<std::size_t>((k + 1) % 3)];
+            edges[{std::min(a, b), std::max(a, b)}].push_back({i, k});
+        }
+    for (const auto &[edge, sides] : edges)
+        for (const auto &[i, k] : sides)
+            for (const auto &[j, l] : sides)
+                if (i != j && std::abs(faces[i].normal.dot(faces[j].normal)) > 1.0 - 1e-12)
+                    faces[i].open[k] = false;
+    return faces;
+}
 
 // Replaces Bullet's combine rule (product of the two objects' values) for
 // every contact point Bullet adds or replaces. Bullet's rolling friction
@@ -201,6 +243,7 @@ class World final : public btDiscreteDynamicsWorld {
 
   protected:
     void solveConstraints(btContactSolverInfo &info) override {
+        snap_wall_contacts();
         const double dt = info.m_timeStep;
         for (int i = 0; i < m_dispatcher1->getNumManifolds(); ++i) {
             btPersistentManifold *m = m_dispatcher1->getManifoldByIndexInternal(i);
@@ -225,6 +268,54 @@ class World final : public btDiscreteDynamicsWorld {
             }
         }
         btDiscreteDynamicsWorld::solveConstraints(info);
+    }
+
+    // Bullet's multipoint contact generation (setConvexConvexMultipointIterations)
+    // turns the smaller body by gContactBreakingThreshold / its radius (0.02 m
+    // of arc: 6.7 deg for a 0.2 m cube), runs GJK on the turned pose and keeps
+    // that pose's normal and wall point. Such a point persists in the manifold
+    // while the unit rests: its normal tilted by up to that angle pushes the
+    // unit downhill (a cube crept 2 mm and "slid" at 25.0 deg for atan 0.5 =
+    // 26.57 deg), and its wall point, up to 0.35 mm above the wall, props the
+    // unit up askew. A point that lies inside a wall face (no open edge
+    // within reach) has the face's normal for certain: snap its normal and its
+    // wall point onto the face before every solve.
+    void snap_wall_contacts() {
+        for (int i = 0; i < m_dispatcher1->getNumManifolds(); ++i) {
+            btPersistentManifold *m = m_dispatcher1->getManifoldByIndexInternal(i);
+            const auto *info0 = static_cast<const ObjectInfo *>(m->getBody0()->getUserPointer());
+            const auto *info1 = static_cast<const ObjectInfo *>(m->getBody1()->getUserPointer());
+            const bool wall_is_b = info1 && info1->faces;
+            const ObjectInfo *wall = wall_is_b ? info1 : info0;
+            if (!wall || !wall->faces)
+                continue;
+            const btTransform &wall_pose = (wall_is_b ? m->getBody1() : m->getBody0())->getWorldTransform();
+            for (int j = 0; j < m->getNumContacts(); ++j) {
+                btManifoldPoint &p = m->getContactPoint(j);
+                const int index = wall_is_b ? p.m_index1 : p.m_index0; // the wall's triangle
+                if (index < 0 || index >= static_cast<int>(wall->faces->size()))
+                    continue;
+                const WallFace &f = (*wall->faces)[static_cast<std::size_t>(index)];
+                const Eigen::Vector3d x = eig(wall_is_b ? p.getPositionWorldOnB() : p.getPositionWorldOnA());
+                bool inside = true;
+                for (int k = 0; k < 3; ++k)
+                    inside = inside && (!f.open[k] || f.inward[k].dot(x - f.v[k]) > 0.0);
+                if (!inside)
+                    continue;
+                const btVector3 on_face = bt(x - f.normal * f.normal.dot(x - f.v[0]));
+                if (wall_is_b) {
+                    p.m_positionWorldOnB = on_face;
+                    p.m_localPointB = wall_pose.invXform(on_face);
+                } else {
+                    p.m_positionWorldOnA = on_face;
+                    p.m_localPointA = wall_pose.invXform(on_face);
+                }
+                // Normal on B, pointing from B to A.
+                const Eigen::Vector3d n = f.normal.dot(eig(p.m_normalWorldOnB)) < 0.0 ? -f.normal : f.normal;
+                p.m_normalWorldOnB = bt(n);
+                p.m_distance1 = (p.getPositionWorldOnA() - p.getPositionWorldOnB()).dot(p.m_normalWorldOnB);
+            }
+        }
     }
 };
 
@@ -402,7 +493,8 @@ class BulletEngine final : public RigidBodyEngine {
         }
         w->shape = std::make_unique<btBvhTriangleMeshShape>(w->mesh.get(), true, true);
         w->shape->setMargin(0.0);
-        w->info = {&table_, wall.material, 0.0};
+        w->faces = wall_faces(wall.surface);
+        w->info = {&table_, wall.material, 0.0, &w->faces};
         btRigidBody::btRigidBodyConstructionInfo ci(0.0, nullptr, w->shape.get());
         const Material &m = settings_.materials[static_cast<std::size_t>(wall.material)];
         ci.m_friction = m.friction;
@@ -525,6 +617,7 @@ class BulletEngine final : public RigidBodyEngine {
     };
     struct WallObject {
         ObjectInfo info;
+        std::vector<WallFace> faces;
         std::unique_ptr<btTriangleMesh> mesh;
         std::unique_ptr<btBvhTriangleMeshShape> shape;
         std::unique_ptr<btRigidBody> rb;

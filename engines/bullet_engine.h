@@ -36,6 +36,10 @@
 //       restitution            exact per impact: a contact point that closes
 //                              within the step counts as touching (Bullet's
 //                              speculative rule would take gap/dt off the rebound).
+//       wall contacts          a contact point inside a wall face is snapped
+//                              onto it (normal and wall point) before every
+//                              solve: Bullet's multipoint contacts leave
+//                              tilted normals that make resting units creep.
 //     Sleeping is off. Contacts are rigid (Bullet's own; Young's modulus and
 //     Poisson's ratio are not used). Details: docs/bullet.md.
 //
