@@ -52,7 +52,7 @@ Shape unit_shape(const SceneUnit &u) {
 Clump cached_clump(const SceneUnit &u, const Shape &shape, const std::string &cache_dir, bool progress) {
     std::ostringstream key;
     key.precision(17);
-    key << "armour-clump-v1|" << shape.description << "|density=" << u.density << "|method=" << u.method
+    key << "armour-clump-v2|" << shape.description << "|density=" << u.density << "|method=" << u.method
         << "|spheres=" << u.spheres << "|tol=" << u.tol_volume << "," << u.tol_surface << "|seed=1";
     if (u.shape == "stl") { // the file's content, not only its name, decides the clump
         std::ifstream in(u.stl, std::ios::binary);
@@ -83,7 +83,8 @@ Clump cached_clump(const SceneUnit &u, const Shape &shape, const std::string &ca
         if (progress)
             std::fprintf(stderr, "unit %s: fewest spheres for volume %g, surface %g Dn\n", u.name.c_str(),
                          u.tol_volume, u.tol_surface);
-        ToleranceSearch search = fewest_spheres(shape, method, u.tol_volume, u.tol_surface, 200);
+        // The topple tolerance is the `armour clump` default (clump_evaluator.h).
+        ToleranceSearch search = fewest_spheres(shape, method, {u.tol_volume, u.tol_surface}, 200);
         if (!search.met)
             throw InputError("unit '" + u.name + "': tolerances cannot be met with 200 spheres");
         clump = std::move(search.clump);

@@ -149,6 +149,21 @@ TEST_F(Run, TiltSceneSlidesAtTheFrictionAngle) {
     EXPECT_NEAR(s["slide_angle_deg"].get<double>(), s["slide_angle_analytic_deg"].get<double>(), 0.5);
 }
 
+TEST_F(Run, TiltSceneTopplesAtFortyFiveDegreesWhenFrictionHolds) {
+    // The example scene with friction 1.2: the cube must topple about its
+    // downhill edge at atan(1) = 45 deg (sliding would need 50.2 deg). The
+    // 20-sphere clump stands on its corner spheres (clump_support.h):
+    // geometric topple angle 44.50 deg. Before them it toppled at 29.5 deg.
+    std::ifstream in(fs::path(__FILE__).parent_path().parent_path() / "scenes" / "tilt_cube.toml");
+    std::stringstream scene;
+    scene << in.rdbuf();
+    ASSERT_EQ(run(scene.str(), {"--set", "material.0.friction=1.2"}), 0) << err_;
+    std::ifstream summary_in(out() / "summary.json");
+    const auto s = nlohmann::json::parse(summary_in);
+    ASSERT_TRUE(s["topple_angle_deg"].is_number()) << s.dump();
+    EXPECT_NEAR(s["topple_angle_deg"].get<double>(), 45.0, 1.0);
+}
+
 namespace {
 
 // Horizontal excursion (m) of the only body of a one-body run from its
