@@ -27,7 +27,7 @@ int armour_main(int argc, const char *const *argv) {
         "clump",
         "Build a sphere clump of a cube, a dolos or a closed STL, measure its error against the exact "
         "shape and write LIGGGHTS files. Without --spheres, picks the fewest spheres meeting "
-        "--tol-volume and --tol-surface.");
+        "--tol-volume, --tol-surface and --tol-topple.");
     auto *shape_opt = clump_cmd->add_option("--shape", clump.shape, "Built-in unit: cube or dolos");
     auto *stl_opt =
         clump_cmd->add_option("--stl", clump.stl, "Closed triangle mesh (ASCII or binary STL, m)");
@@ -48,7 +48,12 @@ int armour_main(int argc, const char *const *argv) {
                       ->add_option("--tol-surface", clump.tol_surface,
                                    "Tolerance mode: max surface RMS deviation as a fraction of Dn [-]")
                       ->capture_default_str();
-    spheres_opt->excludes(tol_v)->excludes(tol_s);
+    auto *tol_t = clump_cmd
+                      ->add_option("--tol-topple", clump.tol_topple,
+                                   "Tolerance mode: max error of the topple angle about any edge of any "
+                                   "face the unit rests on [deg]")
+                      ->capture_default_str();
+    spheres_opt->excludes(tol_v)->excludes(tol_s)->excludes(tol_t);
     clump_cmd->add_option("--max-spheres", clump.max_spheres, "Tolerance mode: largest N to try")
         ->capture_default_str();
     clump_cmd->add_option("--method", clump.method, "Clump method: greedy (baseline) or optimised")
@@ -68,6 +73,8 @@ int armour_main(int argc, const char *const *argv) {
         ->capture_default_str();
     demo_cmd
         ->add_option("--tol-surface", demo.tol_surface, "Max surface RMS deviation as a fraction of Dn [-]")
+        ->capture_default_str();
+    demo_cmd->add_option("--tol-topple", demo.tol_topple, "Max topple angle error [deg]")
         ->capture_default_str();
 
     RunRequest run;

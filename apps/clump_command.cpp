@@ -58,6 +58,7 @@ json quality_json(const ClumpQuality &q) {
         {"rest_gap", std::isfinite(q.rest_gap) ? json(q.rest_gap) : json(nullptr)}, // null: stands on no face
         {"rest_faces", q.rest_faces},
         {"tipping_faces", q.tipping_faces},
+        {"topple_error_deg", q.topple_error_deg},
         {"build_seconds", q.build_seconds}};
 }
 
@@ -104,7 +105,9 @@ json write_clump_files(const FilePlace &place, const std::filesystem::path &fina
                   {"volume_error", "fraction, signed (clump - exact) / exact"},
                   {"inertia_error", "fraction, max over exact principal axes"},
                   {"surface_and_centroid", "fractions of Dn"},
-                  {"rest_gap", "fraction of Dn (null: the clump stands on none of the faces)"}};
+                  {"rest_gap", "fraction of Dn (null: the clump stands on none of the faces)"},
+                  {"topple_error_deg", "degrees, largest |clump - exact| topple angle over resting faces and "
+                                       "their edges"}};
     s["files"] = {{"spheres", "clump.spheres"},
                   {"liggghts_template", "template.liggghts"},
                   {"exact_shape", "shape.stl"},
@@ -113,8 +116,11 @@ json write_clump_files(const FilePlace &place, const std::filesystem::path &fina
 }
 
 void print_progress(const std::string &label, const ClumpQuality &q) {
-    std::fprintf(stderr, "  %s N=%-4d volume error %+7.3f %%  surface RMS %6.3f %% Dn  (%.2f s)\n",
-                 label.c_str(), q.spheres, 100.0 * q.volume_error, 100.0 * q.surface_rms, q.build_seconds);
+    std::fprintf(
+        stderr,
+        "  %s N=%-4d volume error %+7.3f %%  surface RMS %6.3f %% Dn  topple error %5.2f deg  (%.2f s)\n",
+        label.c_str(), q.spheres, 100.0 * q.volume_error, 100.0 * q.surface_rms, q.topple_error_deg,
+        q.build_seconds);
 }
 
 struct Built {
@@ -124,8 +130,8 @@ struct Built {
 };
 
 // A fixed sphere count when `spheres` > 0, else the tolerance search.
-Built build_requested(const Shape &shape, ClumpMethod method, int spheres, double tol_volume,
-                      double tol_surface, int max_spheres, std::uint64_t seed, const std::string &label) {
+Built build_requested(const Shape &shape, ClumpMethod method, int spheres, const ClumpTolerances &tol,
+                      int max_spheres, std::uint64_t seed, const std::string &label) {
     Built b;
     if (spheres > 0) {
         const auto start = std::chrono::steady_clock::now();
@@ -136,36 +142,44 @@ Built build_requested(const Shape &shape, ClumpMethod method, int spheres, doubl
         b.quality.build_seconds = seconds;
         return b;
     }
-    std::fprintf(stderr, "%s: fewest spheres with |volume error| <= %g and surface RMS <= %g Dn (%s)\n",
-                 label.c_str(), tol_volume, tol_surface, method_name(method).c_str());
-    ToleranceSearch search = fewest_spheres(shape, method, tol_volume, tol_surface, max_spheres, seed,
+    std::fprintf(stderr,
+                 "%s: fewest spheres with |volume error| <= %g, surface RMS <= %g Dn and topple error <= %g "
+                 "deg (%s)\n",
+                 label.c_str(), tol.volume, tol.surface_rms, tol.topple_deg, method_name(method).c_str());
+    ToleranceSearch search = fewest_spheres(shape, method, tol, max_spheres, seed,
                                             [&](const ClumpQuality &q) { print_progress(label, q); });
     if (!search.met)
-        throw InputError("--tol-volume/--tol-surface: " + number(tol_volume) + " / " + number(tol_surface) +
-                         " cannot be met with at most " + std::to_string(max_spheres) +
+        throw InputError("--tol-volume/--tol-surface/--tol-topple: " + number(tol.volume) + " / " +
+                         number(tol.surface_rms) + " / " + number(tol.topple_deg) +
+                         " deg cannot be met with at most " + std::to_string(max_spheres) +
                          " spheres (best: volume " + "error " + number(search.quality.volume_error) +
-                         ", surface RMS " + number(search.quality.surface_rms) + " Dn at N=" +
+                         ", surface RMS " + number(search.quality.surface_rms) + " Dn, topple error " +
+                         number(search.quality.topple_error_deg) + " deg at N=" +
                          std::to_string(search.quality.spheres) + "); raise --max-spheres or the tolerances");
     b.clump = std::move(search.clump);
     b.quality = search.quality;
     json tried = json::array();
     for (const auto &q : search.tried)
         tried.push_back(quality_json(q));
-    b.tolerance = {{"volume", tol_volume},
-                   {"surface_rms", tol_surface},
+    b.tolerance = {{"volume", tol.volume},
+                   {"surface_rms", tol.surface_rms},
+                   {"topple_deg", tol.topple_deg},
                    {"max_spheres", max_spheres},
                    {"met", true},
                    {"tried", tried}};
     return b;
 }
 
-void check_tolerances(double tol_volume, double tol_surface) {
+void check_tolerances(double tol_volume, double tol_surface, double tol_topple) {
     if (!(tol_volume > 0.0 && tol_volume < 1.0))
         throw InputError("--tol-volume: must be a fraction in (0, 1), e.g. 0.01 for 1 % (got " +
                          number(tol_volume) + ")");
     if (!(tol_surface > 0.0 && tol_surface < 1.0))
         throw InputError("--tol-surface: must be a fraction of Dn in (0, 1), e.g. 0.02 for 2 % (got " +
                          number(tol_surface) + ")");
+    if (!(tol_topple > 0.0 && tol_topple < 90.0))
+        throw InputError("--tol-topple: must be an angle in (0, 90) degrees, e.g. 1 (got " +
+                         number(tol_topple) + ")");
 }
 
 } // namespace
@@ -177,13 +191,14 @@ int run_clump(const ClumpRequest &r) {
         throw InputError("--spheres: the number of spheres must be >= 1 (got " + std::to_string(r.spheres) +
                          ")");
     if (!r.fixed_count)
-        check_tolerances(r.tol_volume, r.tol_surface);
+        check_tolerances(r.tol_volume, r.tol_surface, r.tol_topple);
     if (r.max_spheres < 1)
         throw InputError("--max-spheres: must be >= 1 (got " + std::to_string(r.max_spheres) + ")");
     const Shape shape = make_requested_shape(r);
     OutputFolder out(r.out, "armour clump", OutputFolder::Mode::staged);
-    const Built b = build_requested(shape, method, r.fixed_count ? r.spheres : 0, r.tol_volume, r.tol_surface,
-                                    r.max_spheres, r.seed, shape.kind);
+    const Built b =
+        build_requested(shape, method, r.fixed_count ? r.spheres : 0,
+                        {r.tol_volume, r.tol_surface, r.tol_topple}, r.max_spheres, r.seed, shape.kind);
     out.open();
     json summary = write_clump_files([&](const std::string &name) { return out.claim(name); }, out.target(),
                                      shape, b.clump, b.quality, r.method, r.seed);
@@ -193,16 +208,17 @@ int run_clump(const ClumpRequest &r) {
     out.commit();
     std::printf(
         "%s: %d spheres (%s), volume error %+.3f %%, surface RMS %.3f %% Dn, max %.3f %% Dn, "
-        "inertia error %.3f %%, rest gap %.3f %% Dn (tips off %d of %d faces), built in %.2f s -> %s\n",
+        "inertia error %.3f %%, rest gap %.3f %% Dn (tips off %d of %d faces), topple error %.2f deg, "
+        "built in %.2f s -> %s\n",
         shape.description.c_str(), b.quality.spheres, r.method.c_str(), 100.0 * b.quality.volume_error,
         100.0 * b.quality.surface_rms, 100.0 * b.quality.surface_max, 100.0 * b.quality.inertia_error,
-        100.0 * b.quality.rest_gap, b.quality.tipping_faces, b.quality.rest_faces, b.quality.build_seconds,
-        out.target().c_str());
+        100.0 * b.quality.rest_gap, b.quality.tipping_faces, b.quality.rest_faces, b.quality.topple_error_deg,
+        b.quality.build_seconds, out.target().c_str());
     return 0;
 }
 
 int run_demo(const DemoRequest &r) {
-    check_tolerances(r.tol_volume, r.tol_surface);
+    check_tolerances(r.tol_volume, r.tol_surface, r.tol_topple);
     const double density = 2400.0;
     const Shape shapes[] = {make_cube_shape(1.0, 0.0, density),
                             make_dolos_shape(2.0, kDolosWaistDefault, density)};
@@ -216,9 +232,9 @@ int run_demo(const DemoRequest &r) {
     std::vector<Row> table;
     for (const Shape &shape : shapes) {
         // The optimised method picks N; the baseline is measured at the same N.
-        const Built best = build_requested(shape, ClumpMethod::optimised, 0, r.tol_volume, r.tol_surface, 200,
-                                           1, shape.kind);
-        const Built base = build_requested(shape, ClumpMethod::greedy, best.quality.spheres, 0, 0, 0, 1, "");
+        const Built best = build_requested(shape, ClumpMethod::optimised, 0,
+                                           {r.tol_volume, r.tol_surface, r.tol_topple}, 200, 1, shape.kind);
+        const Built base = build_requested(shape, ClumpMethod::greedy, best.quality.spheres, {}, 0, 1, "");
         const std::filesystem::path dir = out.claim(shape.kind);
         std::filesystem::create_directory(dir);
         json s =
@@ -238,14 +254,16 @@ int run_demo(const DemoRequest &r) {
             table.push_back({shape.kind, method, built.quality});
         }
     }
-    json summary = {{"command", "demo"},
-                    {"tolerance", {{"volume", r.tol_volume}, {"surface_rms", r.tol_surface}}},
-                    {"units",
-                     {{"errors", "fractions; surface and centroid as fractions of Dn"},
-                      {"build_seconds", "s"},
-                      {"Dn", "m"},
-                      {"volume_exact", "m^3"}}},
-                    {"rows", rows}};
+    json summary = {
+        {"command", "demo"},
+        {"tolerance",
+         {{"volume", r.tol_volume}, {"surface_rms", r.tol_surface}, {"topple_deg", r.tol_topple}}},
+        {"units",
+         {{"errors", "fractions; surface and centroid as fractions of Dn"},
+          {"build_seconds", "s"},
+          {"Dn", "m"},
+          {"volume_exact", "m^3"}}},
+        {"rows", rows}};
     write_text_file(out.claim("summary.json"), summary.dump(2) + "\n");
     out.commit();
 

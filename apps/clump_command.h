@@ -18,6 +18,7 @@ struct ClumpRequest {
     int spheres = 0;           // with fixed_count
     double tol_volume = 0.01;  // |V_clump - V| / V
     double tol_surface = 0.02; // surface RMS / Dn
+    double tol_topple = 1.0;   // topple angle error, degrees
     int max_spheres = 200;
     std::string method = "optimised";
     std::uint64_t seed = 1;
@@ -28,6 +29,7 @@ struct DemoRequest {
     std::string out = "armour-demo";
     double tol_volume = 0.01;
     double tol_surface = 0.02;
+    double tol_topple = 1.0; // degrees
 };
 
 // Both return the process exit status (see cli.h) and throw InputError on bad input.

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Clump error and build time against N (5...200), cube and dolos, both methods.
+# Clump error (volume, surface, inertia, topple angle), build time and the DEM
+# time step each clump allows against N (5...200), cube and dolos, both methods.
 # Writes OUT/clump_convergence.{json,png} and OUT/summary.json, nothing in the
 # source tree (the figure in docs/images is copied there by hand).
 # Usage: bash bench/run_clump_bench.sh [--build DIR] [--out DIR]

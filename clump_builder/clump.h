@@ -9,7 +9,10 @@
 //                  between the exact surface and the clump surface, keeping
 //                  the interior covered and the exterior empty; finally one
 //                  common radius offset makes the clump volume equal the exact
-//                  volume.
+//                  volume. With enough spheres it also holds one small
+//                  sphere on every corner of every face the unit rests on,
+//                  so that it stands and topples like the unit
+//                  (clump_support.h).
 //     Sphere centres are in the unit frame (origin at the exact centroid), m.
 //
 // Usage

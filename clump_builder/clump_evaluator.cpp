@@ -5,6 +5,7 @@
 // distances between the two surfaces in both directions.
 #include "clump_evaluator.h"
 
+#include "clump_support.h"
 #include "shape_query.h"
 
 #include <Eigen/Geometry>
@@ -187,46 +188,6 @@ SurfaceDeviation summarise(const std::vector<double> &d, double Dn) {
     return s;
 }
 
-// Counter-clockwise convex hull of 2-D points (Andrew's monotone chain).
-std::vector<Eigen::Vector2d> hull_2d(std::vector<Eigen::Vector2d> points) {
-    std::sort(points.begin(), points.end(), [](const Eigen::Vector2d &a, const Eigen::Vector2d &b) {
-        return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
-    });
-    if (points.size() < 3)
-        return points;
-    auto cross = [](const Eigen::Vector2d &o, const Eigen::Vector2d &a, const Eigen::Vector2d &b) {
-        return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
-    };
-    std::vector<Eigen::Vector2d> hull(2 * points.size());
-    std::size_t k = 0;
-    for (std::size_t i = 0; i < points.size(); ++i) {
-        while (k >= 2 && cross(hull[k - 2], hull[k - 1], points[i]) <= 0.0)
-            --k;
-        hull[k++] = points[i];
-    }
-    for (std::size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
-        while (k >= lower && cross(hull[k - 2], hull[k - 1], points[i]) <= 0.0)
-            --k;
-        hull[k++] = points[i];
-    }
-    hull.resize(k - 1);
-    return hull;
-}
-
-// Distance from p to the outside of the counter-clockwise polygon (negative
-// or zero when p is outside or on it).
-double depth_inside(const std::vector<Eigen::Vector2d> &polygon, const Eigen::Vector2d &p) {
-    if (polygon.size() < 3)
-        return -1.0;
-    double depth = HUGE_VAL;
-    for (std::size_t i = 0; i < polygon.size(); ++i) {
-        const Eigen::Vector2d &a = polygon[i];
-        const Eigen::Vector2d edge = polygon[(i + 1) % polygon.size()] - a;
-        depth = std::min(depth, (edge.x() * (p - a).y() - edge.y() * (p - a).x()) / edge.norm());
-    }
-    return depth;
-}
-
 } // namespace
 
 std::vector<double> distances_to_clump_surface(const Clump &clump, const std::vector<Eigen::Vector3d> &points,
@@ -237,47 +198,13 @@ std::vector<double> distances_to_clump_surface(const Clump &clump, const std::ve
 
 std::vector<FaceRest> rest_gaps(const TriangleMesh &mesh, const Eigen::Vector3d &centre_of_mass,
                                 const Clump &clump, double Dn) {
-    const TriangleMesh hull = convex_hull(mesh.vertices);
     const double tolerance = 1e-9 * Dn;
-    // Hull faces: coplanar triangles grouped by their outward plane.
-    struct Face {
-        Eigen::Vector3d normal;
-        double offset;
-        std::vector<int> triangles;
-    };
-    std::vector<Face> faces;
-    for (std::size_t t = 0; t < hull.triangles.size(); ++t) {
-        const auto &tri = hull.triangles[t];
-        const Eigen::Vector3d &a = hull.vertices[tri[0]];
-        const Eigen::Vector3d n = (hull.vertices[tri[1]] - a).cross(hull.vertices[tri[2]] - a).normalized();
-        auto same = std::find_if(faces.begin(), faces.end(), [&](const Face &f) {
-            return (f.normal - n).norm() < 1e-9 && std::abs(f.offset - n.dot(a)) < tolerance;
-        });
-        if (same == faces.end())
-            faces.push_back({n, n.dot(a), {static_cast<int>(t)}});
-        else
-            same->triangles.push_back(static_cast<int>(t));
-    }
     std::vector<FaceRest> rests;
-    for (const Face &face : faces) {
-        // The centre of mass, projected along the normal, must land inside
-        // the face (a convex polygon) for the unit to rest on it.
-        const Eigen::Vector3d foot =
-            centre_of_mass - (face.normal.dot(centre_of_mass) - face.offset) * face.normal;
-        const Eigen::Vector3d u = face.normal.unitOrthogonal(), v = face.normal.cross(u);
-        auto in_plane = [&](const Eigen::Vector3d &p) { return Eigen::Vector2d(u.dot(p), v.dot(p)); };
-        std::vector<Eigen::Vector2d> corners;
-        for (int t : face.triangles)
-            for (int c : hull.triangles[t])
-                corners.push_back(in_plane(hull.vertices[c]));
-        const Eigen::Vector2d centre = in_plane(foot);
-        const double support = depth_inside(hull_2d(corners), centre);
-        if (support <= tolerance)
-            continue;
+    for (const RestingFace &face : resting_faces(mesh, centre_of_mass, Dn)) {
         // The touching points and the gaps.
         std::vector<std::pair<double, Eigen::Vector2d>> touch;
         for (const Sphere &s : clump)
-            touch.emplace_back(face.offset - (face.normal.dot(s.center) + s.radius), in_plane(s.center));
+            touch.emplace_back(face.offset - (face.normal.dot(s.center) + s.radius), face.in_plane(s.center));
         std::sort(touch.begin(), touch.end(), [](const auto &a, const auto &b) { return a.first < b.first; });
         double gap = HUGE_VAL; // until a support surrounds it (never: it rolls)
         std::vector<Eigen::Vector2d> lowest;
@@ -286,12 +213,12 @@ std::vector<FaceRest> rest_gaps(const TriangleMesh &mesh, const Eigen::Vector3d 
             // Spheres at the same height come in together.
             if (k + 1 < touch.size() && touch[k + 1].first - touch[k].first < tolerance)
                 continue;
-            if (lowest.size() >= 3 && depth_inside(hull_2d(lowest), centre) >= 0.01 * Dn) {
+            if (lowest.size() >= 3 && detail::depth_inside(detail::hull_2d(lowest), face.foot) >= 0.01 * Dn) {
                 gap = touch[k].first - touch.front().first;
                 break;
             }
         }
-        rests.push_back({face.normal, support, gap});
+        rests.push_back({face.normal, face.support, gap});
     }
     return rests;
 }
@@ -353,18 +280,27 @@ ClumpQuality evaluate_clump(const Shape &shape, const Clump &clump, const Evalua
     q.rest_gap = rest.gap / q.Dn;
     q.rest_faces = rest.faces;
     q.tipping_faces = rest.tipping_faces;
+    q.topple_error_deg = topple_error_deg(shape.mesh, exact.centroid, clump, q.Dn);
     return q;
 }
 
-ToleranceSearch fewest_spheres(const Shape &shape, ClumpMethod method, double tol_volume,
-                               double tol_surface_rms, int max_spheres, std::uint64_t seed,
+bool meets(const ClumpQuality &q, const ClumpTolerances &t) {
+    return std::abs(q.volume_error) <= t.volume && q.surface_rms <= t.surface_rms &&
+           q.topple_error_deg <= t.topple_deg;
+}
+
+ToleranceSearch fewest_spheres(const Shape &shape, ClumpMethod method, const ClumpTolerances &tolerances,
+                               int max_spheres, std::uint64_t seed,
                                const std::function<void(const ClumpQuality &)> &progress) {
-    if (!(tol_volume > 0.0) || !std::isfinite(tol_volume))
+    if (!(tolerances.volume > 0.0) || !std::isfinite(tolerances.volume))
         throw InputError("--tol-volume: must be a fraction > 0, e.g. 0.01 for 1 % (got " +
-                         std::to_string(tol_volume) + ")");
-    if (!(tol_surface_rms > 0.0) || !std::isfinite(tol_surface_rms))
+                         std::to_string(tolerances.volume) + ")");
+    if (!(tolerances.surface_rms > 0.0) || !std::isfinite(tolerances.surface_rms))
         throw InputError("--tol-surface: must be a fraction of Dn > 0, e.g. 0.02 for 2 % (got " +
-                         std::to_string(tol_surface_rms) + ")");
+                         std::to_string(tolerances.surface_rms) + ")");
+    if (!(tolerances.topple_deg > 0.0) || std::isnan(tolerances.topple_deg))
+        throw InputError("--tol-topple: must be an angle > 0 in degrees, e.g. 1 (got " +
+                         std::to_string(tolerances.topple_deg) + ")");
     if (max_spheres < 1)
         throw InputError("--max-spheres: must be >= 1 (got " + std::to_string(max_spheres) + ")");
 
@@ -385,8 +321,7 @@ ToleranceSearch fewest_spheres(const Shape &shape, ClumpMethod method, double to
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         ClumpQuality quality = evaluate_clump(shape, clump);
         quality.build_seconds = seconds;
-        const bool met =
-            std::abs(quality.volume_error) <= tol_volume && quality.surface_rms <= tol_surface_rms;
+        const bool met = meets(quality, tolerances);
         search.tried.push_back(quality);
         if (progress)
             progress(quality);

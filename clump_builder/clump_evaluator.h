@@ -32,12 +32,13 @@ struct ClumpQuality {
     double inertia_error = 0.0;   // max over exact principal axes |dI| / I_exact
     SurfaceDeviation exact_to_clump;
     SurfaceDeviation clump_to_exact;
-    double surface_rms = 0.0;   // both directions pooled, fraction of Dn
-    double surface_max = 0.0;   // symmetric Hausdorff distance / Dn
-    double rest_gap = 0.0;      // RestSummary::gap / Dn: 0 = rests flat, inf = stands on no face
-    int rest_faces = 0;         // faces the exact unit rests on
-    int tipping_faces = 0;      // of those, faces the clump tips off
-    double build_seconds = 0.0; // s, filled by the caller that timed the build
+    double surface_rms = 0.0;      // both directions pooled, fraction of Dn
+    double surface_max = 0.0;      // symmetric Hausdorff distance / Dn
+    double rest_gap = 0.0;         // RestSummary::gap / Dn: 0 = rests flat, inf = stands on no face
+    int rest_faces = 0;            // faces the exact unit rests on
+    int tipping_faces = 0;         // of those, faces the clump tips off
+    double topple_error_deg = 0.0; // largest |topple angle clump - exact|, degrees (clump_support.h)
+    double build_seconds = 0.0;    // s, filled by the caller that timed the build
 };
 
 struct EvaluatorSettings {
@@ -84,7 +85,14 @@ struct RestSummary {
 RestSummary rest_summary(const TriangleMesh &mesh, const Eigen::Vector3d &centre_of_mass, const Clump &clump,
                          double Dn);
 
-// Tolerance mode: the fewest spheres whose clump meets both tolerances.
+// Tolerance mode: the fewest spheres whose clump meets all three tolerances.
+// The defaults are the `armour clump` defaults (docs/clump_builder.md).
+struct ClumpTolerances {
+    double volume = 0.01;      // |V_clump - V| / V
+    double surface_rms = 0.02; // surface RMS / Dn
+    double topple_deg = 1.0;   // largest |topple angle error|, degrees
+};
+bool meets(const ClumpQuality &quality, const ClumpTolerances &tolerances);
 struct ToleranceSearch {
     Clump clump; // the chosen clump (or the best tried)
     ClumpQuality quality;
@@ -92,8 +100,8 @@ struct ToleranceSearch {
     std::vector<ClumpQuality> tried;
 };
 // `progress` is called after each sphere count tried (for long searches).
-ToleranceSearch fewest_spheres(const Shape &shape, ClumpMethod method, double tol_volume,
-                               double tol_surface_rms, int max_spheres, std::uint64_t seed = 1,
+ToleranceSearch fewest_spheres(const Shape &shape, ClumpMethod method, const ClumpTolerances &tolerances,
+                               int max_spheres, std::uint64_t seed = 1,
                                const std::function<void(const ClumpQuality &)> &progress = {});
 
 } // namespace armour

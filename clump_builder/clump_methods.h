@@ -10,10 +10,13 @@ namespace armour::detail {
 Clump greedy_inscribed(const Shape &shape, const ShapeQuery &query, int spheres, std::uint64_t seed,
                        int lattice_points = 30000);
 
-// Moves centres and radii of `start` to fit the exact surface, then matches volume.
-Clump optimise_clump(const Shape &shape, const ShapeQuery &query, Clump start, std::uint64_t seed);
+// Moves centres and radii of `start` to fit the exact surface, then matches
+// volume; the first `fixed` spheres stay as they are.
+Clump optimise_clump(const Shape &shape, const ShapeQuery &query, Clump start, std::uint64_t seed,
+                     std::size_t fixed = 0);
 
-// Adds one common offset to every radius so that the union volume equals `volume`.
-Clump match_volume(Clump clump, double volume);
+// Adds one common offset to every radius but the first `fixed` ones so that
+// the union volume equals `volume`.
+Clump match_volume(Clump clump, double volume, std::size_t fixed = 0);
 
 } // namespace armour::detail

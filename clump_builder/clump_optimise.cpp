@@ -10,6 +10,7 @@
 // over samples x spheres. Spheres that no sample depends on are moved to the
 // largest uncovered hole. A final common radius offset matches the volume.
 #include "clump_methods.h"
+#include "clump_support.h"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -124,14 +125,15 @@ void evaluate(const Clump &clump, const Samples &s, Fit &fit) {
 
 // Moves spheres that no sample depends on (or that shrank below min_radius)
 // to the interior sample farthest from the clump. Returns how many moved.
-int respawn_idle(Clump &clump, const Samples &s, const Fit &fit, double min_radius) {
+// The first `fixed` spheres stay.
+int respawn_idle(Clump &clump, const Samples &s, const Fit &fit, double min_radius, std::size_t fixed) {
     std::vector<int> users(clump.size(), 0);
     for (std::size_t i = 0; i < s.points.size(); ++i)
         if (residual(s.role[i], fit.f[i]) != 0.0 || s.role[i] == Role::interior)
             ++users[fit.owner[i]];
     std::vector<double> gap(fit.f);
     int moved = 0;
-    for (std::size_t j = 0; j < clump.size(); ++j) {
+    for (std::size_t j = fixed; j < clump.size(); ++j) {
         if (users[j] > 0 && clump[j].radius >= min_radius)
             continue;
         std::size_t worst = s.points.size();
@@ -152,7 +154,8 @@ int respawn_idle(Clump &clump, const Samples &s, const Fit &fit, double min_radi
 
 } // namespace
 
-Clump optimise_clump(const Shape &shape, const ShapeQuery &query, Clump clump, std::uint64_t seed) {
+Clump optimise_clump(const Shape &shape, const ShapeQuery &query, Clump clump, std::uint64_t seed,
+                     std::size_t fixed) {
     const double Dn = shape.Dn();
     // Spheres below 3 % of Dn add contact cost and shrink the DEM time step
     // without improving the fit measurably: they are moved instead.
@@ -181,7 +184,7 @@ Clump optimise_clump(const Shape &shape, const ShapeQuery &query, Clump clump, s
             gradient[j] += samples.weight[i] * e * J;
         }
         Clump trial = clump;
-        for (std::size_t j = 0; j < clump.size(); ++j) {
+        for (std::size_t j = fixed; j < clump.size(); ++j) {
             Eigen::Matrix4d A = normal[j];
             A.diagonal() += damping * normal[j].diagonal() + Eigen::Vector4d::Constant(1e-12);
             Eigen::Vector4d step = -A.ldlt().solve(gradient[j]);
@@ -202,7 +205,7 @@ Clump optimise_clump(const Shape &shape, const ShapeQuery &query, Clump clump, s
         if (iteration % 15 == 14) {
             if (respawn_rounds < 8) {
                 Clump moved = clump;
-                if (respawn_idle(moved, samples, fit, min_radius) > 0) {
+                if (respawn_idle(moved, samples, fit, min_radius, fixed) > 0) {
                     ++respawn_rounds;
                     evaluate(moved, samples, trial_fit);
                     if (trial_fit.loss < fit.loss) {
@@ -218,23 +221,24 @@ Clump optimise_clump(const Shape &shape, const ShapeQuery &query, Clump clump, s
             loss_at_check = fit.loss;
         }
     }
-    for (auto &s : clump)
-        s.radius = std::max(s.radius, min_radius);
-    return match_volume(std::move(clump), shape.props.volume);
+    for (std::size_t j = fixed; j < clump.size(); ++j)
+        clump[j].radius = std::max(clump[j].radius, min_radius);
+    return match_volume(std::move(clump), shape.props.volume, fixed);
 }
 
-Clump match_volume(Clump clump, double volume) {
-    if (clump.empty())
+Clump match_volume(Clump clump, double volume, std::size_t fixed) {
+    if (clump.size() <= fixed)
         return clump;
     double smallest = HUGE_VAL, largest = 0.0;
-    for (const auto &s : clump) {
+    for (std::size_t j = fixed; j < clump.size(); ++j) {
+        const Sphere &s = clump[j];
         smallest = std::min(smallest, s.radius);
         largest = std::max(largest, s.radius);
     }
     auto volume_at = [&](double offset) {
         Clump c = clump;
-        for (auto &s : c)
-            s.radius += offset;
+        for (std::size_t j = fixed; j < c.size(); ++j)
+            c[j].radius += offset;
         return clump_volume(c, 300);
     };
     // The union volume grows monotonically with the offset: bracket, then
@@ -270,8 +274,8 @@ Clump match_volume(Clump clump, double volume) {
             side = 1;
         }
     }
-    for (auto &s : clump)
-        s.radius += offset;
+    for (std::size_t j = fixed; j < clump.size(); ++j)
+        clump[j].radius += offset;
     return clump;
 }
 
@@ -303,9 +307,29 @@ Clump build_clump(const Shape &shape, ClumpMethod method, int spheres, std::uint
         throw InputError("--spheres: the number of spheres must be >= 1 (got " + std::to_string(spheres) +
                          ")");
     const ShapeQuery query(shape.mesh);
-    Clump clump = detail::greedy_inscribed(shape, query, spheres, seed);
-    if (method == ClumpMethod::optimised)
-        clump = detail::optimise_clump(shape, query, std::move(clump), seed);
+    if (method == ClumpMethod::greedy)
+        return detail::greedy_inscribed(shape, query, spheres, seed);
+    // The optimised clump stands on the corners of every resting face
+    // (clump_support.h) when it has a sphere for each corner and at least
+    // kMinBodySpheres for the body (with fewer the body fits worse than the
+    // greedy baseline: cube, 8 corners and 2 body spheres, surface RMS 7.2 %
+    // Dn against 6.9 %); the body's spheres are fitted around them.
+    const double Dn = shape.Dn();
+    const std::vector<RestingFace> faces = resting_faces(shape.mesh, shape.props.centroid, Dn);
+    std::vector<SupportCorner> corners = support_corners(faces, Dn);
+    constexpr std::size_t kMinBodySpheres = 8;
+    if (static_cast<std::size_t>(spheres) < corners.size() + kMinBodySpheres)
+        corners.clear();
+    const double radius = kSupportRadius * Dn;
+    Clump clump(corners.size(), Sphere{Eigen::Vector3d::Zero(), radius});
+    // Inside every face to start with, so that the fit sees where they will be.
+    for (std::size_t k = 0; k < corners.size(); ++k)
+        clump[k].center = corners[k].vertex - radius * corners[k].bisector;
+    const Clump body =
+        detail::greedy_inscribed(shape, query, spheres - static_cast<int>(corners.size()), seed);
+    clump.insert(clump.end(), body.begin(), body.end());
+    clump = detail::optimise_clump(shape, query, std::move(clump), seed, corners.size());
+    place_support_spheres(clump, corners, faces, radius);
     return clump;
 }
 

@@ -210,7 +210,8 @@ const std::vector<Key<SceneUnit>> &unit_keys() {
             .only_for("stl"),
         key("density", &U::density, "kg/m^3", "unit density").in(Range::above(0)),
         key("spheres", &U::spheres, "",
-            "exactly this many spheres; absent: the fewest spheres meeting both tolerances")
+            "exactly this many spheres; absent: the fewest spheres meeting both tolerances and a 1 deg "
+            "topple error")
             .in(Range::at_least(1))
             .defaults("absent")
             .written_if([](const U &u) { return u.spheres > 0; }),

@@ -52,7 +52,7 @@ Shape unit_shape(const SceneUnit &u) {
 Clump cached_clump(const SceneUnit &u, const Shape &shape, const std::string &cache_dir, bool progress) {
     std::ostringstream key;
     key.precision(17);
-    key << "armour-clump-v1|" << shape.description << "|density=" << u.density << "|method=" << u.method
+    key << "armour-clump-v2|" << shape.description << "|density=" << u.density << "|method=" << u.method
         << "|spheres=" << u.spheres << "|tol=" << u.tol_volume << "," << u.tol_surface << "|seed=1";
     if (u.shape == "stl") { // the file's content, not only its name, decides the clump
         std::ifstream in(u.stl, std::ios::binary);
@@ -83,7 +83,8 @@ Clump cached_clump(const SceneUnit &u, const Shape &shape, const std::string &ca
         if (progress)
             std::fprintf(stderr, "unit %s: fewest spheres for volume %g, surface %g Dn\n", u.name.c_str(),
                          u.tol_volume, u.tol_surface);
-        ToleranceSearch search = fewest_spheres(shape, method, u.tol_volume, u.tol_surface, 200);
+        // The topple tolerance is the `armour clump` default (clump_evaluator.h).
+        ToleranceSearch search = fewest_spheres(shape, method, {u.tol_volume, u.tol_surface}, 200);
         if (!search.met)
             throw InputError("unit '" + u.name + "': tolerances cannot be met with 200 spheres");
         clump = std::move(search.clump);
@@ -427,6 +428,24 @@ std::vector<std::string> rocking_clump_warnings(const Scene &scene, const SceneS
     for (std::size_t k = 0; k < setup.units.size(); ++k) {
         const UnitTemplate &unit = setup.units[k];
         const int m = unit.material;
+        // The smallest sphere under half the unit's weight (a unit tipping
+        // onto two corner spheres) must not sink by a good part of its
+        // radius: the 2 mm corner spheres of a 0.2 m cube at E = 5e7 Pa sink
+        // 2.3 mm and pass through a tilting plate (docs/clump_builder.md).
+        double smallest = HUGE_VAL;
+        for (const Sphere &s : unit.clump)
+            smallest = std::min(smallest, s.radius);
+        const double sink =
+            sphere_overlap(smallest, st.materials[m], 0.5 * unit.props.mass * scene.gravity.norm());
+        if (sink > 0.5 * smallest) {
+            char figures[200];
+            std::snprintf(figures, sizeof figures, "r = %.2f mm sink %.2f mm", 1e3 * smallest, 1e3 * sink);
+            warnings.push_back(
+                "unit '" + unit.name + "': its smallest spheres (" + figures +
+                " under half its weight, more than half their radius) may pass through "
+                "walls as it tips; raise youngs_modulus of its material (scenes/tilt_cube.toml "
+                "uses 5e8 Pa)");
+        }
         double rolling = pair_value(st, m, m, &Material::rolling_friction, &MaterialPair::rolling_friction);
         for (const Wall &w : setup.walls)
             rolling = std::min(rolling, pair_value(st, m, w.material, &Material::rolling_friction,
@@ -451,17 +470,19 @@ std::vector<std::string> rocking_clump_warnings(const Scene &scene, const SceneS
     return warnings;
 }
 
+double sphere_overlap(double radius, const Material &material, double force) {
+    // Hertz, sphere on a plane of the same material: F = 4/3 E* sqrt(R) d^(3/2).
+    const double e_star =
+        material.youngs_modulus / (2.0 * (1.0 - material.poisson_ratio * material.poisson_ratio));
+    return std::pow(3.0 * force / (4.0 * e_star * std::sqrt(radius)), 2.0 / 3.0);
+}
+
 double resting_overlap(const UnitTemplate &unit, const Material &material, double gravity) {
     std::vector<double> radii;
     for (const Sphere &s : unit.clump)
         radii.push_back(s.radius);
     std::nth_element(radii.begin(), radii.begin() + static_cast<long>(radii.size() / 2), radii.end());
-    const double radius = radii[radii.size() / 2];
-    // Hertz, sphere on a plane of the same material: F = 4/3 E* sqrt(R) d^(3/2).
-    const double e_star =
-        material.youngs_modulus / (2.0 * (1.0 - material.poisson_ratio * material.poisson_ratio));
-    const double force = 0.5 * unit.props.mass * gravity;
-    return std::pow(3.0 * force / (4.0 * e_star * std::sqrt(radius)), 2.0 / 3.0);
+    return sphere_overlap(radii[radii.size() / 2], material, 0.5 * unit.props.mass * gravity);
 }
 
 } // namespace armour

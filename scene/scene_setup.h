@@ -28,13 +28,18 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
 // LIGGGHTS units whose clump cannot rest flat on some face (its rest gap,
 // clump_evaluator.h, exceeds resting_overlap) and no rolling friction to stop
 // the rocking that follows: one warning per unit template, naming the unit,
-// the figures and the remedy. Empty for other engines.
+// the figures and the remedy; and LIGGGHTS units whose smallest spheres sink
+// by more than half their radius under half the unit's weight (they may pass
+// through walls as the unit tips). Empty for other engines.
 std::vector<std::string> rocking_clump_warnings(const Scene &scene, const SceneSetup &setup);
 
 // m: the Hertz overlap of the unit's median sphere on a plane of its own
 // material under half the unit's weight (a unit standing on two spheres): a
 // third sphere closer than this to the plane touches too.
 double resting_overlap(const UnitTemplate &unit, const Material &material, double gravity);
+// m: the Hertz overlap of a sphere of `radius` (m) pressed on a plane of its
+// own material by `force` (N).
+double sphere_overlap(double radius, const Material &material, double force);
 
 // The default clump cache: $ARMOUR_CACHE, else $XDG_CACHE_HOME/armour-fsi,
 // else ~/.cache/armour-fsi.

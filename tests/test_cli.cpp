@@ -107,6 +107,11 @@ TEST_F(Cli, ToleranceModeRecordsTheSearch) {
     EXPECT_LE(s["surface_rms"].get<double>(), 0.03);
     EXPECT_TRUE(s["tolerance"]["met"].get<bool>());
     EXPECT_GE(s["tolerance"]["tried"].size(), 2u);
+    // The topple tolerance applies with its default, 1 degree.
+    EXPECT_EQ(s["tolerance"]["topple_deg"].get<double>(), 1.0);
+    EXPECT_LE(s["topple_error_deg"].get<double>(), 1.0);
+    for (const auto &tried : s["tolerance"]["tried"])
+        EXPECT_TRUE(tried["topple_error_deg"].is_number());
 }
 
 TEST_F(Cli, StlInputIsCentredAndMeasured) {
@@ -161,6 +166,8 @@ TEST_F(Cli, RejectsImpossibleTolerances) {
     expect_rejected(
         {"clump", "--shape", "cube", "--size", "1", "--tol-volume", "0.01", "--tol-surface", "-0.1"},
         "--tol-surface");
+    expect_rejected({"clump", "--shape", "cube", "--size", "1", "--tol-topple", "0"}, "--tol-topple");
+    expect_rejected({"clump", "--shape", "cube", "--size", "1", "--tol-topple", "95"}, "--tol-topple");
     // Reachable in principle, not with 6 spheres: the search says how close it got.
     expect_rejected({"clump", "--shape", "cube", "--size", "1", "--tol-volume", "0.01", "--tol-surface",
                      "0.001", "--max-spheres", "6"},

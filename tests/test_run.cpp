@@ -151,6 +151,21 @@ TEST_F(Run, TiltSceneSlidesAtTheFrictionAngle) {
     EXPECT_NEAR(s["slide_angle_deg"].get<double>(), s["slide_angle_analytic_deg"].get<double>(), 0.5);
 }
 
+TEST_F(Run, TiltSceneTopplesAtFortyFiveDegreesWhenFrictionHolds) {
+    // The example scene with friction 1.2: the cube must topple about its
+    // downhill edge at atan(1) = 45 deg (sliding would need 50.2 deg). The
+    // 20-sphere clump stands on its corner spheres (clump_support.h):
+    // geometric topple angle 44.50 deg. Before them it toppled at 29.5 deg.
+    std::ifstream in(fs::path(__FILE__).parent_path().parent_path() / "scenes" / "tilt_cube.toml");
+    std::stringstream scene;
+    scene << in.rdbuf();
+    ASSERT_EQ(run(scene.str(), {"--set", "material.0.friction=1.2"}), 0) << err_;
+    std::ifstream summary_in(out() / "summary.json");
+    const auto s = nlohmann::json::parse(summary_in);
+    ASSERT_TRUE(s["topple_angle_deg"].is_number()) << s.dump();
+    EXPECT_NEAR(s["topple_angle_deg"].get<double>(), 45.0, 1.0);
+}
+
 namespace {
 
 // Horizontal excursion (m) of the only body of a one-body run from its
@@ -249,9 +264,11 @@ TEST_F(Run, LiggghtsTakesWallsReachingPastTheDomain) {
 }
 
 TEST_F(Run, RestGapTellsTheFacesAClumpRocksOn) {
-    // The optimised 27-sphere cube (a = 0.2 m) rests flat on some faces and
-    // not on others: its rest gap (clump_evaluator.h) is 0.40 mm on -z, under
-    // the ~0.57 mm its contacts absorb (resting_overlap), and 3.5 mm on +x.
+    // The greedy 30-sphere cube (a = 0.2 m) rests flat on some faces and not
+    // on others: its rest gap (clump_evaluator.h) is 0 on -z, under the
+    // ~0.5 mm its contacts absorb (resting_overlap), and 3.1 mm on +x. (The
+    // optimised 27-sphere cube this test used, 0.40 mm and 3.5 mm, now has
+    // corner spheres, clump_support.h, and rests flat on every face.)
     // Placed on each face without rolling friction, it must rest on the one
     // and rock on the other, and the run warns (it could land on +x).
     // Bounds as in FewSphereCubeRestsOnAFaceOnlyWithRollingFriction
@@ -259,7 +276,8 @@ TEST_F(Run, RestGapTellsTheFacesAClumpRocksOn) {
     const auto scene = [](const std::string &orientation) {
         return "name = \"rest\"\n[run]\nduration = 1.5\noutput_interval = 0.01\ndomain_min = [-1, -1, -0.5]\n"
                "domain_max = [1, 1, 1.5]\n[[material]]\nname = \"concrete\"\nyoungs_modulus = 5e7\n"
-               "friction = 0.6\n[[unit]]\nname = \"cube\"\nshape = \"cube\"\nsize = 0.2\nspheres = 27\n"
+               "friction = 0.6\n[[unit]]\nname = \"cube\"\nshape = \"cube\"\nsize = 0.2\nspheres = 30\n"
+               "method = \"greedy\"\n"
                "[[wall]]\nname = \"floor\"\ntype = \"plane\"\npoint = [0, 0, 0]\nnormal = [0, 0, 1]\nsize = "
                "2\n"
                "[[body]]\nunit = \"cube\"\nposition = [0, 0, 0.115]\norientation = " +
@@ -284,10 +302,11 @@ TEST_F(Run, RestGapTellsTheFacesAClumpRocksOn) {
             gap_plus_x = face.gap;
     }
     const double overlap = armour::resting_overlap(unit, setup.settings.materials[unit.material], 9.81);
-    std::printf(
-        "[ rest     ] 27-sphere cube: -z face gap %.3f mm, wander %.3g mm; +x face gap %.3f mm, wander "
-        "%.3g mm; contact overlap %.3f mm\n",
-        1e3 * gap_minus_z, 1e3 * on_minus_z.wander, 1e3 * gap_plus_x, 1e3 * on_plus_x.wander, 1e3 * overlap);
+    std::printf("[ rest     ] greedy 30-sphere cube: -z face gap %.3f mm, wander %.3g mm; +x face gap %.3f "
+                "mm, wander "
+                "%.3g mm; contact overlap %.3f mm\n",
+                1e3 * gap_minus_z, 1e3 * on_minus_z.wander, 1e3 * gap_plus_x, 1e3 * on_plus_x.wander,
+                1e3 * overlap);
     EXPECT_LT(gap_minus_z, overlap);
     EXPECT_GT(gap_plus_x, overlap);
     EXPECT_LT(on_minus_z.wander, 1e-4);
