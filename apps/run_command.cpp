@@ -216,7 +216,8 @@ int run_dem(OutputFolder &folder, const Scene &scene, SceneSetup &setup, std::ve
         {"files", {{"bodies", "bodies.h5"}, {"paraview", "bodies.xdmf"}, {"scene", "scene.resolved.toml"}}},
         {"si_units",
          {{"dt", "s"}, {"wall_seconds", "s"}, {"angles", "deg"}, {"lengths", "m"}, {"energy", "J"}}}};
-    analysis->write(summary);
+    if (const std::string line = analysis->write(summary); !line.empty())
+        std::fprintf(stderr, "run: %s: %s\n", scene.analysis.c_str(), line.c_str());
     write_text_file(folder.claim("summary.json"), summary.dump(2) + "\n");
     std::printf("%s: %d units, %ld steps of %.3g s, %.1f s wall -> %s\n", scene.name.c_str(),
                 static_cast<int>(setup.bodies.size()), engine->steps(), dt.used, wall_seconds, out.c_str());
