@@ -156,7 +156,8 @@ int run_dem(OutputFolder &folder, const Scene &scene, SceneSetup &setup, std::ve
         recorder.append(engine->time(), states);
     };
 
-    const std::unique_ptr<Analysis> analysis = make_analysis({scene, setup, out.string(), ""});
+    const std::unique_ptr<Analysis> analysis = make_analysis(
+        {scene, setup, out.string(), "", [&](const std::string &name) { return folder.claim(name).string(); }});
     Progress progress(scene.duration, terminal);
     analysis->before_advance(0.0, *engine);
     record();

@@ -22,7 +22,8 @@ std::vector<std::string> engine_names() {
     return names;
 }
 const std::vector<std::string> kAnalyses = {"none",  "tilt",  "slope",    "bounce",   "buoyancy",
-                                            "float", "still", "dambreak", "platform", "slope_waves"};
+                                            "float", "still", "dambreak", "platform", "slope_waves",
+                                            "damage"};
 
 } // namespace
 

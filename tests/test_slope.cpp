@@ -2,6 +2,8 @@
 // figures of hand-placed regular layers whose thickness and porosity are
 // known, and the settle criterion.
 #include "analysis.h"
+#include "cli.h"
+#include "damage_analysis.h"
 #include "engine_registry.h"
 #include "shapes.h"
 #include "slope_profile.h"
@@ -255,4 +257,175 @@ TEST(SlopePattern, TargetsAPackingDensity) {
         EXPECT_NE(std::string(e.what()).find("key 'pattern.0.packing_density'"), std::string::npos)
             << e.what();
     }
+}
+
+// ---------------------------------------------------------------- damage
+
+TEST(Damage, FormulasGiveThePublishedNumbers) {
+    // stability.md's table (Van der Meer 1988, N = 1000, s_om = 0.03) and Hudson at cot 1.5.
+    EXPECT_NEAR(armour::van_der_meer_cubes_ns(0.0, 1000, 0.03), 1.42, 0.005);
+    EXPECT_NEAR(armour::van_der_meer_cubes_ns(0.5, 1000, 0.03), 2.33, 0.005);
+    EXPECT_NEAR(armour::van_der_meer_cubes_ns(2.0, 1000, 0.03), 3.00, 0.005);
+    EXPECT_NEAR(armour::van_der_meer_cubes_ns(0.5, 3000, 0.02), 2.16, 0.005);
+    EXPECT_NEAR(armour::hudson_ns(6.5, 1.5), 2.14, 0.005);
+    EXPECT_NEAR(armour::hudson_ns(7.5, 1.5), 2.24, 0.005);
+    EXPECT_DOUBLE_EQ(armour::stability_number(0.28, 2400, 1000, 0.2), 1.0);
+    EXPECT_DOUBLE_EQ(armour::n_od(3, 1.0, 0.2), 0.6);
+}
+
+TEST(Damage, RockingIsAnExcursionThatComesBack) {
+    armour::Pose rest;
+    armour::UnitDamageTracker unit(rest, 0.2, 5.0);
+    const auto turned = [&](double deg) {
+        armour::Pose p = rest;
+        p.orientation = Eigen::AngleAxisd(deg * M_PI / 180.0, Vector3d::UnitX());
+        return p;
+    };
+    for (const double deg : {0.0, 3.0, 6.0, 4.0, 2.0, 7.0, 1.0, 4.9, 2.6, 9.0, 8.0})
+        unit.sample(turned(deg));
+    // 6 -> 2 and 7 -> 1 return below half the threshold; 4.9 never passed
+    // it; 9 -> 8 has not come back.
+    EXPECT_EQ(unit.rocking_events(), 2);
+    EXPECT_NEAR(unit.max_rotation_deg(), 9.0, 1e-9);
+    EXPECT_EQ(unit.max_displacement(), 0.0);
+}
+
+TEST(Damage, WaveConditionsPreferTheMeasuredIncidentWave) {
+    armour::Scene scene;
+    scene.wave_height = 0.3;
+    scene.wave_period = 2.0;
+    const armour::WaveConditions target = armour::wave_conditions(nlohmann::json::object(), scene, 100.0);
+    EXPECT_EQ(target.source, "scene");
+    EXPECT_DOUBLE_EQ(*target.Hs, 0.3);
+    EXPECT_NEAR(*target.s_om, 2 * M_PI * 0.3 / (9.81 * 4.0), 1e-3);
+    EXPECT_DOUBLE_EQ(*target.waves, 50.0);
+    const nlohmann::json measured = {{"waves", {{"incident_height", 0.25}, {"s_om", 0.03}, {"waves", 480}}}};
+    const armour::WaveConditions m = armour::wave_conditions(measured, scene, 100.0);
+    EXPECT_EQ(m.source, "measured");
+    EXPECT_DOUBLE_EQ(*m.Hs, 0.25);
+    EXPECT_DOUBLE_EQ(*m.s_om, 0.03);
+    EXPECT_DOUBLE_EQ(*m.waves, 480.0);
+    scene.wave_height = 0.0;
+    EXPECT_EQ(armour::wave_conditions(nlohmann::json::object(), scene, 100.0).source, "none");
+}
+
+// A layer of 4 rows x 5 touching cubes across a 1 m slope (5 strips of Dn):
+// the second row is washed away (5 displaced: N_od = 1), a row-1 cube rocks
+// 10 degrees twice about the face's normal and comes back, a row-4 cube
+// turns 8 degrees and stays. The profiler reads the lost row as a^2 less
+// the ball's overhang on both edges: S = 1 - 2 ((a - r) r + pi r^2 / 4) / a^2
+// = 0.527 (r = a / 4).
+TEST(Damage, SyntheticTrajectoriesGiveTheirKnownFigures) {
+    CubeSlope c;
+    c.scene.walls[0].width = 1.0;
+    c.scene.analysis = "damage";
+    c.scene.fluid = armour::SceneFluid(); // a coupled record: its first step is the settled pose
+    armour::SceneUnit unit;
+    unit.name = c.setup.units[0].name;
+    unit.density = 2400.0;
+    c.scene.units.push_back(unit);
+    c.scene.wave_height = 0.28;
+    c.scene.wave_period = 2.0;
+    c.layer(4, 5, kA, 0.5 * kA);
+    const std::filesystem::path out = std::filesystem::temp_directory_path() / "armour_test_damage";
+    std::filesystem::remove_all(out);
+    std::filesystem::create_directories(out);
+    const auto analysis = armour::make_analysis({c.scene, c.setup, out.string(), ""});
+    const auto spun = [&](const BodyState &s, double deg) {
+        BodyState t = s;
+        t.pose.orientation = Eigen::AngleAxisd(deg * M_PI / 180.0, c.frame.normal) * s.pose.orientation;
+        return t;
+    };
+    std::vector<BodyState> now = c.states;
+    double t = 0.0;
+    analysis->sample(t, now);
+    for (const double deg : {10.0, 0.0, 10.0, 0.0}) {
+        now[2] = spun(c.states[2], deg);
+        now[17] = spun(c.states[17], 8.0);
+        analysis->sample(t += 0.5, now);
+    }
+    for (int k = 5; k < 10; ++k)
+        now[static_cast<std::size_t>(k)].pose.position += 10.0 * c.frame.across; // washed off the slope
+    analysis->sample(t += 0.5, now);
+    nlohmann::json summary = nlohmann::json::object();
+    analysis->write(summary);
+    EXPECT_EQ(summary["units"].get<int>(), 20);
+    EXPECT_EQ(summary["units_displaced"].get<int>(), 5);
+    EXPECT_DOUBLE_EQ(summary["N_od"].get<double>(), 1.0);
+    EXPECT_EQ(summary["rocking_units"].get<int>(), 1);
+    const double r = 0.25 * kA, S = 1.0 - 2.0 * ((kA - r) * r + 0.25 * M_PI * r * r) / (kA * kA);
+    EXPECT_NEAR(summary["damage_S"].get<double>(), S, 0.05 * S);
+    EXPECT_NEAR(summary["Ns"].get<double>(), 0.28 / (1.4 * kA), 1e-12);
+    const double s_om = 2 * M_PI * 0.28 / (9.81 * 4.0);
+    EXPECT_NEAR(summary["s_om"].get<double>(), s_om, 1e-3 * s_om);
+    EXPECT_NEAR(summary["waves"].get<double>(), 1.25, 1e-12); // 2.5 s of 2 s waves
+    EXPECT_NEAR(summary["Ns_van_der_meer"].get<double>(), armour::van_der_meer_cubes_ns(1.0, 1.25, s_om),
+                1e-3);
+    EXPECT_NEAR(summary["Ns_hudson_breaking"].get<double>(), std::cbrt(6.5 * 1.5), 1e-12);
+    EXPECT_NEAR(summary["Ns_hudson_nonbreaking"].get<double>(), std::cbrt(7.5 * 1.5), 1e-12);
+
+    std::ifstream csv(out / "damage.csv");
+    std::vector<std::string> lines;
+    for (std::string line; std::getline(csv, line);)
+        lines.push_back(line);
+    ASSERT_EQ(lines.size(), 2u + 20u); // comment, header, one row per unit
+    EXPECT_EQ(lines[2 + 2].substr(lines[2 + 2].rfind(',', lines[2 + 2].size() - 3)), ",2,0"); // 2 rocks
+    EXPECT_EQ(lines[2 + 5].back(), '1');                                                      // displaced
+    EXPECT_TRUE(std::filesystem::is_regular_file(out / "damage_history.csv"));
+    EXPECT_GT(std::filesystem::file_size(out / "damage.png"), 1000u);
+    std::filesystem::remove_all(out);
+}
+
+TEST(Damage, ASceneWithoutASlopeIsRefusedNamingTheKey) {
+    const std::string text = "name = \"flat\"\n[analysis]\nkind = \"damage\"\n[[material]]\nname = \"m\"\n"
+                             "[[unit]]\nname = \"u\"\nshape = \"cube\"\nsize = 0.2\n"
+                             "[[wall]]\ntype = \"plane\"\npoint = [0, 0, 0]\nnormal = [0, 0, 1]\n[[body]]\nunit = \"u\"\nposition = [0, 0, 0.2]\n";
+    try {
+        write_and_load("armour_test_flat_damage.toml", text);
+        FAIL() << "a damage analysis without a slope was accepted";
+    } catch (const armour::InputError &e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("key 'analysis.kind'"), std::string::npos) << what;
+        EXPECT_NE(what.find("[[wall]] of type \"slope\""), std::string::npos) << what;
+    }
+}
+
+// A short dry run of the slope_cubes scene with kind damage writes every
+// file and headline key.
+TEST(Damage, ADrySlopeRunWritesEveryFileAndKey) {
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() / "armour_test_damage_run";
+    std::filesystem::remove_all(dir);
+    const std::string scene =
+        (std::filesystem::path(__FILE__).parent_path().parent_path() / "scenes" / "slope_cubes.toml")
+            .string();
+    const std::vector<std::string> args = {"armour",
+                                           "run",
+                                           scene,
+                                           "--out",
+                                           (dir / "out").string(),
+                                           "--cache",
+                                           cache_dir(),
+                                           "--set",
+                                           "analysis.kind=\"damage\"",
+                                           "--set",
+                                           "run.duration=0.1",
+                                           "--set",
+                                           "drop.0.count=6",
+                                           "--set",
+                                           "analysis.wave_height=0.3"};
+    std::vector<const char *> argv;
+    for (const auto &a : args)
+        argv.push_back(a.c_str());
+    ASSERT_EQ(armour::armour_main(static_cast<int>(argv.size()), argv.data()), 0);
+    for (const char *file : {"damage.csv", "damage_history.csv", "damage.png", "summary.json", "bodies.h5"})
+        EXPECT_TRUE(std::filesystem::is_regular_file(dir / "out" / file)) << file;
+    std::ifstream in(dir / "out" / "summary.json");
+    const nlohmann::json summary = nlohmann::json::parse(in);
+    for (const char *key :
+         {"units", "units_displaced", "N_od", "rocking_units", "Ns", "s_om", "waves", "damage_S",
+          "Ns_van_der_meer", "Ns_hudson_breaking", "Ns_hudson_nonbreaking", "damage"})
+        EXPECT_TRUE(summary.contains(key)) << key;
+    EXPECT_EQ(summary["units"].get<int>(), 6);
+    EXPECT_NEAR(summary["Ns"].get<double>(), 0.3 / (1.4 * 0.2), 1e-9);
+    std::filesystem::remove_all(dir);
 }
