@@ -379,7 +379,8 @@ TEST(Damage, SyntheticTrajectoriesGiveTheirKnownFigures) {
 TEST(Damage, ASceneWithoutASlopeIsRefusedNamingTheKey) {
     const std::string text = "name = \"flat\"\n[analysis]\nkind = \"damage\"\n[[material]]\nname = \"m\"\n"
                              "[[unit]]\nname = \"u\"\nshape = \"cube\"\nsize = 0.2\n"
-                             "[[wall]]\ntype = \"plane\"\npoint = [0, 0, 0]\nnormal = [0, 0, 1]\n[[body]]\nunit = \"u\"\nposition = [0, 0, 0.2]\n";
+                             "[[wall]]\ntype = \"plane\"\npoint = [0, 0, 0]\nnormal = [0, 0, "
+                             "1]\n[[body]]\nunit = \"u\"\nposition = [0, 0, 0.2]\n";
     try {
         write_and_load("armour_test_flat_damage.toml", text);
         FAIL() << "a damage analysis without a slope was accepted";
