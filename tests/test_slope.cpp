@@ -15,6 +15,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <unistd.h>
 
 using armour::BodyState;
 using Eigen::Vector3d;
@@ -192,9 +193,18 @@ std::string pattern_scene(const std::string &engine, const std::string &pattern)
            pattern;
 }
 
+// A temporary path of this process's own (test runs may overlap on one machine).
+std::filesystem::path temporary(const std::string &name) {
+    return std::filesystem::temp_directory_path() / (std::to_string(::getpid()) + "_" + name);
+}
+
 armour::Scene write_and_load(const std::string &name, const std::string &text) {
-    const std::filesystem::path file = std::filesystem::temp_directory_path() / name;
+    const std::filesystem::path file = temporary(name);
     std::ofstream(file) << text;
+    struct Removed {
+        std::filesystem::path path;
+        ~Removed() { std::filesystem::remove(path); }
+    } removed{file};
     return armour::load_scene(file.string());
 }
 
@@ -327,7 +337,7 @@ TEST(Damage, SyntheticTrajectoriesGiveTheirKnownFigures) {
     c.scene.wave_height = 0.28;
     c.scene.wave_period = 2.0;
     c.layer(4, 5, kA, 0.5 * kA);
-    const std::filesystem::path out = std::filesystem::temp_directory_path() / "armour_test_damage";
+    const std::filesystem::path out = temporary("armour_test_damage");
     std::filesystem::remove_all(out);
     std::filesystem::create_directories(out);
     const auto analysis = armour::make_analysis({c.scene, c.setup, out.string(), ""});
@@ -394,7 +404,7 @@ TEST(Damage, ASceneWithoutASlopeIsRefusedNamingTheKey) {
 // A short dry run of the slope_cubes scene with kind damage writes every
 // file and headline key.
 TEST(Damage, ADrySlopeRunWritesEveryFileAndKey) {
-    const std::filesystem::path dir = std::filesystem::temp_directory_path() / "armour_test_damage_run";
+    const std::filesystem::path dir = temporary("armour_test_damage_run");
     std::filesystem::remove_all(dir);
     const std::string scene =
         (std::filesystem::path(__FILE__).parent_path().parent_path() / "scenes" / "slope_cubes.toml")
