@@ -325,8 +325,17 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
     }
     const ShapeModel model = engine_style(scene.engine).capabilities.shape;
     std::vector<Collider> colliders;
-    for (std::size_t k = 0; k < setup.units.size(); ++k)
+    std::vector<double> reach; // m: no part of a unit farther from its centre, clump or exact shape
+    for (std::size_t k = 0; k < setup.units.size(); ++k) {
         colliders.push_back(make_collider(setup.units[k], model, setup.unit_Dn[k]));
+        reach.push_back(bounding_radius(setup.units[k].clump));
+        for (const Eigen::Vector3d &v : setup.units[k].mesh.vertices)
+            reach.back() = std::max(reach.back(), v.norm());
+    }
+    // The radius within which a unit's collided shape lies (drops keep units this far apart).
+    const auto collided_radius = [&](int unit) {
+        return colliders[unit].spheres ? bounding_radius(setup.units[unit].clump) : reach[unit];
+    };
     auto unit_index = [&](const std::string &name) {
         return static_cast<int>(std::find(unit_names.begin(), unit_names.end(), name) - unit_names.begin());
     };
@@ -365,7 +374,7 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
     for (std::size_t k = 0; k < scene.drops.size(); ++k) {
         const SceneDrop &d = scene.drops[k];
         const int unit = unit_index(d.unit);
-        const double R = bounding_radius(setup.units[unit].clump);
+        const double R = collided_radius(unit);
         std::mt19937_64 rng(d.seed);
         std::uniform_real_distribution<double> uniform(0.0, 1.0);
         int placed = 0;
@@ -379,8 +388,8 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
             bool free = ((init.pose.position.array() - R) > scene.domain_min.array()).all() &&
                         ((init.pose.position.array() + R) < scene.domain_max.array()).all();
             for (const auto &other : setup.bodies)
-                free = free && (other.pose.position - init.pose.position).norm() >
-                                   R + bounding_radius(setup.units[other.unit].clump);
+                free = free &&
+                       (other.pose.position - init.pose.position).norm() > R + collided_radius(other.unit);
             if (!free ||
                 body_wall_penetration(init, setup.units[unit], colliders[unit], setup.walls).first > 0.0)
                 continue;
@@ -513,12 +522,6 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
                              (c.spheres ? "(the clump's spheres may protrude beyond the exact shape)"
                                         : "(its exact shape, which the engine collides)") +
                              "; move it away from the wall");
-    }
-    std::vector<double> reach; // m: no part of a unit farther from its centre, clump or exact shape
-    for (const UnitTemplate &u : setup.units) {
-        reach.push_back(bounding_radius(u.clump));
-        for (const Eigen::Vector3d &v : u.mesh.vertices)
-            reach.back() = std::max(reach.back(), v.norm());
     }
     for (std::size_t i = 0; i < setup.bodies.size() && problems.size() < 5; ++i)
         for (std::size_t j = i + 1; j < setup.bodies.size() && problems.size() < 5; ++j) {
