@@ -156,8 +156,8 @@ int run_dem(OutputFolder &folder, const Scene &scene, SceneSetup &setup, std::ve
         recorder.append(engine->time(), states);
     };
 
-    const std::unique_ptr<Analysis> analysis = make_analysis(
-        {scene, setup, out.string(), "", [&](const std::string &name) { return folder.claim(name).string(); }});
+    const auto claim = [&](const std::string &name) { return folder.claim(name).string(); };
+    const std::unique_ptr<Analysis> analysis = make_analysis({scene, setup, out.string(), "", claim});
     Progress progress(scene.duration, terminal);
     analysis->before_advance(0.0, *engine);
     record();

@@ -21,9 +21,9 @@ std::vector<std::string> engine_names() {
         names.push_back(style.name);
     return names;
 }
-const std::vector<std::string> kAnalyses = {"none",  "tilt",  "slope",    "bounce",   "buoyancy",
-                                            "float", "still", "dambreak", "platform", "slope_waves",
-                                            "damage"};
+const std::vector<std::string> kAnalyses = {"none",     "tilt",        "slope", "bounce",
+                                            "buoyancy", "float",       "still", "dambreak",
+                                            "platform", "slope_waves", "damage"};
 
 } // namespace
 
