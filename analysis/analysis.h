@@ -53,6 +53,9 @@ struct AnalysisContext {
     const SceneSetup &setup;
     std::string out_dir;  // the run's output folder (coupled runs: the plugin's fluid.csv)
     std::string case_dir; // the OpenFOAM case of a coupled run (wave gauges); "" for a dry run
+    // The path of a top-level entry the analysis writes into the output
+    // folder, listed as the run's own (OutputFolder::claim); unset: out_dir/name.
+    std::function<std::string(const std::string &)> claim = {};
 };
 
 class Analysis {
@@ -105,5 +108,6 @@ AnalysisStyle still_analysis_style();
 AnalysisStyle dambreak_analysis_style();
 AnalysisStyle platform_analysis_style();
 AnalysisStyle slope_waves_analysis_style();
+AnalysisStyle damage_analysis_style();
 
 } // namespace armour

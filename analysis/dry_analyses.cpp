@@ -2,6 +2,7 @@
 #include "analysis.h"
 
 #include "materials.h"
+#include "slope_profile.h"
 
 #include <nlohmann/json.hpp>
 
@@ -178,75 +179,58 @@ class BounceAnalysis : public Analysis {
     double apex_ = -HUGE_VAL;
 };
 
-// Armour layer on the first slope wall, from the final poses. With the units'
-// centres in slope coordinates (s up the slope, y across), the covered area is
-// A = (s_max - s_min + Dn) (y_max - y_min + Dn), capped at the slope's width;
-// packing density = N Dn^2 / A (the coastal-engineering definition, units per
-// Dn^2 of slope) and porosity = 1 - N V / (A t), with t the layer thickness:
-// the highest sphere surface above the slope plane.
+// Armour layer on the first slope wall, by the Rock Manual's conventions
+// (slope_profile.h): thickness from a profiler's envelope, packing density,
+// porosity and layer coefficient of the units on the face, at the last
+// sample. The run stops once the pile has settled (the scene's settle
+// criterion); a pile that never did is reported with settled = false.
 class SlopeAnalysis : public Analysis {
   public:
-    explicit SlopeAnalysis(const AnalysisContext &c) : scene_(c.scene), setup_(c.setup) {}
+    explicit SlopeAnalysis(const AnalysisContext &c)
+        : scene_(c.scene), setup_(c.setup), frame_(slope_frame(c.scene)), settle_(c.scene, c.setup) {}
 
-    void sample(double, const std::vector<BodyState> &states) override { last_ = states; }
+    void sample(double t, const std::vector<BodyState> &states) override {
+        last_ = states;
+        settle_.sample(t, states);
+    }
+
+    bool finished() const override { return settle_.settled(); }
 
     std::string write(json &summary) const override {
-        summary.update(figures());
-        return "";
+        summary["settled"] = settle_.settled();
+        summary["settled_at"] = nullable(settle_.settled_at());
+        summary["settle_max_speed"] = settle_.max_speed();
+        summary["settle_kinetic_energy_ratio"] = settle_.kinetic_energy_ratio();
+        const json nothing = nullptr;
+        for (const char *k : {"packing_density", "porosity", "layer_thickness", "layer_coefficient"})
+            summary[k] = nothing;
+        if (!frame_)
+            return "no slope wall: no layer figures";
+        const LayerRegion region = layer_region(*frame_, setup_, last_);
+        summary["units_on_slope"] = region.bodies.size();
+        summary["units_total"] = last_.size();
+        summary["slope_angle_deg"] = std::atan2(1.0, frame_->cot) * 180.0 / kPi;
+        if (region.bodies.empty())
+            return "no units on the slope";
+        const LayerFigures f =
+            layer_figures(setup_, region, armour_profile(*frame_, setup_, last_, region), scene_.layers);
+        summary["packing_density"] = f.packing_density;
+        summary["porosity"] = f.porosity;
+        summary["layer_thickness"] = f.thickness;
+        summary["layer_coefficient"] = f.layer_coefficient;
+        summary["layer_area"] = f.area;
+        summary["layers"] = scene_.layers;
+        return settle_.settled()
+                   ? ""
+                   : "the pile did not settle (analysis.settle_speed/settle_energy/settle_span): "
+                     "its figures are the last sample's";
     }
 
   private:
-    json figures() const {
-        const Scene &scene = scene_;
-        const SceneSetup &setup = setup_;
-        const std::vector<BodyState> &states = last_;
-        const SceneWall *slope = nullptr;
-        for (const auto &w : scene.walls)
-            if (w.type == "slope") {
-                slope = &w;
-                break;
-            }
-        if (!slope)
-            return {{"units", states.size()}, {"packing_density", nullptr}, {"porosity", nullptr}};
-        const double alpha = std::atan2(1.0, slope->cot);
-        const Eigen::Vector3d origin(slope->toe_x, 0.0, slope->floor_z);
-        const Eigen::Vector3d along(std::cos(alpha), 0.0, std::sin(alpha)),
-            normal(-std::sin(alpha), 0.0, std::cos(alpha));
-        double s_min = HUGE_VAL, s_max = -HUGE_VAL, y_min = HUGE_VAL, y_max = -HUGE_VAL, top = 0.0,
-               volume = 0.0, Dn = 0.0;
-        int n = 0;
-        for (std::size_t i = 0; i < states.size(); ++i) {
-            const int unit = setup.bodies[i].unit;
-            const Eigen::Vector3d c = states[i].pose.position - origin;
-            if (c.dot(along) < -setup.unit_Dn[unit] || c.dot(normal) < -setup.unit_Dn[unit])
-                continue; // not on the slope (e.g. fell off seaward)
-            ++n;
-            s_min = std::min(s_min, c.dot(along));
-            s_max = std::max(s_max, c.dot(along));
-            y_min = std::min(y_min, c.y());
-            y_max = std::max(y_max, c.y());
-            volume += setup.units[unit].props.volume;
-            Dn = std::max(Dn, setup.unit_Dn[unit]);
-            for (const auto &sph : setup.units[unit].clump) {
-                const Eigen::Vector3d p =
-                    states[i].pose.position + states[i].pose.orientation * sph.center - origin;
-                top = std::max(top, p.dot(normal) + sph.radius);
-            }
-        }
-        if (n == 0)
-            return {{"units", 0}, {"packing_density", nullptr}, {"porosity", nullptr}};
-        const double area = (s_max - s_min + Dn) * std::min(slope->width, y_max - y_min + Dn);
-        return {{"units", n},
-                {"units_total", states.size()},
-                {"packing_density", n * Dn * Dn / area},
-                {"porosity", 1.0 - volume / (area * top)},
-                {"layer_area", area},
-                {"layer_thickness", top},
-                {"slope_angle_deg", alpha * 180.0 / kPi}};
-    }
-
     const Scene &scene_;
     const SceneSetup &setup_;
+    std::optional<SlopeFrame> frame_;
+    SettleWatch settle_;
     std::vector<BodyState> last_;
 };
 
@@ -278,8 +262,8 @@ AnalysisStyle bounce_analysis_style() {
 
 AnalysisStyle slope_analysis_style() {
     return {"slope",
-            "the layer on the first slope wall at the end: packing density and porosity",
-            {"packing_density", "porosity"},
+            "the layer on the first slope wall once settled: packing density, porosity, thickness, k_t",
+            {"packing_density", "porosity", "layer_thickness", "layer_coefficient"},
             {},
             false,
             [](const AnalysisContext &c) { return std::make_unique<SlopeAnalysis>(c); }};

@@ -686,7 +686,9 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
         {"si_units", {{"dt", "s"}, {"wall_seconds", "s"}, {"lengths", "m"}, {"forces", "N"}}}};
 
     // The analysis samples the record as a dry run's analysis samples the engine.
-    const std::unique_ptr<Analysis> analysis = make_analysis({scene, setup, out.string(), case_dir.string()});
+    const std::unique_ptr<Analysis> analysis =
+        make_analysis({scene, setup, out.string(), case_dir.string(),
+                       [&](const std::string &name) { return folder.claim(name).string(); }});
     std::vector<BodyState> states(rec.bodies());
     for (std::size_t s = 0; s < rec.steps(); ++s) {
         for (std::size_t b = 0; b < rec.bodies(); ++b) {

@@ -156,7 +156,8 @@ int run_dem(OutputFolder &folder, const Scene &scene, SceneSetup &setup, std::ve
         recorder.append(engine->time(), states);
     };
 
-    const std::unique_ptr<Analysis> analysis = make_analysis({scene, setup, out.string(), ""});
+    const auto claim = [&](const std::string &name) { return folder.claim(name).string(); };
+    const std::unique_ptr<Analysis> analysis = make_analysis({scene, setup, out.string(), "", claim});
     Progress progress(scene.duration, terminal);
     analysis->before_advance(0.0, *engine);
     record();
@@ -216,7 +217,8 @@ int run_dem(OutputFolder &folder, const Scene &scene, SceneSetup &setup, std::ve
         {"files", {{"bodies", "bodies.h5"}, {"paraview", "bodies.xdmf"}, {"scene", "scene.resolved.toml"}}},
         {"si_units",
          {{"dt", "s"}, {"wall_seconds", "s"}, {"angles", "deg"}, {"lengths", "m"}, {"energy", "J"}}}};
-    analysis->write(summary);
+    if (const std::string line = analysis->write(summary); !line.empty())
+        std::fprintf(stderr, "run: %s: %s\n", scene.analysis.c_str(), line.c_str());
     write_text_file(folder.claim("summary.json"), summary.dump(2) + "\n");
     std::printf("%s: %d units, %ld steps of %.3g s, %.1f s wall -> %s\n", scene.name.c_str(),
                 static_cast<int>(setup.bodies.size()), engine->steps(), dt.used, wall_seconds, out.c_str());

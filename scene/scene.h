@@ -103,8 +103,10 @@ struct ScenePattern {
     std::string unit;
     std::string wall; // name of a "slope" wall
     int rows = 1, columns = 1;
-    double spacing = 0.0; // m between centres (0 = 1.05 x unit bounding size)
-    double gap = 0.01;    // m
+    double spacing = 0.0;         // m between centres (0 = 1.05 x the size of the shape the engine collides)
+    double gap = 0.01;            // m
+    double packing_density = 0.0; // units per Dn^2 of slope, all layers (> 0: sets spacing)
+    int layers = 1;               // stacked; every other one shifted half a spacing (scene_keys.cpp)
 };
 
 // A coupled fluid run (interFoam through the armourCoupling plugin): the
@@ -157,10 +159,20 @@ struct Scene {
     std::string contact_model = "hertz";  // hertz | hooke
     double characteristic_velocity = 1.0; // m/s
     // [analysis]: what the summary reports
-    std::string analysis =
-        "none"; // none | tilt | slope | bounce | buoyancy | float | still | dambreak | platform | slope_waves
-    double tilt_rate = 0.0; // deg/s, tilt: gravity turns about +y at this rate
-    double tilt_max = 60.0; // deg, tilt: stop here
+    std::string analysis = "none"; // none | tilt | slope | bounce | buoyancy | float | still | dambreak |
+                                   // platform | slope_waves | damage
+    double tilt_rate = 0.0;        // deg/s, tilt: gravity turns about +y at this rate
+    double tilt_max = 60.0;        // deg, tilt: stop here
+    // slope and damage: the settle criterion (slope_profile.h) and the layer
+    int layers = 2;              // n of k_t = t / (n Dn)
+    double settle_speed = 0.01;  // m/s, every unit's centre slower
+    double settle_energy = 1e-4; // -, kinetic energy of all units / sum(m g Dn)
+    double settle_span = 0.2;    // s, both held this long
+    // damage (damage_analysis.h)
+    double displaced_threshold = 1.0;   // Dn: displaced at a final displacement >= this
+    double rocking_threshold_deg = 5.0; // deg: a rocking event turns past this and back below half
+    double wave_height = 0.0;           // m, Hs of Ns when the run measures no incident wave (0 = none)
+    double wave_period = 0.0;           // s, Tm of s_om and N when the run measures none (0 = none)
     std::vector<SceneMaterial> materials;
     std::vector<SceneMaterialPair> material_pairs;
     std::vector<SceneUnit> units;

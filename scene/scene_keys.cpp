@@ -21,8 +21,9 @@ std::vector<std::string> engine_names() {
         names.push_back(style.name);
     return names;
 }
-const std::vector<std::string> kAnalyses = {"none",  "tilt",  "slope",    "bounce",   "buoyancy",
-                                            "float", "still", "dambreak", "platform", "slope_waves"};
+const std::vector<std::string> kAnalyses = {"none",     "tilt",        "slope", "bounce",
+                                            "buoyancy", "float",       "still", "dambreak",
+                                            "platform", "slope_waves", "damage"};
 
 } // namespace
 
@@ -78,6 +79,33 @@ const std::vector<Key<Scene>> &analysis_keys() {
             "tilt: gravity turns about +y at this rate; required and > 0 for tilt")
             .in(Range::at_least(0)),
         key("tilt_max", &Scene::tilt_max, "deg", "tilt: tilting stops here").in(Range::open_closed(0, 90)),
+        key("layers", &Scene::layers, "", "slope: the layer is meant to be this many units thick (n of k_t)")
+            .in(Range::at_least(1)),
+        key("settle_speed", &Scene::settle_speed, "m/s",
+            "slope, damage: the pile has settled once every unit's centre is slower than this, with "
+            "settle_energy, for settle_span")
+            .in(Range::above(0)),
+        key("settle_energy", &Scene::settle_energy, "",
+            "slope, damage: and the units' kinetic energy is below this times sum(m g Dn)")
+            .in(Range::above(0)),
+        key("settle_span", &Scene::settle_span, "s",
+            "slope, damage: both held this long; slope then stops the run, else reports settled = false")
+            .in(Range::above(0)),
+        key("displaced_threshold", &Scene::displaced_threshold, "",
+            "damage: a unit is displaced when it ends at least this many Dn from its settled position "
+            "(1 Dn is physical-model practice)")
+            .in(Range::above(0)),
+        key("rocking_threshold_deg", &Scene::rocking_threshold_deg, "deg",
+            "damage: a rocking event turns a unit past this from its settled pose and back below "
+            "half of it (a choice: no published threshold)")
+            .in(Range::open(0, 180)),
+        key("wave_height", &Scene::wave_height, "m",
+            "damage: Hs of Ns when the run measures no incident wave; 0 = fluid.wave_height")
+            .in(Range::at_least(0)),
+        key("wave_period", &Scene::wave_period, "s",
+            "damage: Tm of s_om = 2 pi Hs/(g Tm^2) and of N = duration/Tm when the run measures none; "
+            "0 = none")
+            .in(Range::at_least(0)),
     };
     return keys;
 }
@@ -303,9 +331,20 @@ const std::vector<Key<ScenePattern>> &pattern_keys() {
         key("wall", &P::wall, "", "a [[wall]] of type \"slope\"").required(),
         key("rows", &P::rows, "", "units up the slope").in(Range::at_least(1)),
         key("columns", &P::columns, "", "units along y").in(Range::at_least(1)),
-        key("spacing", &P::spacing, "m", "between centres; 0 = 1.05 x the unit's bounding size")
+        key("spacing", &P::spacing, "m",
+            "between centres; 0 = 1.05 x the unit's size up and across the slope, as the engine collides "
+            "it (clump spheres or exact shape)")
             .in(Range::at_least(0)),
-        key("gap", &P::gap, "m", "between each unit and the slope surface").in(Range::at_least(0)),
+        key("gap", &P::gap, "m", "between each unit and the slope surface (and between layers)")
+            .in(Range::at_least(0)),
+        key("packing_density", &P::packing_density, "",
+            "units per Dn^2 of slope over all layers (Rock Manual: double-layer cubes 1.17); > 0 sets "
+            "spacing = Dn sqrt(layers / packing_density); 0 = use spacing")
+            .in(Range::at_least(0)),
+        key("layers", &P::layers, "",
+            "layers stacked on the slope; every other one half a spacing up it, with columns - 1 units in "
+            "the gaps across")
+            .in(Range::at_least(1)),
     };
     return keys;
 }

@@ -292,10 +292,10 @@ void read_placements(const Table &root, Scene &s) {
             if (!engine_style(s.engine).capabilities.pivot) {
                 const EngineStyle *hinged =
                     find_engine_style([](const EngineCapabilities &c) { return c.pivot; });
-                t.fail("pivot", "needs run.engine = " +
-                                    toml_string(hinged ? hinged->name : "an engine with pivots") + " (got " +
-                                    toml_string(s.engine) +
-                                    "): the contact engines hold locked axes at the centre of mass");
+                t.fail("pivot",
+                       "needs run.engine = " + toml_string(hinged ? hinged->name : "an engine with pivots") +
+                           " (got " + toml_string(s.engine) +
+                           "): the contact engines hold locked axes at the centre of mass");
             }
             if (std::none_of(b.fixed_translation.begin(), b.fixed_translation.end(),
                              [](bool held) { return held; }))
@@ -519,6 +519,11 @@ Scene load_scene(const std::string &path, const std::vector<std::string> &overri
     read_materials(root, s);
     read_units(root, s);
     read_walls(root, s);
+    if (s.analysis == "damage" &&
+        std::none_of(s.walls.begin(), s.walls.end(), [](const SceneWall &w) { return w.type == "slope"; }))
+        root.section("analysis")
+            .fail("kind", "kind \"damage\" counts units on a slope: the scene needs a "
+                          "[[wall]] of type \"slope\"");
     read_placements(root, s);
     return s;
 }

@@ -146,6 +146,97 @@ std::pair<double, int> wall_penetration(const BodyInit &b, const Clump &clump,
     return {deepest, which};
 }
 
+// The shape an engine collides (engine_registry.h, ShapeModel): a DEM
+// engine its clump's spheres, an exact-shape engine the unit's convex parts
+// (the exact mesh where the shape has none: an STL unit). Placement is
+// checked against this shape, not another engine's.
+struct HalfSpace {
+    Eigen::Vector3d n; // outward unit normal
+    double d;          // m: inside where n.x <= d
+};
+struct Collider {
+    bool spheres = true;                       // the clump (else the exact convex parts)
+    std::vector<Eigen::Vector3d> points;       // m, unit frame: the parts' surface, <= 0.05 Dn apart
+    std::vector<std::vector<HalfSpace>> parts; // the convex parts as half-spaces
+};
+
+Collider make_collider(const UnitTemplate &unit, ShapeModel model, double Dn) {
+    Collider c;
+    c.spheres = model == ShapeModel::sphere_clumps;
+    if (c.spheres)
+        return c;
+    const std::vector<TriangleMesh> parts =
+        unit.convex_parts.empty() ? std::vector<TriangleMesh>{unit.mesh} : unit.convex_parts;
+    const double spacing = 0.05 * Dn;
+    for (const TriangleMesh &part : parts) {
+        std::vector<HalfSpace> planes;
+        for (const auto &t : part.triangles) {
+            const Eigen::Vector3d &a = part.vertices[t[0]], &b = part.vertices[t[1]],
+                                  &d = part.vertices[t[2]];
+            const Eigen::Vector3d n = (b - a).cross(d - a);
+            if (n.norm() <= 0.0)
+                continue;
+            planes.push_back({n.normalized(), n.normalized().dot(a)});
+            const double longest = std::max({(b - a).norm(), (d - b).norm(), (a - d).norm()});
+            const int k = std::max(1, static_cast<int>(std::ceil(longest / spacing)));
+            for (int i = 0; i <= k; ++i)
+                for (int j = 0; i + j <= k; ++j)
+                    c.points.push_back(a + (b - a) * (double(i) / k) + (d - a) * (double(j) / k));
+        }
+        c.parts.push_back(std::move(planes));
+    }
+    return c;
+}
+
+// m: how deep point p (unit frame) lies inside the collider's parts (<= 0: outside).
+double depth_inside(const Collider &c, const Eigen::Vector3d &p) {
+    double deepest = -HUGE_VAL;
+    for (const auto &part : c.parts) {
+        double depth = HUGE_VAL;
+        for (const HalfSpace &h : part)
+            depth = std::min(depth, h.d - h.n.dot(p));
+        deepest = std::max(deepest, depth);
+    }
+    return deepest;
+}
+
+// Deepest cut of a posed exact shape into any wall (m) and the wall's index:
+// each surface point against its nearest wall triangle, behind it when on
+// the other side of that triangle than the body's centre.
+std::pair<double, int> exact_wall_penetration(const BodyInit &b, const Collider &c,
+                                              const std::vector<Wall> &walls) {
+    double deepest = -HUGE_VAL;
+    int which = -1;
+    for (std::size_t w = 0; w < walls.size(); ++w) {
+        const auto &v = walls[w].surface.vertices;
+        for (const Eigen::Vector3d &local : c.points) {
+            const Eigen::Vector3d p = b.pose.position + b.pose.orientation * local;
+            double nearest = HUGE_VAL, depth = 0.0;
+            for (const auto &t : walls[w].surface.triangles) {
+                const Eigen::Vector3d q = closest_point_on_triangle(p, v[t[0]], v[t[1]], v[t[2]]);
+                if ((p - q).norm() >= nearest)
+                    continue;
+                nearest = (p - q).norm();
+                Eigen::Vector3d n = (v[t[1]] - v[t[0]]).cross(v[t[2]] - v[t[0]]).normalized();
+                if ((b.pose.position - q).dot(n) < 0.0)
+                    n = -n; // the body's side
+                depth = -(p - q).dot(n);
+            }
+            if (depth > deepest) {
+                deepest = depth;
+                which = static_cast<int>(w);
+            }
+        }
+    }
+    return {deepest, which};
+}
+
+// The deepest cut of posed body b into any wall, as its engine collides it.
+std::pair<double, int> body_wall_penetration(const BodyInit &b, const UnitTemplate &unit, const Collider &c,
+                                             const std::vector<Wall> &walls) {
+    return c.spheres ? wall_penetration(b, unit.clump, walls) : exact_wall_penetration(b, c, walls);
+}
+
 } // namespace
 
 std::string default_cache_dir() {
@@ -233,6 +324,19 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
         setup.units.push_back(std::move(t));
         unit_names.push_back(u.name);
     }
+    const ShapeModel model = engine_style(scene.engine).capabilities.shape;
+    std::vector<Collider> colliders;
+    std::vector<double> reach; // m: no part of a unit farther from its centre, clump or exact shape
+    for (std::size_t k = 0; k < setup.units.size(); ++k) {
+        colliders.push_back(make_collider(setup.units[k], model, setup.unit_Dn[k]));
+        reach.push_back(bounding_radius(setup.units[k].clump));
+        for (const Eigen::Vector3d &v : setup.units[k].mesh.vertices)
+            reach.back() = std::max(reach.back(), v.norm());
+    }
+    // The radius within which a unit's collided shape lies (drops keep units this far apart).
+    const auto collided_radius = [&](int unit) {
+        return colliders[unit].spheres ? bounding_radius(setup.units[unit].clump) : reach[unit];
+    };
     auto unit_index = [&](const std::string &name) {
         return static_cast<int>(std::find(unit_names.begin(), unit_names.end(), name) - unit_names.begin());
     };
@@ -271,7 +375,7 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
     for (std::size_t k = 0; k < scene.drops.size(); ++k) {
         const SceneDrop &d = scene.drops[k];
         const int unit = unit_index(d.unit);
-        const double R = bounding_radius(setup.units[unit].clump);
+        const double R = collided_radius(unit);
         std::mt19937_64 rng(d.seed);
         std::uniform_real_distribution<double> uniform(0.0, 1.0);
         int placed = 0;
@@ -285,9 +389,10 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
             bool free = ((init.pose.position.array() - R) > scene.domain_min.array()).all() &&
                         ((init.pose.position.array() + R) < scene.domain_max.array()).all();
             for (const auto &other : setup.bodies)
-                free = free && (other.pose.position - init.pose.position).norm() >
-                                   R + bounding_radius(setup.units[other.unit].clump);
-            if (!free || wall_penetration(init, setup.units[unit].clump, setup.walls).first > 0.0)
+                free = free &&
+                       (other.pose.position - init.pose.position).norm() > R + collided_radius(other.unit);
+            if (!free ||
+                body_wall_penetration(init, setup.units[unit], colliders[unit], setup.walls).first > 0.0)
                 continue;
             setup.bodies.push_back(init);
             ++placed;
@@ -313,26 +418,61 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
         const Eigen::Vector3d along(std::cos(alpha), 0.0, std::sin(alpha)),
             normal(-std::sin(alpha), 0.0, std::cos(alpha));
         const Eigen::Quaterniond turn(Eigen::AngleAxisd(-alpha, Eigen::Vector3d::UnitY()));
-        // Clearance from the exact shape and from the clump, which may protrude.
-        double low = 0.0, extent = 0.0;
-        for (const auto &v : setup.units[unit].mesh.vertices) {
-            low = std::max(low, -v.z());
-            extent = std::max(extent, 2.0 * std::max(std::abs(v.x()), std::abs(v.y())));
+        // The unit frame turned onto the slope: x up it, y across, z out of
+        // it. Extents of the shape the engine collides, which for a clump may
+        // protrude beyond the exact shape.
+        double low = 0.0, high = 0.0, half = 0.0;
+        const auto extend = [&](const Eigen::Vector3d &c, double radius) {
+            low = std::max(low, radius - c.z());
+            high = std::max(high, radius + c.z());
+            half = std::max(half, std::max(std::abs(c.x()), std::abs(c.y())) + radius);
+        };
+        if (colliders[unit].spheres)
+            for (const auto &sph : setup.units[unit].clump)
+                extend(sph.center, sph.radius);
+        else
+            for (const auto &point : colliders[unit].points)
+                extend(point, 0.0);
+        const std::string key = "pattern." + std::to_string(k) + ".";
+        const double Dn = setup.unit_Dn[unit];
+        double spacing = p.spacing > 0.0 ? p.spacing : 1.05 * 2.0 * half;
+        if (p.packing_density > 0.0) {
+            spacing = Dn * std::sqrt(p.layers / p.packing_density);
+            if (spacing < 2.0 * half)
+                throw InputError(scene.file + ": key '" + key +
+                                 "packing_density': " + num(p.packing_density) + " units per Dn^2 in " +
+                                 std::to_string(p.layers) + " layer(s) needs centres " + num(spacing) +
+                                 " m apart, less than the unit's size " + num(2.0 * half) +
+                                 " m: a regular pattern would overlap (at most " +
+                                 num(p.layers * Dn * Dn / (4.0 * half * half)) + "); add layers");
         }
-        for (const auto &sph : setup.units[unit].clump)
-            low = std::max(low, sph.radius - sph.center.z());
-        const double spacing = p.spacing > 0.0 ? p.spacing : 1.05 * extent;
-        for (int row = 0; row < p.rows; ++row)
-            for (int col = 0; col < p.columns; ++col) {
-                BodyInit init;
-                init.unit = unit;
-                const double along_slope = (row + 0.5) * spacing;
-                const double across = (col - 0.5 * (p.columns - 1)) * spacing;
-                init.pose.position = Eigen::Vector3d(slope->toe_x, across, slope->floor_z) +
-                                     along_slope * along + (low + p.gap) * normal;
-                init.pose.orientation = turn;
-                setup.bodies.push_back(init);
-            }
+        const auto pose = [&](double up, double across, double out) {
+            BodyInit init;
+            init.unit = unit;
+            init.pose.position =
+                Eigen::Vector3d(slope->toe_x, across, slope->floor_z) + up * along + out * normal;
+            init.pose.orientation = turn;
+            return init;
+        };
+        // The first row half a spacing from the toe, moved up the slope
+        // until it clears a toe step (and any wall) by the shape the engine collides.
+        double first = 0.5 * spacing;
+        for (; first < 0.5 * spacing + 3.0 * Dn; first += 0.02 * Dn)
+            if (body_wall_penetration(pose(first, 0.0, low + p.gap), setup.units[unit], colliders[unit],
+                                      setup.walls)
+                    .first <= 0.0)
+                break;
+        // Every other layer sits half a spacing up the slope, its columns in
+        // the gaps of the one below (one column fewer: within the same width).
+        for (int layer = 0; layer < p.layers; ++layer) {
+            const bool shifted = layer % 2 == 1 && p.columns > 1;
+            const int columns = shifted ? p.columns - 1 : p.columns;
+            const double n = low + p.gap + layer * (low + high + p.gap);
+            for (int row = 0; row < p.rows; ++row)
+                for (int col = 0; col < columns; ++col)
+                    setup.bodies.push_back(pose(first + (row + (layer % 2) * 0.5) * spacing,
+                                                (col - 0.5 * (columns - 1)) * spacing, n));
+        }
     }
 
     // The engines' own domain is a little larger than the scene's: a unit
@@ -366,32 +506,55 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
             }
         }
     }
+    // An exact shape rests with next to no overlap (Bullet keeps its contact
+    // within its collision margin): 1 % of Dn is a contact there.
+    const auto resting_exact = [&](int unit) { return 0.01 * setup.unit_Dn[static_cast<std::size_t>(unit)]; };
     for (std::size_t i = 0; i < setup.bodies.size(); ++i) {
         const BodyInit &b = setup.bodies[i];
-        const auto [depth, wall] = wall_penetration(b, setup.units[b.unit].clump, setup.walls);
+        const Collider &c = colliders[static_cast<std::size_t>(b.unit)];
+        const auto [depth, wall] = body_wall_penetration(b, setup.units[b.unit], c, setup.walls);
         double smallest = HUGE_VAL;
         for (const auto &sph : setup.units[b.unit].clump)
             smallest = std::min(smallest, sph.radius);
-        if (depth > resting(smallest))
-            throw InputError(
-                scene.file + ": body " + std::to_string(i) + " (unit '" + setup.units[b.unit].name +
-                "') cuts into wall '" + setup.walls[wall].name + "' by " + num(depth) +
-                " m at its initial pose (the clump's spheres may protrude beyond the exact shape); " +
-                "move it away from the wall");
+        if (depth > (c.spheres ? resting(smallest) : resting_exact(b.unit)))
+            throw InputError(scene.file + ": body " + std::to_string(i) + " (unit '" +
+                             setup.units[b.unit].name + "') cuts into wall '" + setup.walls[wall].name +
+                             "' by " + num(depth) + " m at its initial pose " +
+                             (c.spheres ? "(the clump's spheres may protrude beyond the exact shape)"
+                                        : "(its exact shape, which the engine collides)") +
+                             "; move it away from the wall");
     }
     for (std::size_t i = 0; i < setup.bodies.size() && problems.size() < 5; ++i)
         for (std::size_t j = i + 1; j < setup.bodies.size() && problems.size() < 5; ++j) {
             const BodyInit &a = setup.bodies[i], &b = setup.bodies[j];
             const Clump &ca = setup.units[a.unit].clump, &cb = setup.units[b.unit].clump;
-            if ((a.pose.position - b.pose.position).norm() >= bounding_radius(ca) + bounding_radius(cb))
+            if ((a.pose.position - b.pose.position).norm() >= reach[a.unit] + reach[b.unit])
                 continue;
             bool overlap = false;
-            for (const auto &sa : ca)
-                for (const auto &sb : cb)
-                    overlap = overlap || ((a.pose.position + a.pose.orientation * sa.center) -
-                                          (b.pose.position + b.pose.orientation * sb.center))
-                                                 .norm() <
-                                             sa.radius + sb.radius - resting(std::min(sa.radius, sb.radius));
+            const Collider &xa = colliders[static_cast<std::size_t>(a.unit)],
+                           &xb = colliders[static_cast<std::size_t>(b.unit)];
+            if (xa.spheres) {
+                for (const auto &sa : ca)
+                    for (const auto &sb : cb)
+                        overlap = overlap || ((a.pose.position + a.pose.orientation * sa.center) -
+                                              (b.pose.position + b.pose.orientation * sb.center))
+                                                     .norm() < sa.radius + sb.radius -
+                                                                   resting(std::min(sa.radius, sb.radius));
+            } else {
+                // Exact shapes: a surface point of either inside the other.
+                const double tolerance = std::min(resting_exact(a.unit), resting_exact(b.unit));
+                const auto into = [&](const BodyInit &from, const Collider &points, const BodyInit &to,
+                                      const Collider &parts) {
+                    for (const auto &q : points.points) {
+                        const Eigen::Vector3d world = from.pose.position + from.pose.orientation * q;
+                        if (depth_inside(parts, to.pose.orientation.inverse() * (world - to.pose.position)) >
+                            tolerance)
+                            return true;
+                    }
+                    return false;
+                };
+                overlap = into(a, xa, b, xb) || into(b, xb, a, xa);
+            }
             if (overlap)
                 problems.push_back(std::to_string(i) + "-" + std::to_string(j));
         }

@@ -147,11 +147,11 @@ TEST(AnalysisRegistry, EveryStyleDescribesItselfAndItsAnalyticKeysAreHeadlines) 
 
 TEST(AnalysisRegistry, RefusesAnUnknownKindNamingTheKey) {
     try {
-        armour::analysis_style("damage");
+        armour::analysis_style("overtopping");
         FAIL() << "an unknown kind was found";
     } catch (const InputError &e) {
         const std::string what = e.what();
-        EXPECT_EQ(what.rfind("analysis.kind: 'damage'", 0), 0u) << what;
+        EXPECT_EQ(what.rfind("analysis.kind: 'overtopping'", 0), 0u) << what;
         EXPECT_NE(what.find("slope_waves"), std::string::npos) << what;
     }
 }

@@ -1,0 +1,272 @@
+#include "damage_analysis.h"
+
+#include "analysis.h"
+#include "slope_profile.h"
+#include "standard_conditions.h"
+
+#include <nlohmann/json.hpp>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+
+namespace armour {
+
+namespace {
+
+using nlohmann::json;
+
+constexpr double kPi = 3.14159265358979323846;
+
+json nullable(const std::optional<double> &v) {
+    return v ? json(*v) : json(nullptr);
+}
+
+// Writes `text` to `path` through a temporary file and a rename.
+void write_file(const std::string &path, const std::string &text) {
+    const std::string temporary = path + ".tmp";
+    {
+        std::ofstream out(temporary);
+        out << text;
+        if (!out)
+            throw InputError(path + ": cannot write");
+    }
+    if (std::rename(temporary.c_str(), path.c_str()) != 0)
+        throw InputError(path + ": cannot write");
+}
+
+class DamageAnalysis : public Analysis {
+  public:
+    explicit DamageAnalysis(const AnalysisContext &c)
+        : scene_(c.scene), setup_(c.setup), out_dir_(c.out_dir), claim_(c.claim), settle_(c.scene, c.setup) {
+        const std::optional<SlopeFrame> frame = slope_frame(c.scene);
+        if (!frame)
+            throw InputError(c.scene.file + ": key 'analysis.kind': kind \"damage\" counts units on a slope: "
+                                            "the scene needs a [[wall]] of type \"slope\"");
+        frame_ = *frame;
+        // A coupled run starts from settled poses; a dry run settles first.
+        wait_for_settle_ = !c.scene.fluid.has_value();
+    }
+
+    void sample(double t, const std::vector<BodyState> &states) override {
+        last_ = states;
+        end_ = t;
+        if (units_.empty() || (wait_for_settle_ && !settled_)) {
+            settle_.sample(t, states);
+            settled_ = settle_.settled();
+            if (units_.empty() || settled_)
+                start(t, states);
+        }
+        int displaced = 0;
+        double largest = 0.0;
+        for (std::size_t i = 0; i < states.size(); ++i) {
+            units_[i].sample(states[i].pose);
+            displaced += units_[i].displacement() >= scene_.displaced_threshold ? 1 : 0;
+            largest = std::max(largest, units_[i].displacement());
+        }
+        history_ += num(t) + "," + std::to_string(displaced) + "," +
+                    num(n_od(displaced, frame_.width, Dn())) + "," + num(largest) + "\n";
+    }
+
+    std::string write(json &summary) const override {
+        const double Dn = this->Dn();
+        int displaced = 0, rocking = 0;
+        std::string rows = "# damage per unit from its settled pose (SI; displacements in Dn)\n"
+                           "body,unit,s_m,y_m,max_displacement_over_Dn,final_displacement_over_Dn,"
+                           "max_rotation_deg,rocking_events,displaced\n";
+        for (std::size_t i = 0; i < units_.size(); ++i) {
+            const UnitDamageTracker &u = units_[i];
+            const bool is_displaced = u.displacement() >= scene_.displaced_threshold;
+            displaced += is_displaced ? 1 : 0;
+            rocking += u.rocking_events() > 0 ? 1 : 0;
+            const Eigen::Vector3d at = frame_.local(u.reference().position);
+            rows += std::to_string(i) + "," + setup_.units[unit(i)].name + "," + num(at.x()) + "," +
+                    num(at.y()) + "," + num(u.max_displacement()) + "," + num(u.displacement()) + "," +
+                    num(u.max_rotation_deg()) + "," + std::to_string(u.rocking_events()) + "," +
+                    (is_displaced ? "1" : "0") + "\n";
+        }
+        const double N_od = n_od(displaced, frame_.width, Dn);
+        // S from the profiles at the reference and at the end, over the
+        // layer the reference covered.
+        std::vector<BodyState> reference(units_.size());
+        for (std::size_t i = 0; i < units_.size(); ++i)
+            reference[i].pose = units_[i].reference();
+        const LayerRegion region = layer_region(frame_, setup_, reference);
+        std::optional<double> S;
+        if (!region.bodies.empty())
+            S = eroded_area(armour_profile(frame_, setup_, reference, region),
+                            armour_profile(frame_, setup_, last_, region)) /
+                (Dn * Dn);
+
+        const WaveConditions w = wave_conditions(summary, scene_, std::max(0.0, end_ - start_));
+        const double rho_s = scene_.units.empty() ? 0.0 : unit_density();
+        const double rho_w = scene_.fluid ? scene_.fluid->fluid_density : kFreshWaterDensity;
+        std::optional<double> Ns, vdm;
+        if (w.Hs)
+            Ns = stability_number(*w.Hs, rho_s, rho_w, Dn);
+        if (w.s_om && w.waves && *w.waves > 0.0)
+            vdm = van_der_meer_cubes_ns(N_od, *w.waves, *w.s_om);
+
+        summary["units"] = units_.size();
+        summary["units_displaced"] = displaced;
+        summary["N_od"] = N_od;
+        summary["rocking_units"] = rocking;
+        summary["Ns"] = nullable(Ns);
+        summary["s_om"] = nullable(w.s_om);
+        if (!summary.contains("waves") || !summary["waves"].is_object())
+            summary["waves"] = nullable(w.waves); // else the incident-wave analysis's object holds N
+        summary["damage_S"] = nullable(S);
+        summary["Ns_van_der_meer"] = nullable(vdm);
+        summary["Ns_hudson_breaking"] = hudson_ns(6.5, frame_.cot);
+        summary["Ns_hudson_nonbreaking"] = hudson_ns(7.5, frame_.cot);
+        summary["damage"] = {{"Hs", nullable(w.Hs)},
+                             {"wave_source", w.source},
+                             {"delta", rho_s / rho_w - 1.0},
+                             {"Dn", Dn},
+                             {"slope_width", frame_.width},
+                             {"displaced_threshold", scene_.displaced_threshold},
+                             {"rocking_threshold_deg", scene_.rocking_threshold_deg},
+                             {"reference_time", start_},
+                             {"settled", wait_for_settle_ ? json(settled_) : json(nullptr)},
+                             {"files", {"damage.csv", "damage_history.csv", "damage.png"}},
+                             {"si_units", {{"Hs", "m"}, {"Dn", "m"}, {"reference_time", "s"}}}};
+        write_file(path("damage.csv"), rows);
+        write_file(path("damage_history.csv"), "# units displaced (>= displaced_threshold Dn) against time\n"
+                                               "time_s,units_displaced,N_od,max_displacement_over_Dn\n" +
+                                                   history_);
+        const std::string chart = path("damage.png");
+        const std::string command = std::string("/usr/bin/python3 '") + ARMOUR_SOURCE_DIR +
+                                    "/analysis/damage_chart.py' '" + path("damage.csv") + "' '" +
+                                    path("damage_history.csv") + "' '" + chart + "' > /dev/null 2>&1";
+        std::string line = std::to_string(displaced) + " of " + std::to_string(units_.size()) +
+                           " units displaced, N_od " + num(N_od) + ", " + std::to_string(rocking) +
+                           " rocking";
+        if (std::system(command.c_str()) != 0)
+            line += "; no damage.png: analysis/damage_chart.py failed (needs python3-matplotlib)";
+        return line;
+    }
+
+  private:
+    static std::string num(double v) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%.6g", v);
+        return text;
+    }
+    std::size_t unit(std::size_t body) const { return static_cast<std::size_t>(setup_.bodies[body].unit); }
+    double Dn() const { return setup_.unit_Dn[unit(0)]; }
+    double unit_density() const {
+        const std::string &name = setup_.units[unit(0)].name;
+        for (const SceneUnit &u : scene_.units)
+            if (u.name == name)
+                return u.density;
+        return scene_.units[0].density;
+    }
+    std::string path(const std::string &name) const { return claim_ ? claim_(name) : out_dir_ + "/" + name; }
+
+    void start(double t, const std::vector<BodyState> &states) {
+        units_.clear();
+        for (std::size_t i = 0; i < states.size(); ++i)
+            units_.emplace_back(states[i].pose, setup_.unit_Dn[unit(i)], scene_.rocking_threshold_deg);
+        history_.clear();
+        start_ = t;
+    }
+
+    const Scene &scene_;
+    const SceneSetup &setup_;
+    std::string out_dir_;
+    std::function<std::string(const std::string &)> claim_;
+    SlopeFrame frame_;
+    SettleWatch settle_;
+    bool wait_for_settle_ = true, settled_ = false;
+    std::vector<UnitDamageTracker> units_;
+    std::vector<BodyState> last_;
+    std::string history_;
+    double start_ = 0.0, end_ = 0.0;
+};
+
+} // namespace
+
+UnitDamageTracker::UnitDamageTracker(const Pose &reference, double Dn, double rocking_threshold_deg)
+    : reference_(reference), Dn_(Dn), threshold_(rocking_threshold_deg) {}
+
+void UnitDamageTracker::sample(const Pose &pose) {
+    displacement_ = (pose.position - reference_.position).norm() / Dn_;
+    max_displacement_ = std::max(max_displacement_, displacement_);
+    const double turned = rotation_between_deg(reference_.orientation, pose.orientation);
+    max_rotation_ = std::max(max_rotation_, turned);
+    if (!turned_ && turned > threshold_)
+        turned_ = true;
+    else if (turned_ && turned < 0.5 * threshold_) {
+        turned_ = false;
+        ++rocking_events_;
+    }
+}
+
+double rotation_between_deg(const Eigen::Quaterniond &a, const Eigen::Quaterniond &b) {
+    return 2.0 * std::acos(std::min(1.0, std::abs(a.normalized().dot(b.normalized())))) * 180.0 / kPi;
+}
+
+double n_od(int displaced, double slope_width, double Dn) {
+    return displaced / (slope_width / Dn);
+}
+
+double stability_number(double Hs, double unit_density, double water_density, double Dn) {
+    return Hs / ((unit_density / water_density - 1.0) * Dn);
+}
+
+double van_der_meer_cubes_ns(double N_od, double waves, double s_om) {
+    return (6.7 * std::pow(N_od, 0.4) / std::pow(waves, 0.3) + 1.0) * std::pow(s_om, -0.1);
+}
+
+double hudson_ns(double K_D, double cot) {
+    return std::cbrt(K_D * cot);
+}
+
+WaveConditions wave_conditions(const json &summary, const Scene &scene, double duration) {
+    WaveConditions w;
+    const auto number = [](const json &o, const char *key) -> std::optional<double> {
+        if (o.is_object() && o.contains(key) && o[key].is_number())
+            return o[key].get<double>();
+        return std::nullopt;
+    };
+    if (summary.contains("waves") && summary["waves"].is_object()) {
+        const json &m = summary["waves"];
+        w.Hs = number(m, "incident_height");
+        w.s_om = number(m, "s_om");
+        w.waves = number(m, "waves");
+        if (w.Hs) {
+            w.source = "measured";
+            return w;
+        }
+    }
+    const double H = scene.wave_height > 0.0 ? scene.wave_height
+                     : scene.fluid           ? scene.fluid->wave_height
+                                             : 0.0;
+    if (H <= 0.0) {
+        w.source = "none";
+        return w;
+    }
+    w.Hs = H;
+    w.source = "scene";
+    if (scene.wave_period > 0.0) {
+        w.s_om = 2.0 * kPi * H / (scene.gravity.norm() * scene.wave_period * scene.wave_period);
+        w.waves = duration / scene.wave_period;
+    }
+    return w;
+}
+
+AnalysisStyle damage_analysis_style() {
+    return {
+        "damage",
+        "units on a slope from their settled poses: displaced (N_od), rocking, S, Ns against Van der Meer "
+        "and Hudson",
+        {"units_displaced", "N_od", "rocking_units", "damage_S"},
+        {},
+        false,
+        [](const AnalysisContext &c) { return std::make_unique<DamageAnalysis>(c); }};
+}
+
+} // namespace armour

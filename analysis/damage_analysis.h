@@ -1,0 +1,86 @@
+// Damage to an armour layer, counted as coastal engineers count it.
+//
+// Description
+//     The `damage` analysis kind (any scene with units on a slope wall, dry or
+//     coupled). Every unit is watched from its settled pose: the first record
+//     of a coupled run (which starts from settled poses), or in a dry run the
+//     poses at which the pile first met the settle criterion
+//     (slope_profile.h; the first record when it never did). Per unit: the
+//     largest and final displacement of its centre (in Dn), the largest
+//     rotation (deg) and the rocking events: turns past
+//     analysis.rocking_threshold_deg that come back below half of it (a
+//     choice: no published threshold exists, stability.md). Headline figures
+//     (docs/analysis.md): units displaced (final displacement >=
+//     analysis.displaced_threshold Dn, 1 Dn as in physical-model practice),
+//     N_od = displaced / (slope width / Dn), rocking units, Ns = Hs/(Δ Dn) with
+//     Δ = ρs/ρw − 1, s_om, the number of waves, the damage S = eroded area /
+//     Dn² between the before and after profiles (slope_profile.h), and where
+//     the run sits against Van der Meer (1988, double-layer cubes) and
+//     Hudson (K_D 6.5 and 7.5).
+//
+//     The wave figures come from WaveConditions: measured ones when the run
+//     reports an incident-wave analysis (summary `waves`: incident_height,
+//     s_om, waves), else the scene's target (analysis.wave_height, else
+//     fluid.wave_height; analysis.wave_period for s_om and N); a figure with
+//     no source is null.
+//
+// Usage
+//     UnitDamageTracker unit(reference_pose, Dn, 5.0);
+//     unit.sample(pose);                            // every recorded step
+//     double ns = van_der_meer_cubes_ns(0.5, 1000, 0.03); // 2.33
+#pragma once
+
+#include "rigid_body_engine.h"
+#include "scene.h"
+
+#include <nlohmann/json_fwd.hpp>
+
+#include <optional>
+#include <string>
+
+namespace armour {
+
+// One unit's motion from its reference pose.
+class UnitDamageTracker {
+  public:
+    UnitDamageTracker(const Pose &reference, double Dn, double rocking_threshold_deg);
+    void sample(const Pose &pose);
+    double displacement() const { return displacement_; }         // Dn, now
+    double max_displacement() const { return max_displacement_; } // Dn
+    double max_rotation_deg() const { return max_rotation_; }
+    int rocking_events() const { return rocking_events_; }
+    const Pose &reference() const { return reference_; }
+
+  private:
+    Pose reference_;
+    double Dn_, threshold_;
+    double displacement_ = 0.0, max_displacement_ = 0.0, max_rotation_ = 0.0;
+    bool turned_ = false;
+    int rocking_events_ = 0;
+};
+
+// deg: the angle of the rotation taking orientation a to b.
+double rotation_between_deg(const Eigen::Quaterniond &a, const Eigen::Quaterniond &b);
+
+// N_od: units displaced per strip of width Dn across the slope.
+double n_od(int displaced, double slope_width, double Dn);
+// Ns = Hs / (Δ Dn), Δ = ρs/ρw − 1.
+double stability_number(double Hs, double unit_density, double water_density, double Dn);
+// Van der Meer (1988), double-layer cubes: Ns = (6.7 N_od^0.4 / N^0.3 + 1.0) s_om^−0.1.
+double van_der_meer_cubes_ns(double N_od, double waves, double s_om);
+// Hudson: H/(Δ Dn) = (K_D cot α)^(1/3).
+double hudson_ns(double K_D, double cot);
+
+// The waves a damage figure is held against (SI; unset = unknown).
+struct WaveConditions {
+    std::optional<double> Hs;    // m, the incident Hm0 (H of a regular or solitary wave)
+    std::optional<double> s_om;  // -, 2 pi Hs / (g Tm^2)
+    std::optional<double> waves; // -, N
+    std::string source;          // "measured" | "scene" | "none"
+};
+
+// From the run's summary `waves` object when it has one (measured), else
+// from the scene's target (`duration` s of record after the reference).
+WaveConditions wave_conditions(const nlohmann::json &summary, const Scene &scene, double duration);
+
+} // namespace armour

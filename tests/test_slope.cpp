@@ -1,0 +1,442 @@
+// Armour layers on a slope: the profiler's ball on known geometry, the layer
+// figures of hand-placed regular layers whose thickness and porosity are
+// known, and the settle criterion.
+#include "analysis.h"
+#include "cli.h"
+#include "damage_analysis.h"
+#include "engine_registry.h"
+#include "shapes.h"
+#include "slope_profile.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+using armour::BodyState;
+using Eigen::Vector3d;
+
+namespace {
+
+constexpr double kA = 0.2; // m, cube edge
+
+// Cubes of edge kA lying face-down on a 1:1.5 slope, as placed by hand.
+struct CubeSlope {
+    armour::Scene scene;
+    armour::SceneSetup setup;
+    armour::SlopeFrame frame;
+    std::vector<BodyState> states;
+    Eigen::Quaterniond turn;
+    CubeSlope() {
+        armour::SceneWall slope;
+        slope.type = "slope";
+        slope.cot = 1.5;
+        slope.height = 2.0;
+        slope.width = 3.0;
+        scene.walls.push_back(slope);
+        scene.analysis = "slope";
+        const armour::Shape cube = armour::make_cube_shape(kA, 0.0, 2400.0);
+        armour::UnitTemplate unit;
+        unit.mesh = cube.mesh;
+        unit.props = cube.props;
+        setup.units.push_back(unit);
+        setup.unit_Dn.push_back(cube.Dn());
+        frame = *armour::slope_frame(scene);
+        turn = Eigen::AngleAxisd(-std::atan2(1.0, 1.5), Vector3d::UnitY());
+    }
+    // A cube centred at slope coordinates (s, y, n).
+    void place(double s, double y, double n) {
+        armour::BodyInit b;
+        b.pose.position = frame.origin + s * frame.along + y * frame.across + n * frame.normal;
+        b.pose.orientation = turn;
+        setup.bodies.push_back(b);
+        BodyState st;
+        st.pose = b.pose;
+        states.push_back(st);
+    }
+    // rows x columns cubes, touching up the slope, `pitch` apart across it, at height n.
+    void layer(int rows, int columns, double pitch, double n) {
+        for (int i = 0; i < rows; ++i)
+            for (int j = 0; j < columns; ++j)
+                place((i + 0.5) * kA, (j - 0.5 * (columns - 1)) * pitch, n);
+    }
+};
+
+} // namespace
+
+TEST(SlopeProfile, BallRestsOnAFaceAnEdgeAndAVertex) {
+    const double r = 0.25;
+    const Vector3d a(0, 0, 1), b(1, 0, 1), c(0, 1, 1);
+    EXPECT_NEAR(armour::ball_contact_height(0.2, 0.2, r, a, b, c), 1.0 + r, 1e-12);
+    // 0.1 beyond the edge x = 0: the ball hangs on the edge.
+    EXPECT_NEAR(armour::ball_contact_height(-0.1, 0.5, r, a, b, c), 1.0 + std::sqrt(r * r - 0.01), 1e-12);
+    // Beyond the corner at the origin, 0.1 in x and y.
+    EXPECT_NEAR(armour::ball_contact_height(-0.1, -0.1, r, a, b, c), 1.0 + std::sqrt(r * r - 0.02), 1e-12);
+    EXPECT_EQ(armour::ball_contact_height(-0.3, 0.5, r, a, b, c), -HUGE_VAL); // out of reach
+    // A 45 degree face z = x: the centre sits r sqrt(2) above it.
+    const Vector3d p(0, 0, 0), q(1, 0, 1), s(0, 1, 0);
+    EXPECT_NEAR(armour::ball_contact_height(0.5, 0.2, r, p, q, s), 0.5 + r * std::sqrt(2.0), 1e-12);
+}
+
+// One layer of 4 x 10 cubes, rows touching, columns 0.1 a apart: the ball
+// (0.5 a) cannot enter the 0.1 a gaps (it sags at most 0.005 a there), so the
+// profiler reads t = a; the covered area is 4 a by 10.9 a, so
+// packing = 40 / 43.6 and porosity = 1 - 40 a^3 / (43.6 a^2 t) = 0.0826.
+// Stacking the same layer again doubles t and the packing, not the porosity.
+TEST(SlopeProfile, RegularCubeLayersHaveTheirKnownThicknessAndPorosity) {
+    CubeSlope one;
+    one.layer(4, 10, 1.1 * kA, 0.5 * kA);
+    const armour::LayerRegion region = armour::layer_region(one.frame, one.setup, one.states);
+    ASSERT_EQ(region.bodies.size(), 40u);
+    EXPECT_NEAR(region.area(), 4 * kA * 10.9 * kA, 1e-12);
+    const armour::ArmourProfile profile = armour::armour_profile(one.frame, one.setup, one.states, region);
+    const armour::LayerFigures f = armour::layer_figures(one.setup, region, profile, 1);
+    EXPECT_NEAR(f.thickness, kA, 1e-3 * kA);
+    EXPECT_LE(f.thickness, kA + 1e-12); // the envelope never rises above the tops
+    EXPECT_NEAR(f.packing_density, 40.0 / 43.6, 1e-12);
+    EXPECT_NEAR(f.porosity, 1.0 - 40.0 / 43.6, 1e-3);
+    EXPECT_NEAR(f.layer_coefficient, 1.0, 1e-3);
+
+    CubeSlope two;
+    two.layer(4, 10, 1.1 * kA, 0.5 * kA);
+    two.layer(4, 10, 1.1 * kA, 1.5 * kA);
+    const armour::LayerRegion region2 = armour::layer_region(two.frame, two.setup, two.states);
+    const armour::LayerFigures f2 = armour::layer_figures(
+        two.setup, region2, armour::armour_profile(two.frame, two.setup, two.states, region2), 2);
+    EXPECT_NEAR(f2.thickness, 2 * kA, 1e-3 * kA);
+    EXPECT_NEAR(f2.packing_density, 80.0 / 43.6, 1e-12);
+    EXPECT_NEAR(f2.porosity, 1.0 - 40.0 / 43.6, 1e-3);
+    EXPECT_NEAR(f2.layer_coefficient, 1.0, 1e-3);
+}
+
+// A lone cube: where the ball misses it, it reads the underlayer (0).
+TEST(SlopeProfile, HolesReadTheUnderlayer) {
+    CubeSlope c;
+    c.place(0.5 * kA, 0.0, 0.5 * kA);
+    c.place(2.5 * kA, 0.0, 0.5 * kA); // a hole 1 a long between the two, wider than the ball
+    const armour::LayerRegion region = armour::layer_region(c.frame, c.setup, c.states);
+    const armour::ArmourProfile p = armour::armour_profile(c.frame, c.setup, c.states, region);
+    ASSERT_EQ(p.ny, 10);
+    const int middle = p.ns / 2; // s = 1.5 a, 0.5 a from both cubes
+    EXPECT_NEAR(p.s_lo + (middle + 0.5) * p.ds, 1.5 * kA, 0.1 * kA);
+    EXPECT_NEAR(p.at(middle, 5), 0.0, 1e-12);
+    EXPECT_NEAR(p.at(0, 5), kA, 1e-12);
+    // Taking the upper cube away erodes its a x a section and the ball's
+    // overhang on its seaward edge, (a - r) r + pi r^2 / 4 (r = a / 4), on
+    // every line across; the 0.1 a grid reads it within 4 %.
+    std::vector<BodyState> after = c.states;
+    after[1].pose.position += 5.0 * c.frame.across;
+    const armour::ArmourProfile q = armour::armour_profile(c.frame, c.setup, after, region);
+    const double r = 0.25 * kA, expected = kA * kA + (kA - r) * r + 0.25 * M_PI * r * r;
+    EXPECT_NEAR(armour::eroded_area(p, q), expected, 0.04 * expected);
+    EXPECT_EQ(armour::eroded_area(q, p), 0.0); // nothing below the first profile
+}
+
+TEST(SlopeAnalysis, ReportsTheLayerAndWhetherThePileSettled) {
+    CubeSlope c;
+    c.layer(4, 10, 1.1 * kA, 0.5 * kA);
+    c.scene.layers = 1;
+    c.scene.settle_span = 0.2;
+    const auto analysis = armour::make_analysis({c.scene, c.setup, "", ""});
+    std::vector<BodyState> moving = c.states;
+    moving[3].velocity = Vector3d(0.05, 0, 0); // faster than settle_speed 0.01 m/s
+    analysis->sample(0.0, moving);
+    analysis->sample(0.1, c.states);
+    analysis->sample(0.2, c.states);
+    EXPECT_FALSE(analysis->finished()); // quiet for 0.1 s only
+    nlohmann::json summary = nlohmann::json::object();
+    EXPECT_NE(analysis->write(summary), "");
+    EXPECT_FALSE(summary["settled"].get<bool>());
+    analysis->sample(0.3, c.states);
+    EXPECT_TRUE(analysis->finished());
+    summary = nlohmann::json::object();
+    EXPECT_EQ(analysis->write(summary), "");
+    EXPECT_TRUE(summary["settled"].get<bool>());
+    EXPECT_NEAR(summary["settled_at"].get<double>(), 0.3, 1e-12);
+    EXPECT_NEAR(summary["layer_thickness"].get<double>(), kA, 1e-3 * kA);
+    EXPECT_NEAR(summary["porosity"].get<double>(), 1.0 - 40.0 / 43.6, 1e-3);
+    EXPECT_NEAR(summary["packing_density"].get<double>(), 40.0 / 43.6, 1e-12);
+    EXPECT_NEAR(summary["layer_coefficient"].get<double>(), 1.0, 1e-3);
+}
+
+TEST(SlopeAnalysis, SlowButEnergeticPilesHaveNotSettled) {
+    CubeSlope c;
+    c.layer(1, 2, 1.1 * kA, 0.5 * kA);
+    c.scene.settle_energy = 1e-4;
+    armour::SettleWatch watch(c.scene, c.setup);
+    std::vector<BodyState> spinning = c.states;
+    // 5 rad/s about the normal: centres at rest, kinetic energy 0.5 I w^2 =
+    // 0.5 (m a^2/6) 25 = 2.08 a^2 m, far above 1e-4 of m g a per unit.
+    spinning[0].angular_velocity = 5.0 * c.frame.normal;
+    for (int k = 0; k <= 10; ++k)
+        watch.sample(0.1 * k, spinning);
+    EXPECT_FALSE(watch.settled());
+    EXPECT_EQ(watch.max_speed(), 0.0);
+    EXPECT_GT(watch.kinetic_energy_ratio(), 1e-4);
+}
+
+namespace {
+
+// The slope_cubes flume (toe step 0.1 m) with a [[pattern]] of 0.2 m cubes.
+std::string pattern_scene(const std::string &engine, const std::string &pattern) {
+    return "name = \"pattern\"\n[run]\nengine = \"" + engine +
+           "\"\nduration = 0.01\ndomain_min = [-1.6, -0.6, -0.1]\ndomain_max = [2.1, 0.6, 2.5]\n"
+           "[[material]]\nname = \"concrete\"\n"
+           "[[unit]]\nname = \"cube\"\nshape = \"cube\"\nsize = 0.2\nspheres = 8\n"
+           "[[wall]]\nname = \"slope\"\ntype = \"slope\"\ncot = 1.5\nheight = 1.0\nwidth = 1.0\n"
+           "toe_height = 0.1\n"
+           "[[pattern]]\nunit = \"cube\"\nwall = \"slope\"\n" +
+           pattern;
+}
+
+// A temporary path of this process's own (test runs may overlap on one machine).
+std::filesystem::path temporary(const std::string &name) {
+    return std::filesystem::temp_directory_path() / (std::to_string(::getpid()) + "_" + name);
+}
+
+armour::Scene write_and_load(const std::string &name, const std::string &text) {
+    const std::filesystem::path file = temporary(name);
+    std::ofstream(file) << text;
+    struct Removed {
+        std::filesystem::path path;
+        ~Removed() { std::filesystem::remove(path); }
+    } removed{file};
+    return armour::load_scene(file.string());
+}
+
+std::string cache_dir() {
+    return (std::filesystem::temp_directory_path() / "armour_test_slope_cache").string();
+}
+
+} // namespace
+
+// With its defaults a pattern clears the toe step and places its units apart,
+// as the engine collides them: the clump's spheres on a DEM engine, the
+// exact cube on an exact-shape one (build_scene refuses overlaps and cuts).
+TEST(SlopePattern, DefaultsPlaceClearOfTheToeAndOfEachOther) {
+    for (const armour::EngineStyle &style : armour::engine_styles()) {
+        if (style.capabilities.contacts == armour::ContactKind::none)
+            continue;
+        const armour::Scene scene =
+            write_and_load("armour_test_pattern.toml", pattern_scene(style.name, "rows = 3\ncolumns = 4\n"));
+        armour::SceneSetup setup;
+        ASSERT_NO_THROW(setup = armour::build_scene(scene, cache_dir(), false)) << style.name;
+        ASSERT_EQ(setup.bodies.size(), 12u) << style.name;
+        // Neighbours at least a unit apart, centres off the slope by half a unit.
+        const armour::SlopeFrame frame = *armour::slope_frame(scene);
+        for (std::size_t i = 0; i < setup.bodies.size(); ++i) {
+            const Vector3d c = frame.local(setup.bodies[i].pose.position);
+            EXPECT_GE(c.z(), 0.5 * kA) << style.name;
+            EXPECT_GE(c.x() - 0.5 * kA, 0.0) << style.name; // landward of the toe
+            for (std::size_t j = i + 1; j < setup.bodies.size(); ++j)
+                EXPECT_GE((setup.bodies[i].pose.position - setup.bodies[j].pose.position).norm(), kA)
+                    << style.name;
+        }
+    }
+}
+
+// packing_density sets the spacing Dn sqrt(layers / phi): 1.17 units per
+// Dn^2 in two layers (Rock Manual, double-layer cubes), the upper layer in
+// the gaps of the lower. A density no regular pattern reaches is refused.
+TEST(SlopePattern, TargetsAPackingDensity) {
+    const armour::Scene scene = write_and_load(
+        "armour_test_packing.toml",
+        pattern_scene("liggghts", "rows = 3\ncolumns = 3\nlayers = 2\npacking_density = 1.17\n"));
+    const armour::SceneSetup setup = armour::build_scene(scene, cache_dir(), false);
+    ASSERT_EQ(setup.bodies.size(), 9u + 6u);
+    const double spacing = setup.unit_Dn[0] * std::sqrt(2.0 / 1.17);
+    EXPECT_NEAR((setup.bodies[1].pose.position - setup.bodies[0].pose.position).norm(), spacing, 1e-9);
+    EXPECT_NEAR((setup.bodies[3].pose.position - setup.bodies[0].pose.position).norm(), spacing, 1e-9);
+    const armour::SlopeFrame frame = *armour::slope_frame(scene);
+    const Vector3d lower = frame.local(setup.bodies[0].pose.position),
+                   upper = frame.local(setup.bodies[9].pose.position);
+    EXPECT_NEAR(upper.x() - lower.x(), 0.5 * spacing, 1e-9);
+    EXPECT_NEAR(upper.y() - lower.y(), 0.5 * spacing, 1e-9);
+    EXPECT_GT(upper.z() - lower.z(), kA);
+
+    const armour::Scene dense =
+        write_and_load("armour_test_dense.toml", pattern_scene("liggghts", "packing_density = 1.17\n"));
+    try {
+        armour::build_scene(dense, cache_dir(), false);
+        FAIL() << "1.17 units per Dn^2 in one layer was placed";
+    } catch (const armour::InputError &e) {
+        EXPECT_NE(std::string(e.what()).find("key 'pattern.0.packing_density'"), std::string::npos)
+            << e.what();
+    }
+}
+
+// ---------------------------------------------------------------- damage
+
+TEST(Damage, FormulasGiveThePublishedNumbers) {
+    // stability.md's table (Van der Meer 1988, N = 1000, s_om = 0.03) and Hudson at cot 1.5.
+    EXPECT_NEAR(armour::van_der_meer_cubes_ns(0.0, 1000, 0.03), 1.42, 0.005);
+    EXPECT_NEAR(armour::van_der_meer_cubes_ns(0.5, 1000, 0.03), 2.33, 0.005);
+    EXPECT_NEAR(armour::van_der_meer_cubes_ns(2.0, 1000, 0.03), 3.00, 0.005);
+    EXPECT_NEAR(armour::van_der_meer_cubes_ns(0.5, 3000, 0.02), 2.16, 0.005);
+    EXPECT_NEAR(armour::hudson_ns(6.5, 1.5), 2.14, 0.005);
+    EXPECT_NEAR(armour::hudson_ns(7.5, 1.5), 2.24, 0.005);
+    EXPECT_DOUBLE_EQ(armour::stability_number(0.28, 2400, 1000, 0.2), 1.0);
+    EXPECT_DOUBLE_EQ(armour::n_od(3, 1.0, 0.2), 0.6);
+}
+
+TEST(Damage, RockingIsAnExcursionThatComesBack) {
+    armour::Pose rest;
+    armour::UnitDamageTracker unit(rest, 0.2, 5.0);
+    const auto turned = [&](double deg) {
+        armour::Pose p = rest;
+        p.orientation = Eigen::AngleAxisd(deg * M_PI / 180.0, Vector3d::UnitX());
+        return p;
+    };
+    for (const double deg : {0.0, 3.0, 6.0, 4.0, 2.0, 7.0, 1.0, 4.9, 2.6, 9.0, 8.0})
+        unit.sample(turned(deg));
+    // 6 -> 2 and 7 -> 1 return below half the threshold; 4.9 never passed
+    // it; 9 -> 8 has not come back.
+    EXPECT_EQ(unit.rocking_events(), 2);
+    EXPECT_NEAR(unit.max_rotation_deg(), 9.0, 1e-9);
+    EXPECT_EQ(unit.max_displacement(), 0.0);
+}
+
+TEST(Damage, WaveConditionsPreferTheMeasuredIncidentWave) {
+    armour::Scene scene;
+    scene.wave_height = 0.3;
+    scene.wave_period = 2.0;
+    const armour::WaveConditions target = armour::wave_conditions(nlohmann::json::object(), scene, 100.0);
+    EXPECT_EQ(target.source, "scene");
+    EXPECT_DOUBLE_EQ(*target.Hs, 0.3);
+    EXPECT_NEAR(*target.s_om, 2 * M_PI * 0.3 / (9.81 * 4.0), 1e-3);
+    EXPECT_DOUBLE_EQ(*target.waves, 50.0);
+    const nlohmann::json measured = {{"waves", {{"incident_height", 0.25}, {"s_om", 0.03}, {"waves", 480}}}};
+    const armour::WaveConditions m = armour::wave_conditions(measured, scene, 100.0);
+    EXPECT_EQ(m.source, "measured");
+    EXPECT_DOUBLE_EQ(*m.Hs, 0.25);
+    EXPECT_DOUBLE_EQ(*m.s_om, 0.03);
+    EXPECT_DOUBLE_EQ(*m.waves, 480.0);
+    scene.wave_height = 0.0;
+    EXPECT_EQ(armour::wave_conditions(nlohmann::json::object(), scene, 100.0).source, "none");
+}
+
+// A layer of 4 rows x 5 touching cubes across a 1 m slope (5 strips of Dn):
+// the second row is washed away (5 displaced: N_od = 1), a row-1 cube rocks
+// 10 degrees twice about the face's normal and comes back, a row-4 cube
+// turns 8 degrees and stays. The profiler reads the lost row as a^2 less
+// the ball's overhang on both edges: S = 1 - 2 ((a - r) r + pi r^2 / 4) / a^2
+// = 0.527 (r = a / 4).
+TEST(Damage, SyntheticTrajectoriesGiveTheirKnownFigures) {
+    CubeSlope c;
+    c.scene.walls[0].width = 1.0;
+    c.scene.analysis = "damage";
+    c.scene.fluid = armour::SceneFluid(); // a coupled record: its first step is the settled pose
+    armour::SceneUnit unit;
+    unit.name = c.setup.units[0].name;
+    unit.density = 2400.0;
+    c.scene.units.push_back(unit);
+    c.scene.wave_height = 0.28;
+    c.scene.wave_period = 2.0;
+    c.layer(4, 5, kA, 0.5 * kA);
+    const std::filesystem::path out = temporary("armour_test_damage");
+    std::filesystem::remove_all(out);
+    std::filesystem::create_directories(out);
+    const auto analysis = armour::make_analysis({c.scene, c.setup, out.string(), ""});
+    const auto spun = [&](const BodyState &s, double deg) {
+        BodyState t = s;
+        t.pose.orientation = Eigen::AngleAxisd(deg * M_PI / 180.0, c.frame.normal) * s.pose.orientation;
+        return t;
+    };
+    std::vector<BodyState> now = c.states;
+    double t = 0.0;
+    analysis->sample(t, now);
+    for (const double deg : {10.0, 0.0, 10.0, 0.0}) {
+        now[2] = spun(c.states[2], deg);
+        now[17] = spun(c.states[17], 8.0);
+        analysis->sample(t += 0.5, now);
+    }
+    for (int k = 5; k < 10; ++k)
+        now[static_cast<std::size_t>(k)].pose.position += 10.0 * c.frame.across; // washed off the slope
+    analysis->sample(t += 0.5, now);
+    nlohmann::json summary = nlohmann::json::object();
+    analysis->write(summary);
+    EXPECT_EQ(summary["units"].get<int>(), 20);
+    EXPECT_EQ(summary["units_displaced"].get<int>(), 5);
+    EXPECT_DOUBLE_EQ(summary["N_od"].get<double>(), 1.0);
+    EXPECT_EQ(summary["rocking_units"].get<int>(), 1);
+    const double r = 0.25 * kA, S = 1.0 - 2.0 * ((kA - r) * r + 0.25 * M_PI * r * r) / (kA * kA);
+    EXPECT_NEAR(summary["damage_S"].get<double>(), S, 0.05 * S);
+    EXPECT_NEAR(summary["Ns"].get<double>(), 0.28 / (1.4 * kA), 1e-12);
+    const double s_om = 2 * M_PI * 0.28 / (9.81 * 4.0);
+    EXPECT_NEAR(summary["s_om"].get<double>(), s_om, 1e-3 * s_om);
+    EXPECT_NEAR(summary["waves"].get<double>(), 1.25, 1e-12); // 2.5 s of 2 s waves
+    EXPECT_NEAR(summary["Ns_van_der_meer"].get<double>(), armour::van_der_meer_cubes_ns(1.0, 1.25, s_om),
+                1e-3);
+    EXPECT_NEAR(summary["Ns_hudson_breaking"].get<double>(), std::cbrt(6.5 * 1.5), 1e-12);
+    EXPECT_NEAR(summary["Ns_hudson_nonbreaking"].get<double>(), std::cbrt(7.5 * 1.5), 1e-12);
+
+    std::ifstream csv(out / "damage.csv");
+    std::vector<std::string> lines;
+    for (std::string line; std::getline(csv, line);)
+        lines.push_back(line);
+    ASSERT_EQ(lines.size(), 2u + 20u); // comment, header, one row per unit
+    EXPECT_EQ(lines[2 + 2].substr(lines[2 + 2].rfind(',', lines[2 + 2].size() - 3)), ",2,0"); // 2 rocks
+    EXPECT_EQ(lines[2 + 5].back(), '1');                                                      // displaced
+    EXPECT_TRUE(std::filesystem::is_regular_file(out / "damage_history.csv"));
+    EXPECT_GT(std::filesystem::file_size(out / "damage.png"), 1000u);
+    std::filesystem::remove_all(out);
+}
+
+TEST(Damage, ASceneWithoutASlopeIsRefusedNamingTheKey) {
+    const std::string text = "name = \"flat\"\n[analysis]\nkind = \"damage\"\n[[material]]\nname = \"m\"\n"
+                             "[[unit]]\nname = \"u\"\nshape = \"cube\"\nsize = 0.2\n"
+                             "[[wall]]\ntype = \"plane\"\npoint = [0, 0, 0]\nnormal = [0, 0, "
+                             "1]\n[[body]]\nunit = \"u\"\nposition = [0, 0, 0.2]\n";
+    try {
+        write_and_load("armour_test_flat_damage.toml", text);
+        FAIL() << "a damage analysis without a slope was accepted";
+    } catch (const armour::InputError &e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("key 'analysis.kind'"), std::string::npos) << what;
+        EXPECT_NE(what.find("[[wall]] of type \"slope\""), std::string::npos) << what;
+    }
+}
+
+// A short dry run of the slope_cubes scene with kind damage writes every
+// file and headline key.
+TEST(Damage, ADrySlopeRunWritesEveryFileAndKey) {
+    const std::filesystem::path dir = temporary("armour_test_damage_run");
+    std::filesystem::remove_all(dir);
+    const std::string scene =
+        (std::filesystem::path(__FILE__).parent_path().parent_path() / "scenes" / "slope_cubes.toml")
+            .string();
+    const std::vector<std::string> args = {"armour",
+                                           "run",
+                                           scene,
+                                           "--out",
+                                           (dir / "out").string(),
+                                           "--cache",
+                                           cache_dir(),
+                                           "--set",
+                                           "analysis.kind=\"damage\"",
+                                           "--set",
+                                           "run.duration=0.1",
+                                           "--set",
+                                           "drop.0.count=6",
+                                           "--set",
+                                           "analysis.wave_height=0.3"};
+    std::vector<const char *> argv;
+    for (const auto &a : args)
+        argv.push_back(a.c_str());
+    ASSERT_EQ(armour::armour_main(static_cast<int>(argv.size()), argv.data()), 0);
+    for (const char *file : {"damage.csv", "damage_history.csv", "damage.png", "summary.json", "bodies.h5"})
+        EXPECT_TRUE(std::filesystem::is_regular_file(dir / "out" / file)) << file;
+    std::ifstream in(dir / "out" / "summary.json");
+    const nlohmann::json summary = nlohmann::json::parse(in);
+    for (const char *key :
+         {"units", "units_displaced", "N_od", "rocking_units", "Ns", "s_om", "waves", "damage_S",
+          "Ns_van_der_meer", "Ns_hudson_breaking", "Ns_hudson_nonbreaking", "damage"})
+        EXPECT_TRUE(summary.contains(key)) << key;
+    EXPECT_EQ(summary["units"].get<int>(), 6);
+    EXPECT_NEAR(summary["Ns"].get<double>(), 0.3 / (1.4 * 0.2), 1e-9);
+    std::filesystem::remove_all(dir);
+}
