@@ -456,8 +456,18 @@ int run_scene(const RunRequest &r) {
         }
         return run_dem(folder, scene, setup, nullptr, nullptr, resume ? &*resume : nullptr);
     }
-    if (resume)
-        throw InputError("--resume: coupled runs (scenes with [fluid]) cannot be resumed yet");
+    if (resume) {
+        if (scene.fluid->settle_time > 0.0)
+            throw InputError(r.scene +
+                             ": key 'fluid.settle_time': a run that settles its units first cannot be "
+                             "resumed yet; resume the settled scene (OUT/settle/scene.settled.toml) run on "
+                             "its own");
+        if (!engine_style(scene.engine).capabilities.restart)
+            throw InputError(r.scene + ": key 'run.engine': the " + scene.engine +
+                             " engine cannot restore a state, so its runs cannot be resumed");
+        folder.resume();
+        return run_coupled(r, scene, setup, folder, &*resume);
+    }
     if (scene.fluid->settle_time <= 0.0)
         return run_coupled(r, scene, setup, folder);
 

@@ -66,6 +66,12 @@ Checkpoints::Checkpoints(fs::path out, double interval, double after)
       next_(interval > 0.0 ? (std::floor(after / interval + 1e-9) + 1.0) * interval : HUGE_VAL) {}
 
 fs::path Checkpoints::write(Checkpoint at, const std::function<void(const fs::path &)> &fill) {
+    const fs::path partial = begin();
+    fill(partial);
+    return commit(at, partial);
+}
+
+fs::path Checkpoints::begin() {
     std::error_code ec;
     fs::create_directories(root_, ec);
     // Partial folders are ours (a killed run's): they go.
@@ -75,7 +81,11 @@ fs::path Checkpoints::write(Checkpoint at, const std::function<void(const fs::pa
     const fs::path partial = root_ / (".partial-" + std::to_string(::getpid()));
     if (!fs::create_directories(partial / "engine", ec) || ec)
         throw InputError(partial.string() + ": cannot create the checkpoint folder: " + ec.message());
-    fill(partial);
+    return partial;
+}
+
+fs::path Checkpoints::commit(Checkpoint at, const fs::path &partial) {
+    std::error_code ec;
     const nlohmann::json j = {{"time", at.time},
                               {"records", at.records},
                               {"wall_seconds", at.wall_seconds},

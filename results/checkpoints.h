@@ -54,6 +54,13 @@ class Checkpoints {
     std::filesystem::path write(Checkpoint at,
                                 const std::function<void(const std::filesystem::path &)> &fill);
 
+    // The same in two parts, for a writer whose states are ready at
+    // different times (the interFoam plugin: the fluid's fields one step
+    // after the engine's): begin() makes the partial folder (with engine/),
+    // commit() finishes it as write() does.
+    std::filesystem::path begin();
+    std::filesystem::path commit(Checkpoint at, const std::filesystem::path &partial);
+
   private:
     std::filesystem::path root_;
     double interval_;
