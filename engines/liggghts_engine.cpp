@@ -61,8 +61,9 @@ class LiggghtsEngine final : public RigidBodyEngine {
         check_materials(settings_);
         if (!(settings_.domain_max.array() > settings_.domain_min.array()).all())
             throw InputError("run.domain: domain_max must exceed domain_min in x, y and z");
-        work_dir_ = settings_.work_dir.empty() ? fs::temp_directory_path() / "armour-liggghts"
+        base_dir_ = settings_.work_dir.empty() ? fs::temp_directory_path() / "armour-liggghts"
                                                : fs::path(settings_.work_dir);
+        work_dir_ = base_dir_;
     }
 
     ~LiggghtsEngine() override {
@@ -165,8 +166,11 @@ class LiggghtsEngine final : public RigidBodyEngine {
     }
 
     void read_state(const std::string &dir) override {
-        if (lmp_)
-            throw std::logic_error("LiggghtsEngine::read_state after the engine started");
+        if (lmp_) { // started by a state() query only (no step): start again from the restart file
+            lammps_close(lmp_);
+            lmp_ = nullptr;
+            transcript_.str("");
+        }
         const std::vector<double> v = read_state_values(dir + "/liggghts");
         if (v.size() != 7 * bodies_.size() + 4 * units_.size() + 3)
             throw InputError(dir + "/liggghts: holds " + std::to_string(v.size()) + " values, not those of " +
@@ -277,6 +281,7 @@ class LiggghtsEngine final : public RigidBodyEngine {
         // run puts them (the files a run keeps are rank 0's).
         int rank = 0;
         MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+        work_dir_ = base_dir_;
         if (rank > 0)
             work_dir_ /= "processor" + std::to_string(rank);
         std::error_code ec;
@@ -589,7 +594,7 @@ class LiggghtsEngine final : public RigidBodyEngine {
     }
 
     EngineSettings settings_;
-    fs::path work_dir_;
+    fs::path base_dir_, work_dir_;
     std::vector<UnitTemplate> units_;
     std::vector<Body> bodies_;
     std::vector<Wall> walls_;
