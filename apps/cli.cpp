@@ -98,6 +98,10 @@ int armour_main(int argc, const char *const *argv) {
     std::string run_engine;
     run_cmd->add_option("--engine", run_engine,
                         "Engine, same as --set run.engine=\"NAME\" (`armour engines` lists them)");
+    run_cmd->add_flag("--resume", run.resume,
+                      "Continue the run in --out from its last checkpoint (run.checkpoint_interval, s of "
+                      "simulated time); only run.duration, run.checkpoint_interval and fluid.write_interval "
+                      "may differ (docs/checkpoints.md)");
 
     CLI::App *engines_cmd = app.add_subcommand(
         "engines", "List the rigid-body engines of this build, one per line, with their capabilities.");

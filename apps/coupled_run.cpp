@@ -6,6 +6,7 @@
 #include "clump_io.h"
 #include "engine_registry.h"
 #include "openfoam_environment.h"
+#include "foam_restart.h"
 #include "output_folder.h"
 #include "stl_io.h"
 
@@ -250,6 +251,13 @@ void fill_tokens(const fs::path &case_dir, const std::map<std::string, std::stri
                              " (known: the tokens listed in docs/openfoam.md)");
         std::ofstream(entry.path(), std::ios::binary | std::ios::trunc) << text;
     }
+}
+
+// The plugin's count of coupling steps (one per fluid step), carried across resumes.
+int coupling_steps(const fs::path &out) {
+    std::ifstream in(out / "coupling_times.json");
+    const json times = json::parse(in, nullptr, false);
+    return times.is_object() ? times.value("coupling_steps", 0) : 0;
 }
 
 int count_solver_steps(const std::string &log) {
@@ -512,7 +520,8 @@ std::vector<std::string> check_coupled_scene(const Scene &scene, const SceneSetu
     return warnings;
 }
 
-int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &setup, OutputFolder &folder) {
+int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &setup, OutputFolder &folder,
+                const Checkpoint *resume) {
     const auto start = std::chrono::steady_clock::now();
     Scene scene = scene_in;
     SceneFluid &f = *scene.fluid;
@@ -544,88 +553,99 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
 
     // The case: template copy with its tokens filled from the scene.
     const fs::path case_dir = folder.claim("case");
-    fs::copy(source_dir() / "foam_cases" / f.case_name, case_dir, fs::copy_options::recursive);
-    const std::string used = template_text(case_dir);
-    const Eigen::Vector3d &lo = scene.domain_min, &hi = scene.domain_max;
-    const Eigen::Vector3d pad = Eigen::Vector3d::Constant(1.0 + (hi - lo).maxCoeff());
-    double speed = 0.0;
-    for (const auto &b : setup.bodies)
-        speed = std::max(speed, b.velocity.norm());
     const Eigen::Vector3d h = cell_size(scene);
-    const double first_dt =
-        speed > 0.0 ? std::min(f.max_time_step, f.max_courant * h.minCoeff() / speed) : f.max_time_step;
-    // Without a water column the column box is empty (below the mesh).
-    const Eigen::Vector3d column_min = f.has_water_box ? f.water_box_min : Eigen::Vector3d(lo - 2.0 * pad),
-                          column_max = f.has_water_box ? f.water_box_max : Eigen::Vector3d(lo - pad);
-    std::map<std::string, std::string> tokens = {
-        {"@ARMOUR_PLUGIN@", plugin},
-        {"@NP@", std::to_string(f.np)},
-        {"@X0@", num(lo.x())},
-        {"@Y0@", num(lo.y())},
-        {"@Z0@", num(lo.z())},
-        {"@X1@", num(hi.x())},
-        {"@Y1@", num(hi.y())},
-        {"@Z1@", num(hi.z())},
-        {"@NX@", std::to_string(f.cells[0])},
-        {"@NY@", std::to_string(f.cells[1])},
-        {"@NZ@", std::to_string(f.cells[2])},
-        {"@BOX_MIN@", foam_vector(lo - pad)},
-        {"@WATER_MAX@", foam_vector(Eigen::Vector3d(hi.x() + pad.x(), hi.y() + pad.y(), f.water_level))},
-        {"@WATER_LEVEL@", num(f.water_level)},
-        {"@END_TIME@", num(scene.duration)},
-        {"@DELTA_T@", num(first_dt)},
-        {"@MAX_DELTA_T@", num(f.max_time_step)},
-        {"@MAX_CO@", num(f.max_courant)},
-        {"@WRITE_INTERVAL@", num(f.write_interval)},
-        {"@RHO_WATER@", num(f.fluid_density)},
-        {"@NU_WATER@", num(f.viscosity)},
-        {"@RHO_AIR@", num(f.air_density)},
-        {"@NU_AIR@", num(f.air_viscosity)},
-        {"@GRAVITY@", foam_vector(scene.gravity)},
-        {"@SCENE@", resolved.string()},
-        {"@CACHE@", r.cache.empty() ? default_cache_dir() : fs::absolute(r.cache).string()},
-        {"@OUTPUT@", out.string()},
-        {"@WATER_BOX_MIN@", foam_vector(column_min)},
-        {"@WATER_BOX_MAX@", foam_vector(column_max)},
-        {"@WATER_DEPTH@", num(f.water_level - lo.z())},
-        {"@WAVE_HEIGHT@", num(f.wave_height)},
-    };
-    geometry_tokens(scene, setup, used, tokens);
-    if (used.find("@ARMOUR_WAVES@") != std::string::npos) {
-        const std::string waves = waves_library(plugin);
-        if (!fs::is_regular_file(waves))
-            throw InputError("fluid.case \"" + f.case_name + "\" needs the wave library " + waves +
-                             ": build the target armourWaves (or set ARMOUR_WAVES_LIB)");
-        tokens["@ARMOUR_WAVES@"] = waves;
-        if (f.wave_height <= 0.0)
-            throw InputError(scene.file + ": key 'fluid.wave_height': fluid.case \"" + f.case_name +
-                             "\" makes a solitary wave: give its height (> 0 m)");
-    }
-    fill_tokens(case_dir, tokens);
-
+    if (scene.checkpoint_interval > 0.0)
+        folder.claim("checkpoints"); // the plugin writes them
     // Debian's OpenFOAM finds its etc/ files only through this.
     ::setenv("WM_PROJECT_DIR", "/usr/share/openfoam", 0);
-    std::fprintf(stderr, "run: %s: %d x %d x %d cells, %d rank%s, engine %s -> %s\n", scene.name.c_str(),
-                 f.cells[0], f.cells[1], f.cells[2], f.np, f.np > 1 ? "s" : "", scene.engine.c_str(),
-                 case_dir.c_str());
-    run_tool("blockMesh", {"blockMesh"}, case_dir, scene.duration, false);
-    // Blocked cells: a template with system/topoSetDict makes the cellSet
-    // "fluid" and the mesh keeps only it, the exposed faces joining the patch
-    // "walls" (foam_cases/slope_waves). Fields come from 0/*.orig afterwards.
-    if (fs::is_regular_file(case_dir / "system" / "topoSetDict")) {
-        run_tool("topoSet", {"topoSet"}, case_dir, scene.duration, false);
-        run_tool("subsetMesh", {"subsetMesh", "-overwrite", "fluid", "-patch", "walls"}, case_dir,
-                 scene.duration, false);
+    if (resume)
+        restore_case(case_dir, *resume, scene.duration);
+    else {
+        fs::copy(source_dir() / "foam_cases" / f.case_name, case_dir, fs::copy_options::recursive);
+        const std::string used = template_text(case_dir);
+        const Eigen::Vector3d &lo = scene.domain_min, &hi = scene.domain_max;
+        const Eigen::Vector3d pad = Eigen::Vector3d::Constant(1.0 + (hi - lo).maxCoeff());
+        double speed = 0.0;
+        for (const auto &b : setup.bodies)
+            speed = std::max(speed, b.velocity.norm());
+        const double first_dt =
+            speed > 0.0 ? std::min(f.max_time_step, f.max_courant * h.minCoeff() / speed) : f.max_time_step;
+        // Without a water column the column box is empty (below the mesh).
+        const Eigen::Vector3d column_min =
+                                  f.has_water_box ? f.water_box_min : Eigen::Vector3d(lo - 2.0 * pad),
+                              column_max = f.has_water_box ? f.water_box_max : Eigen::Vector3d(lo - pad);
+        std::map<std::string, std::string> tokens = {
+            {"@ARMOUR_PLUGIN@", plugin},
+            {"@NP@", std::to_string(f.np)},
+            {"@X0@", num(lo.x())},
+            {"@Y0@", num(lo.y())},
+            {"@Z0@", num(lo.z())},
+            {"@X1@", num(hi.x())},
+            {"@Y1@", num(hi.y())},
+            {"@Z1@", num(hi.z())},
+            {"@NX@", std::to_string(f.cells[0])},
+            {"@NY@", std::to_string(f.cells[1])},
+            {"@NZ@", std::to_string(f.cells[2])},
+            {"@BOX_MIN@", foam_vector(lo - pad)},
+            {"@WATER_MAX@", foam_vector(Eigen::Vector3d(hi.x() + pad.x(), hi.y() + pad.y(), f.water_level))},
+            {"@WATER_LEVEL@", num(f.water_level)},
+            {"@END_TIME@", num(scene.duration)},
+            {"@DELTA_T@", num(first_dt)},
+            {"@MAX_DELTA_T@", num(f.max_time_step)},
+            {"@MAX_CO@", num(f.max_courant)},
+            {"@WRITE_INTERVAL@", num(f.write_interval)},
+            {"@RHO_WATER@", num(f.fluid_density)},
+            {"@NU_WATER@", num(f.viscosity)},
+            {"@RHO_AIR@", num(f.air_density)},
+            {"@NU_AIR@", num(f.air_viscosity)},
+            {"@GRAVITY@", foam_vector(scene.gravity)},
+            {"@SCENE@", resolved.string()},
+            {"@CACHE@", r.cache.empty() ? default_cache_dir() : fs::absolute(r.cache).string()},
+            {"@OUTPUT@", out.string()},
+            {"@WATER_BOX_MIN@", foam_vector(column_min)},
+            {"@WATER_BOX_MAX@", foam_vector(column_max)},
+            {"@WATER_DEPTH@", num(f.water_level - lo.z())},
+            {"@WAVE_HEIGHT@", num(f.wave_height)},
+        };
+        geometry_tokens(scene, setup, used, tokens);
+        if (used.find("@ARMOUR_WAVES@") != std::string::npos) {
+            const std::string waves = waves_library(plugin);
+            if (!fs::is_regular_file(waves))
+                throw InputError("fluid.case \"" + f.case_name + "\" needs the wave library " + waves +
+                                 ": build the target armourWaves (or set ARMOUR_WAVES_LIB)");
+            tokens["@ARMOUR_WAVES@"] = waves;
+            if (f.wave_height <= 0.0)
+                throw InputError(scene.file + ": key 'fluid.wave_height': fluid.case \"" + f.case_name +
+                                 "\" makes a solitary wave: give its height (> 0 m)");
+        }
+        fill_tokens(case_dir, tokens);
+
+        std::fprintf(stderr, "run: %s: %d x %d x %d cells, %d rank%s, engine %s -> %s\n", scene.name.c_str(),
+                     f.cells[0], f.cells[1], f.cells[2], f.np, f.np > 1 ? "s" : "", scene.engine.c_str(),
+                     case_dir.c_str());
+        run_tool("blockMesh", {"blockMesh"}, case_dir, scene.duration, false);
+        // Blocked cells: a template with system/topoSetDict makes the cellSet
+        // "fluid" and the mesh keeps only it, the exposed faces joining the patch
+        // "walls" (foam_cases/slope_waves). Fields come from 0/*.orig afterwards.
+        if (fs::is_regular_file(case_dir / "system" / "topoSetDict")) {
+            run_tool("topoSet", {"topoSet"}, case_dir, scene.duration, false);
+            run_tool("subsetMesh", {"subsetMesh", "-overwrite", "fluid", "-patch", "walls"}, case_dir,
+                     scene.duration, false);
+        }
+        for (const auto &e : fs::directory_iterator(case_dir / "0"))
+            if (e.path().extension() == ".orig")
+                fs::copy_file(e.path(), case_dir / "0" / e.path().stem(),
+                              fs::copy_options::overwrite_existing);
+        run_tool("setFields", {"setFields"}, case_dir, scene.duration, false);
+        if (scene.checkpoint_interval > 0.0)
+            write_fields_exactly(case_dir);
+        if (f.np > 1)
+            run_tool("decomposePar", {"decomposePar", "-force"}, case_dir, scene.duration, false);
     }
-    for (const auto &e : fs::directory_iterator(case_dir / "0"))
-        if (e.path().extension() == ".orig")
-            fs::copy_file(e.path(), case_dir / "0" / e.path().stem(), fs::copy_options::overwrite_existing);
-    run_tool("setFields", {"setFields"}, case_dir, scene.duration, false);
     const auto solver_start = std::chrono::steady_clock::now();
     if (f.np == 1) {
         run_tool("interFoam", {"interFoam"}, case_dir, scene.duration, true);
     } else {
-        run_tool("decomposePar", {"decomposePar", "-force"}, case_dir, scene.duration, false);
         run_tool("interFoam",
                  {"mpirun", "--allow-run-as-root", "-np", std::to_string(f.np), "-x", "WM_PROJECT_DIR", "-x",
                   "LD_LIBRARY_PATH", "interFoam", "-parallel"},
@@ -668,7 +688,8 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
           {"cell_size", {h.x(), h.y(), h.z()}},
           {"cells_across_unit", across},
           {"np", f.np},
-          {"steps", count_solver_steps(solver_log)},
+          // A resumed run's coupling steps go on from its checkpoint; its log starts there.
+          {"steps", resume ? coupling_steps(out) : count_solver_steps(solver_log)},
           {"max_time_step", f.max_time_step},
           {"max_courant", f.max_courant},
           {"water_level", f.water_level},

@@ -26,8 +26,12 @@ namespace armour {
 // than 4 cells across a unit); throws InputError for one that cannot.
 std::vector<std::string> check_coupled_scene(const Scene &scene, const SceneSetup &setup, int np);
 
+struct Checkpoint;
+
 // Returns the exit status; `request.np` > 0 overrides fluid.np. Writes into
-// `out` (an `armour run` folder; opened here if not yet).
-int run_coupled(const RunRequest &request, const Scene &scene, const SceneSetup &setup, OutputFolder &out);
+// `out` (an `armour run` folder; opened here if not yet). `resume`: continue
+// the run in `out` (resumed already) from this checkpoint (docs/checkpoints.md).
+int run_coupled(const RunRequest &request, const Scene &scene, const SceneSetup &setup, OutputFolder &out,
+                const Checkpoint *resume = nullptr);
 
 } // namespace armour

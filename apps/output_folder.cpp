@@ -38,6 +38,16 @@ bool own_leftover(const std::string &name) {
     return name == kMarker + ".tmp" || name == kLock || prefix_and_pid(name, ".armour-partial-");
 }
 
+// "X.tmp" beside a listed X: the temporary copy a killed run was writing
+// (write_text_file, the XDMF index), so ours.
+bool temporary_of(const std::string &name, const std::vector<std::string> &listed) {
+    const std::string suffix = ".tmp";
+    return name.size() > suffix.size() &&
+           name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0 &&
+           std::find(listed.begin(), listed.end(), name.substr(0, name.size() - suffix.size())) !=
+               listed.end();
+}
+
 // A marker line names a top-level entry; anything that could reach outside
 // the folder is ignored rather than removed.
 bool plain_entry(const std::string &name) {
@@ -221,7 +231,8 @@ OutputFolder::Earlier OutputFolder::check() const {
     if (marked && owner != command_)
         throw InputError(refused + "it is a result of '" + owner + "'" + advice);
     for (const std::string &name : entries_of(target_))
-        if (std::find(earlier.entries.begin(), earlier.entries.end(), name) == earlier.entries.end())
+        if (std::find(earlier.entries.begin(), earlier.entries.end(), name) == earlier.entries.end() &&
+            !temporary_of(name, earlier.entries))
             throw InputError(refused + "holds '" + name + "'" + advice);
     return earlier;
 }
@@ -247,6 +258,8 @@ void OutputFolder::open() {
             throw InputError("--out " + target_.string() + ": cannot create " + staging_.string() + ": " +
                              ec.message());
     } else {
+        for (const std::string &name : earlier.entries)
+            fs::remove(target_ / (name + ".tmp"), ec);
         remove_entries(earlier.entries);
         write_marker(target_, {});
         created_.clear(); // a streaming result stays, whatever happens next
@@ -292,6 +305,24 @@ void OutputFolder::commit() {
     committed_ = true;
     created_.clear();
     fs::remove_all(staging_, ec);
+}
+
+void OutputFolder::resume() {
+    if (opened_)
+        return;
+    if (mode_ != Mode::streaming)
+        throw std::logic_error("OutputFolder::resume() of a staged folder");
+    const Earlier earlier = check();
+    if (!earlier.exists || earlier.entries.empty())
+        throw InputError("--resume: " + target_.string() + " holds no earlier result of '" + command_ +
+                         "' to continue");
+    claimed_ = earlier.entries;
+    std::error_code ec;
+    for (const std::string &name : earlier.entries)
+        fs::remove(target_ / (name + ".tmp"), ec);
+    remove_entries({"summary.json"});
+    write_marker(target_, claimed_);
+    opened_ = true;
 }
 
 void OutputFolder::write_marker(const fs::path &dir, const std::vector<std::string> &entries) const {

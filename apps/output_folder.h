@@ -62,6 +62,10 @@ class OutputFolder {
     std::filesystem::path claim(const std::string &name);
     // Staged: moves the staged entries into place and lists them in the marker.
     void commit();
+    // Streaming, instead of open(): continues an earlier result of this
+    // command (`armour run --resume`): its entries stay and stay listed,
+    // only its summary.json goes (a result being continued is not whole).
+    void resume();
 
     const std::filesystem::path &target() const { return target_; } // the final place
     // Where entries are written until commit(): the staging folder, or DIR

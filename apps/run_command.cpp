@@ -2,7 +2,9 @@
 #include "run_command.h"
 
 #include "analysis.h"
+#include "bodies_file.h"
 #include "body_recorder.h"
+#include "checkpoints.h"
 #include "clump_io.h"
 #include "coupled_run.h"
 #include "engine_registry.h"
@@ -20,6 +22,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <sstream>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -32,10 +35,13 @@ namespace {
 
 class Progress {
   public:
-    Progress(double duration, bool terminal) : duration_(duration), terminal_(terminal) {}
+    // `earlier`: wall seconds of the run before this process (a resume).
+    Progress(double duration, bool terminal, double earlier = 0.0)
+        : duration_(duration), earlier_(earlier), terminal_(terminal) {}
     void update(double t) {
         const double elapsed =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+        // ETA from this process's pace (a resume starts part way).
         const double fraction = std::min(1.0, t / duration_);
         const double eta = fraction > 0.0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
         if (terminal_) {
@@ -51,11 +57,11 @@ class Progress {
         }
     }
     double seconds() const {
-        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+        return earlier_ + std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     }
 
   private:
-    double duration_;
+    double duration_, earlier_;
     bool terminal_;
     double next_report_ = 0.1;
     std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
@@ -65,9 +71,9 @@ class Progress {
 // carries the buoyancy of its part below the surface, so the layer settles
 // under its submerged weight, as in a flume filled slowly.
 struct StillWater {
-    double level = 0.0;           // m, z of the surface
+    double level = 0.0;                  // m, z of the surface
     double density = kFreshWaterDensity; // kg/m^3
-    double update_interval = 0.0; // s between buoyancy updates
+    double update_interval = 0.0;        // s between buoyancy updates
 };
 
 // Buoyancy on body `state` of unit `unit`: -rho g V_below at the centroid of
@@ -88,9 +94,10 @@ void set_buoyancy(RigidBodyEngine &engine, int body, const UnitTemplate &unit, c
 
 // The DEM run of a scene without [fluid], dry or (`water`, a settle run)
 // under still water's buoyancy, into `folder`; `final_states` (optional)
-// receives every body's state at the end.
+// receives every body's state at the end. `resume`: continue the run in
+// `folder` (resumed already) from this checkpoint.
 int run_dem(OutputFolder &folder, const Scene &scene, SceneSetup &setup, std::vector<BodyState> *final_states,
-            const StillWater *water = nullptr) {
+            const StillWater *water = nullptr, const Checkpoint *resume = nullptr) {
     const bool terminal = ::isatty(STDERR_FILENO) != 0;
     // Everything is checked before the output folder is touched.
     const fs::path out = folder.target();
@@ -103,8 +110,10 @@ int run_dem(OutputFolder &folder, const Scene &scene, SceneSetup &setup, std::ve
     for (const auto &b : setup.bodies)
         engine->add_body(b);
     const TimeStepReport dt = engine->time_step_report();
+    if (resume)
+        engine->load_state((resume->dir / "engine").string());
 
-    folder.open();              // an earlier result of this command is replaced
+    folder.open();              // an earlier result of this command is replaced (resumed: nothing)
     folder.claim(scene.engine); // the engine's own files (work_dir), if it writes any
     std::error_code ec;
     fs::create_directories(folder.claim("units"), ec);
@@ -125,9 +134,29 @@ int run_dem(OutputFolder &folder, const Scene &scene, SceneSetup &setup, std::ve
     // Start the engine before opening the trajectory file: MPI's start-up may
     // fork a helper that would inherit (and keep locked) any file open then.
     engine->state(0);
-    BodyRecorder recorder(
-        folder.claim("bodies.h5").string(), folder.claim("bodies.xdmf").string(), recorder_units, body_unit,
-        {{"scene", scene.name}, {"engine", engine->name()}, {"dt", std::to_string(dt.used)}});
+    const fs::path h5 = folder.claim("bodies.h5"), xdmf = folder.claim("bodies.xdmf");
+    // A resumed run replays the records up to its checkpoint into the
+    // energy balance and the analysis, then appends after them.
+    BodiesFile earlier;
+    if (resume) {
+        earlier = read_bodies_file(h5.string());
+        if (static_cast<long>(earlier.steps()) < resume->records || earlier.bodies() != setup.bodies.size())
+            throw InputError(h5.string() + ": holds " + std::to_string(earlier.steps()) + " steps of " +
+                             std::to_string(earlier.bodies()) + " bodies, not the " +
+                             std::to_string(resume->records) + " steps of " +
+                             std::to_string(setup.bodies.size()) + " bodies its checkpoint " +
+                             resume->dir.string() + " recorded");
+    }
+    const std::unique_ptr<BodyRecorder> recorder =
+        resume ? BodyRecorder::reopen(h5.string(), xdmf.string(), recorder_units, body_unit, resume->records)
+               : std::make_unique<BodyRecorder>(
+                     h5.string(), xdmf.string(), recorder_units, body_unit,
+                     std::vector<std::pair<std::string, std::string>>{
+                         {"scene", scene.name}, {"engine", engine->name()}, {"dt", std::to_string(dt.used)}},
+                     scene.checkpoint_interval <= 0.0);
+    Checkpoints checkpoints(out, scene.checkpoint_interval, resume ? resume->time : 0.0);
+    if (scene.checkpoint_interval > 0.0)
+        folder.claim("checkpoints");
 
     std::vector<BodyState> states(setup.bodies.size());
     // Mechanical energy of all bodies (kinetic + potential in the scene's
@@ -138,10 +167,9 @@ int run_dem(OutputFolder &folder, const Scene &scene, SceneSetup &setup, std::ve
     for (const auto &b : setup.bodies)
         energy_scale += setup.units[b.unit].props.mass * scene.gravity.norm() * setup.unit_Dn[b.unit];
     double energy_max = -HUGE_VAL, energy_final = 0.0;
-    auto record = [&] {
+    auto account = [&] {
         double energy = 0.0;
-        for (int i = 0; i < engine->body_count(); ++i) {
-            states[i] = engine->state(i);
+        for (std::size_t i = 0; i < states.size(); ++i) {
             const MassProperties &p = setup.units[setup.bodies[i].unit].props;
             const Eigen::Matrix3d R = states[i].pose.orientation.toRotationMatrix();
             const Eigen::Vector3d &w = states[i].angular_velocity;
@@ -153,17 +181,42 @@ int run_dem(OutputFolder &folder, const Scene &scene, SceneSetup &setup, std::ve
             energy_initial = energy;
         energy_max = std::max(energy_max, energy);
         energy_final = energy;
-        recorder.append(engine->time(), states);
+    };
+    auto record = [&] {
+        for (int i = 0; i < engine->body_count(); ++i)
+            states[i] = engine->state(i);
+        account();
+        recorder->append(engine->time(), states);
     };
 
     const auto claim = [&](const std::string &name) { return folder.claim(name).string(); };
     const std::unique_ptr<Analysis> analysis = make_analysis({scene, setup, out.string(), "", claim});
-    Progress progress(scene.duration, terminal);
-    analysis->before_advance(0.0, *engine);
-    record();
-    analysis->sample(engine->time(), states);
+    Progress progress(scene.duration, terminal, resume ? resume->wall_seconds : 0.0);
+    long first = 1; // the first output step to compute
+    if (resume) {
+        for (long step = 0; step < resume->records; ++step) {
+            const auto s = static_cast<std::size_t>(step);
+            for (std::size_t b = 0; b < states.size(); ++b) {
+                states[b].pose.position = earlier.position[s][b];
+                states[b].pose.orientation = earlier.orientation[s][b];
+                states[b].velocity = earlier.velocity[s][b];
+                states[b].angular_velocity = earlier.angular_velocity[s][b];
+                states[b].external_force = earlier.external_force[s][b];
+                states[b].external_torque = earlier.external_torque[s][b];
+                states[b].contact_force = earlier.contact_force[s][b];
+            }
+            account();
+            analysis->sample(earlier.time[s], states);
+        }
+        first = resume->records;
+        std::fprintf(stderr, "run: resuming at t = %.6g s from %s\n", resume->time, resume->dir.c_str());
+    } else {
+        analysis->before_advance(0.0, *engine);
+        record();
+        analysis->sample(engine->time(), states);
+    }
     const long outputs = std::lround(std::ceil(scene.duration / scene.output_interval - 1e-9));
-    for (long k = 1; k <= outputs; ++k) {
+    for (long k = first; k <= outputs; ++k) {
         const double target = std::min(scene.duration, static_cast<double>(k) * scene.output_interval);
         do {
             // The analysis (tilt turns gravity) and the still water's buoyancy
@@ -184,9 +237,13 @@ int run_dem(OutputFolder &folder, const Scene &scene, SceneSetup &setup, std::ve
                          engine->time());
             break;
         }
+        // Not at the last record: the run is whole then (summary.json).
+        if (k < outputs && checkpoints.due(engine->time()))
+            checkpoints.write({engine->time(), recorder->steps(), progress.seconds(), {}},
+                              [&](const fs::path &dir) { engine->save_state((dir / "engine").string()); });
         progress.update(engine->time());
     }
-    recorder.close();
+    recorder->close();
     const double wall_seconds = progress.seconds();
 
     json spheres = json::object();
@@ -257,6 +314,7 @@ Scene settle_before_coupling(const RunRequest &r, OutputFolder &folder, const Sc
             dry.duration = fluid.settle_time;
             dry.output_interval = std::min(scene.output_interval, fluid.settle_time);
             dry.analysis = "none";
+            dry.checkpoint_interval = 0.0; // the settle run is short; the coupled run checkpoints
             OutputFolder settle_folder(dir, "armour run", OutputFolder::Mode::streaming);
             std::vector<BodyState> states;
             StillWater water;
@@ -335,18 +393,82 @@ Scene settle_before_coupling(const RunRequest &r, OutputFolder &folder, const Sc
     return settled;
 }
 
+// The scene as far as a resume may not change it: the keys a resume may
+// change (docs/checkpoints.md) set to fixed values.
+std::string resumable_form(Scene s) {
+    s.duration = 1.0;
+    s.checkpoint_interval = 0.0;
+    if (s.fluid)
+        s.fluid->write_interval = 0.0; // its default follows run.duration
+    std::istringstream text(resolved_scene_toml(s));
+    std::string form;
+    for (std::string line; std::getline(text, line);)
+        if (line.rfind('#', 0) != 0) // comments name the file
+            form += line + "\n";
+    return form;
+}
+
+// The checkpoint `armour run --resume` continues from, after checking that
+// the scene is the one that ran in `out` but for the resumable keys.
+Checkpoint checked_resume(const RunRequest &r, const Scene &scene, const fs::path &out) {
+    const std::optional<Checkpoint> last = last_checkpoint(out);
+    if (!last)
+        throw InputError("--resume: " + out.string() +
+                         " holds no complete checkpoint (run.checkpoint_interval was 0, or the run stopped "
+                         "before its first)");
+    const fs::path ran = out / "scene.resolved.toml";
+    if (!fs::is_regular_file(ran))
+        throw InputError("--resume: " + ran.string() + " is missing: not a run to continue");
+    const std::string now = resumable_form(scene), before = resumable_form(load_scene(ran.string()));
+    if (now != before) {
+        std::istringstream a(now), b(before);
+        std::string la, lb;
+        while (std::getline(a, la) && std::getline(b, lb) && la == lb) {
+        }
+        throw InputError(r.scene + ": differs from the scene that ran in " + out.string() + " ('" + la +
+                         "' against '" + lb +
+                         "'); a resume may change only run.duration, "
+                         "run.checkpoint_interval and fluid.write_interval");
+    }
+    if (last->time >= scene.duration)
+        throw InputError("--resume: the last checkpoint (t = " + checkpoint_name(last->time) +
+                         " s) is not before run.duration = " + checkpoint_name(scene.duration) + " s");
+    return *last;
+}
+
 } // namespace
 
 int run_scene(const RunRequest &r) {
     const Scene scene = load_scene(r.scene, r.overrides);
     OutputFolder folder(r.out, "armour run", OutputFolder::Mode::streaming); // refused before any work
+    std::optional<Checkpoint> resume;
+    if (r.resume)
+        resume = checked_resume(r, scene, folder.target());
     SceneSetup setup = build_scene(scene, r.cache.empty() ? default_cache_dir() : r.cache, true);
     if (!scene.fluid) {
         if (r.np != 0)
             throw InputError("--np: only for scenes with a [fluid] table (MPI ranks of interFoam)");
         for (const std::string &w : rocking_clump_warnings(scene, setup))
             std::fprintf(stderr, "armour: warning: %s\n", w.c_str());
-        return run_dem(folder, scene, setup, nullptr);
+        if (resume) {
+            if (!engine_style(scene.engine).capabilities.restart)
+                throw InputError(r.scene + ": key 'run.engine': the " + scene.engine +
+                                 " engine cannot restore a state, so its runs cannot be resumed");
+            folder.resume();
+        }
+        return run_dem(folder, scene, setup, nullptr, nullptr, resume ? &*resume : nullptr);
+    }
+    if (resume) {
+        if (scene.fluid->settle_time > 0.0)
+            throw InputError(r.scene +
+                             ": key 'fluid.settle_time': a run that settles its units first cannot be "
+                             "resumed yet; resume the settled scene (OUT/settle/scene.settled.toml) run on "
+                             "its own");
+        if (!engine_style(scene.engine).capabilities.restart)
+            throw InputError(r.scene + ": key 'run.engine': the " + scene.engine +
+                             " engine cannot restore a state, so its runs cannot be resumed");
+        folder.resume();
+        return run_coupled(r, scene, setup, folder, &*resume);
     }
     if (scene.fluid->settle_time <= 0.0)
         return run_coupled(r, scene, setup, folder);

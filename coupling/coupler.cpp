@@ -692,4 +692,30 @@ void Coupler::advance(const BodyLoads &total, double dt_fluid) {
     }
 }
 
+std::vector<double> Coupler::state() const {
+    const Impl &m = *impl_;
+    std::vector<double> v;
+    for (std::size_t k = 0; k < m.body_unit.size(); ++k) {
+        for (const Eigen::Vector3d *x : {&m.a_prev[k], &m.alpha_prev[k], &m.last_force[k], &m.last_change[k]})
+            v.insert(v.end(), x->data(), x->data() + 3);
+        v.push_back(m.swings[k]);
+    }
+    return v;
+}
+
+void Coupler::set_state(const std::vector<double> &values) {
+    Impl &m = *impl_;
+    if (values.size() != 13 * m.body_unit.size())
+        throw InputError("coupler state: " + std::to_string(values.size()) + " values for " +
+                         std::to_string(m.body_unit.size()) + " bodies (another scene?)");
+    const double *x = values.data();
+    for (std::size_t k = 0; k < m.body_unit.size(); ++k) {
+        for (Eigen::Vector3d *y : {&m.a_prev[k], &m.alpha_prev[k], &m.last_force[k], &m.last_change[k]}) {
+            *y = Eigen::Vector3d(x[0], x[1], x[2]);
+            x += 3;
+        }
+        m.swings[k] = static_cast<int>(*x++);
+    }
+}
+
 } // namespace armour

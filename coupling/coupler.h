@@ -117,6 +117,13 @@ class Coupler {
     BodyLoads integrate_loads(const CellSet &cells, const std::vector<Eigen::Vector3d> &force_density) const;
     void advance(const BodyLoads &total, double dt_fluid);
 
+    // What the scheme keeps between steps (each body's previous acceleration
+    // and angular acceleration for the added-mass correction, its last
+    // fluid force, force change and swing count for the stability check),
+    // as plain numbers for a checkpoint; set_state takes them back.
+    std::vector<double> state() const;
+    void set_state(const std::vector<double> &values);
+
   private:
     // Throws when the loads show the signature of an unstable exchange.
     void check_stability(const BodyLoads &total);

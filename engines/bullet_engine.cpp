@@ -470,6 +470,7 @@ class BulletEngine final : public RigidBodyEngine {
         rb.setLinearVelocity(bt(velocity.cwiseProduct(linear)));
         rb.setAngularVelocity(bt(omega.cwiseProduct(angular)));
         world_->addRigidBody(&rb);
+        added_.push_back(&rb);
         bodies_.push_back(std::move(b));
         return index;
     }
@@ -504,6 +505,7 @@ class BulletEngine final : public RigidBodyEngine {
         w->rb->setCollisionFlags(w->rb->getCollisionFlags() | btCollisionObject::CF_STATIC_OBJECT |
                                  btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
         world_->addRigidBody(w->rb.get());
+        added_.push_back(w->rb.get());
         walls_.push_back(std::move(w));
         wall_materials_.push_back(wall.material);
     }
@@ -594,6 +596,77 @@ class BulletEngine final : public RigidBodyEngine {
             }
         }
         return eig(T * best);
+    }
+
+  protected:
+    // Per body: Bullet's transform (basis and origin, as Bullet holds them),
+    // velocities, the held load and the last contact force; then gravity.
+    // Bullet's contact manifolds (their cached impulses warm-start the
+    // solver), its broadphase tree and pair order are not saved; instead the
+    // saving engine drops them too (restart_point), so both continue alike.
+    void write_state(const std::string &dir) const override {
+        std::vector<double> v;
+        for (const auto &b : bodies_) {
+            const btTransform &T = b->rb->getCenterOfMassTransform();
+            for (int r = 0; r < 3; ++r)
+                for (int c = 0; c < 3; ++c)
+                    v.push_back(T.getBasis()[r][c]);
+            for (const btVector3 &x :
+                 {T.getOrigin(), b->rb->getLinearVelocity(), b->rb->getAngularVelocity()})
+                v.insert(v.end(), {x.x(), x.y(), x.z()});
+            for (const Eigen::Vector3d *x : {&b->force, &b->torque, &b->contact})
+                v.insert(v.end(), x->data(), x->data() + 3);
+        }
+        v.insert(v.end(), settings_.gravity.data(), settings_.gravity.data() + 3);
+        write_state_values(dir + "/bullet", v);
+        const_cast<BulletEngine *>(this)->restart_point();
+    }
+
+    void read_state(const std::string &dir) override {
+        const std::vector<double> v = read_state_values(dir + "/bullet");
+        if (v.size() != 27 * bodies_.size() + 3)
+            throw InputError(dir + "/bullet: holds " + std::to_string(v.size()) + " values, not the " +
+                             std::to_string(27 * bodies_.size() + 3) + " of " +
+                             std::to_string(bodies_.size()) + " bodies (another scene?)");
+        const double *x = v.data();
+        for (auto &b : bodies_) {
+            btMatrix3x3 basis;
+            for (int r = 0; r < 3; ++r)
+                basis[r] = btVector3(x[3 * r], x[3 * r + 1], x[3 * r + 2]);
+            x += 9;
+            const btVector3 origin(x[0], x[1], x[2]), linear(x[3], x[4], x[5]), angular(x[6], x[7], x[8]);
+            x += 9;
+            // Velocities first: setCenterOfMassTransform copies them into
+            // the interpolation state, as the end of a step does.
+            b->rb->setLinearVelocity(linear);
+            b->rb->setAngularVelocity(angular);
+            b->rb->setCenterOfMassTransform(btTransform(basis, origin));
+            for (Eigen::Vector3d *y : {&b->force, &b->torque, &b->contact}) {
+                *y = Eigen::Vector3d(x[0], x[1], x[2]);
+                x += 3;
+            }
+        }
+        set_gravity(Eigen::Vector3d(x[0], x[1], x[2]));
+        report_ = make_report();
+        frozen_ = true;
+        restart_point();
+    }
+
+    // One start for the engine that saved a state and the one that read it:
+    // every object leaves the world and comes back, in the order it was
+    // added, into a new broadphase; the contact manifolds (and the impulses
+    // that warm-start the solver) go with the old pairs. Both then take the
+    // same steps, bit for bit; the saving run pays a cold start of its
+    // contacts at each checkpoint.
+    void restart_point() {
+        for (auto it = added_.rbegin(); it != added_.rend(); ++it)
+            world_->removeRigidBody(*it);
+        auto fresh = std::make_unique<btDbvtBroadphase>();
+        world_->setBroadphase(fresh.get());
+        broadphase_ = std::move(fresh);
+        solver_->reset();
+        for (btRigidBody *rb : added_)
+            world_->addRigidBody(rb);
     }
 
   private:
@@ -732,6 +805,7 @@ class BulletEngine final : public RigidBodyEngine {
     std::vector<std::unique_ptr<Body>> bodies_;
     std::vector<std::unique_ptr<WallObject>> walls_;
     std::vector<int> wall_materials_;
+    std::vector<btRigidBody *> added_; // walls and bodies in the order they entered the world
     std::unique_ptr<btDefaultCollisionConfiguration> config_;
     std::unique_ptr<btCollisionDispatcher> dispatcher_;
     std::unique_ptr<btDbvtBroadphase> broadphase_;
@@ -755,6 +829,7 @@ EngineStyle bullet_engine_style() {
     c.contacts = ContactKind::rigid_impulse;
     c.shape = ShapeModel::convex_hulls;
     c.replica_per_rank = true; // deterministic: replicas fed the same loads stay one run
+    c.restart = true;
     return {"bullet", "Bullet 3.24 (double): exact convex hulls, rigid-contact impulses", c,
             [](const EngineSettings &s) { return make_bullet_engine(s); }};
 }

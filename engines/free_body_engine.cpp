@@ -117,6 +117,49 @@ class FreeBodyEngine final : public RigidBodyEngine {
     double time_step() const override { return report_.used; }
     TimeStepReport time_step_report() const override { return report_; }
 
+  protected:
+    // Per body: pose, velocities, held load, angular momentum; then gravity.
+    // Pivots, held axes and templates come from the scene.
+    void write_state(const std::string &dir) const override {
+        std::vector<double> v;
+        for (const Body &b : bodies_) {
+            const BodyState &s = b.state;
+            const Eigen::Quaterniond &q = s.pose.orientation;
+            for (const Eigen::Vector3d *x : {&s.pose.position, &s.velocity, &s.angular_velocity,
+                                             &s.external_force, &s.external_torque, &b.momentum})
+                v.insert(v.end(), x->data(), x->data() + 3);
+            v.insert(v.end(), {q.w(), q.x(), q.y(), q.z()});
+        }
+        v.insert(v.end(), gravity_.data(), gravity_.data() + 3);
+        write_state_values(dir + "/free_body", v);
+    }
+
+    void read_state(const std::string &dir) override {
+        const std::vector<double> v = read_state_values(dir + "/free_body");
+        if (v.size() != 22 * bodies_.size() + 3)
+            throw InputError(dir + "/free_body: holds " + std::to_string(v.size()) + " values, not the " +
+                             std::to_string(22 * bodies_.size() + 3) + " of " +
+                             std::to_string(bodies_.size()) + " bodies (another scene?)");
+        const double *x = v.data();
+        auto next = [&x] {
+            const Eigen::Vector3d r(x[0], x[1], x[2]);
+            x += 3;
+            return r;
+        };
+        for (Body &b : bodies_) {
+            BodyState &s = b.state;
+            s.pose.position = next();
+            s.velocity = next();
+            s.angular_velocity = next();
+            s.external_force = next();
+            s.external_torque = next();
+            b.momentum = next();
+            s.pose.orientation = Eigen::Quaterniond(x[0], x[1], x[2], x[3]);
+            x += 4;
+        }
+        gravity_ = next();
+    }
+
   private:
     Eigen::Matrix3d world_inertia(const Body &b, const Eigen::Quaterniond &q) const {
         const Eigen::Matrix3d R = q.toRotationMatrix();
@@ -259,6 +302,7 @@ EngineStyle free_body_engine_style() {
     EngineCapabilities c;
     c.replica_per_rank = true;
     c.pivot = true;
+    c.restart = true;
     return {"free_body", "analytic rigid bodies without contacts: fluid loads alone, hinges", c,
             [](const EngineSettings &s) { return make_free_body_engine(s); }};
 }

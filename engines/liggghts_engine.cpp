@@ -61,8 +61,9 @@ class LiggghtsEngine final : public RigidBodyEngine {
         check_materials(settings_);
         if (!(settings_.domain_max.array() > settings_.domain_min.array()).all())
             throw InputError("run.domain: domain_max must exceed domain_min in x, y and z");
-        work_dir_ = settings_.work_dir.empty() ? fs::temp_directory_path() / "armour-liggghts"
+        base_dir_ = settings_.work_dir.empty() ? fs::temp_directory_path() / "armour-liggghts"
                                                : fs::path(settings_.work_dir);
+        work_dir_ = base_dir_;
     }
 
     ~LiggghtsEngine() override {
@@ -137,6 +138,64 @@ class LiggghtsEngine final : public RigidBodyEngine {
 
     TimeStepReport time_step_report() const override { return report(); }
 
+  protected:
+    // LIGGGHTS' own restart file (atoms, multisphere bodies, contact
+    // histories of pairs and walls) and the adapter's part: each body's
+    // tag and held load, each unit's principal frame, gravity.
+    void write_state(const std::string &dir) const override {
+        auto &self = *const_cast<LiggghtsEngine *>(this);
+        if (!lmp_)
+            self.start();
+        // A restarted LIGGGHTS builds its neighbour lists at the saved
+        // positions, so the order in which it sums contact forces differs
+        // from a run whose lists were built earlier; the saving run builds
+        // them again here too (a set-up, no step), and both continue alike.
+        self.write_external_loads();
+        self.command("run 0 post no");
+        self.command("write_restart " + dir + "/liggghts.restart");
+        std::vector<double> v;
+        for (const Body &b : bodies_) {
+            v.push_back(b.tag);
+            v.insert(v.end(), b.force.data(), b.force.data() + 3);
+            v.insert(v.end(), b.torque.data(), b.torque.data() + 3);
+        }
+        for (const Eigen::Quaterniond &q : principal_to_unit_)
+            v.insert(v.end(), {q.w(), q.x(), q.y(), q.z()});
+        v.insert(v.end(), settings_.gravity.data(), settings_.gravity.data() + 3);
+        write_state_values(dir + "/liggghts", v);
+    }
+
+    void read_state(const std::string &dir) override {
+        if (lmp_) { // started by a state() query only (no step): start again from the restart file
+            lammps_close(lmp_);
+            lmp_ = nullptr;
+            transcript_.str("");
+        }
+        const std::vector<double> v = read_state_values(dir + "/liggghts");
+        if (v.size() != 7 * bodies_.size() + 4 * units_.size() + 3)
+            throw InputError(dir + "/liggghts: holds " + std::to_string(v.size()) + " values, not those of " +
+                             std::to_string(bodies_.size()) + " bodies and " + std::to_string(units_.size()) +
+                             " units (another scene?)");
+        const double *x = v.data();
+        for (Body &b : bodies_) {
+            b.tag = static_cast<int>(x[0]);
+            b.force = Eigen::Vector3d(x[1], x[2], x[3]);
+            b.torque = Eigen::Vector3d(x[4], x[5], x[6]);
+            x += 7;
+        }
+        principal_to_unit_.clear();
+        for (std::size_t k = 0; k < units_.size(); ++k, x += 4)
+            principal_to_unit_.emplace_back(x[0], x[1], x[2], x[3]);
+        settings_.gravity = Eigen::Vector3d(x[0], x[1], x[2]);
+        const std::string file = dir + "/liggghts.restart";
+        if (!fs::is_regular_file(file))
+            throw InputError(file + ": missing (an incomplete checkpoint?)");
+        start(fs::absolute(file).string());
+        if (multisphere().n_body() != static_cast<int>(bodies_.size()))
+            throw InputError(file + ": holds " + std::to_string(multisphere().n_body()) +
+                             " bodies, the scene " + std::to_string(bodies_.size()));
+    }
+
   private:
     struct Body {
         BodyInit init;
@@ -205,7 +264,9 @@ class LiggghtsEngine final : public RigidBodyEngine {
         }
     }
 
-    void start() {
+    // `restart`: a LIGGGHTS restart file of this scene (read_state), whose
+    // atoms and bodies replace the insertion of the bodies.
+    void start(const std::string &restart = "") {
         if (bodies_.empty())
             throw InputError("scene: no bodies to simulate");
         report();
@@ -220,6 +281,7 @@ class LiggghtsEngine final : public RigidBodyEngine {
         // run puts them (the files a run keeps are rank 0's).
         int rank = 0;
         MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+        work_dir_ = base_dir_;
         if (rank > 0)
             work_dir_ /= "processor" + std::to_string(rank);
         std::error_code ec;
@@ -296,7 +358,13 @@ class LiggghtsEngine final : public RigidBodyEngine {
         set("model", settings_.contact == ContactModel::hooke ? "hooke" : "hertz");
         set("rolling_model", rolling ? "rolling_friction cdt" : "");
         set("dt", num(report_.used));
-        include("domain.in");
+        if (restart.empty()) {
+            include("domain.in");
+        } else {
+            set("restart_file", restart);
+            include("restart.in");
+        }
+        include("contact.in");
 
         std::string wall_ids;
         for (std::size_t w = 0; w < walls_.size(); ++w) {
@@ -349,6 +417,13 @@ class LiggghtsEngine final : public RigidBodyEngine {
             include("unit_template.in");
         }
 
+        if (!restart.empty()) {
+            include("integrate.in");
+            write_external_loads(); // gravity too: the set-up's body forces feed the first half-step
+            command("run 0 post no");
+            read_states();
+            return;
+        }
         // The insertion region only needs a finite volume: place_exactly() then
         // moves each body onto its requested position.
         const double half = 1e-6 * std::max(1.0, largest);
@@ -519,7 +594,7 @@ class LiggghtsEngine final : public RigidBodyEngine {
     }
 
     EngineSettings settings_;
-    fs::path work_dir_;
+    fs::path base_dir_, work_dir_;
     std::vector<UnitTemplate> units_;
     std::vector<Body> bodies_;
     std::vector<Wall> walls_;
@@ -538,6 +613,7 @@ EngineStyle liggghts_engine_style() {
     c.contact_models = {ContactModel::hooke, ContactModel::hertz};
     c.shape = ShapeModel::sphere_clumps;
     c.replica_per_rank = true; // one serial LIGGGHTS on MPI_COMM_SELF per rank
+    c.restart = true;          // write_restart/read_restart keep the bodies and contact histories
     return {"liggghts", "LIGGGHTS 3.8 multisphere: sphere clumps, spring-dashpot contacts", c,
             [](const EngineSettings &s) { return make_liggghts_engine(s); }};
 }

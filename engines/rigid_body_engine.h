@@ -16,6 +16,8 @@
 //     engine->set_external_load(body, force, torque);
 //     engine->advance(0.01);                       // s, any span: the clock keeps the remainder
 //     BodyState s = engine->state(body);
+//     engine->save_state("OUT/checkpoints/0.5/engine");  // restart-capable engines (engine_registry.h)
+//     other->load_state("OUT/checkpoints/0.5/engine");   // same scene, before its first advance
 #pragma once
 
 #include "clump.h"
@@ -152,7 +154,20 @@ class RigidBodyEngine {
     virtual double time_step() const = 0; // s, the step in use
     virtual TimeStepReport time_step_report() const = 0;
 
+    // Restart (EngineCapabilities::restart). save_state writes into the
+    // existing folder `dir` everything the next steps depend on: bodies,
+    // contacts, held loads, gravity and the clock. load_state reads it into
+    // an engine built from the same scene (templates, walls and bodies
+    // added) that has not advanced yet. Engines without restart throw
+    // InputError naming themselves.
+    void save_state(const std::string &dir) const;
+    void load_state(const std::string &dir);
+
   protected:
+    // The engine's own part of save_state/load_state (the clock is the base's).
+    virtual void write_state(const std::string &dir) const;
+    virtual void read_state(const std::string &dir);
+
     // Runs `steps` (>= 1) steps of time_step(); steps() and time() already
     // count them, so messages about the end of this call can use time().
     virtual void run_steps(long steps) = 0;
@@ -161,5 +176,11 @@ class RigidBodyEngine {
     long steps_ = 0;
     double requested_ = 0.0;
 };
+
+// Doubles as exact text (hexadecimal floating point, one per line), for
+// state files that must read back bit for bit; integers up to 2^53 fit.
+// read_state_values throws InputError naming the file.
+void write_state_values(const std::string &path, const std::vector<double> &values);
+std::vector<double> read_state_values(const std::string &path);
 
 } // namespace armour

@@ -99,6 +99,7 @@ struct BodyRecorder::Impl {
     std::vector<double> times; // of the steps written
     std::vector<double> row;
     std::vector<float> point_row;
+    bool compress = true;
 
     [[noreturn]] void fail(const std::string &what) const { throw InputError(h5_path + ": " + what); }
     hid_t check(hid_t id, const std::string &what) const {
@@ -173,8 +174,10 @@ struct BodyRecorder::Impl {
         Handle create(check(H5Pcreate(H5P_DATASET_CREATE), "cannot make a property list"), H5Pclose);
         check_status(H5Pset_chunk(create.get(), static_cast<int>(chunk.size()), chunk.data()),
                      "cannot chunk " + name);
-        check_status(H5Pset_shuffle(create.get()), "cannot shuffle " + name);
-        check_status(H5Pset_deflate(create.get(), 4), "cannot compress " + name);
+        if (compress) {
+            check_status(H5Pset_shuffle(create.get()), "cannot shuffle " + name);
+            check_status(H5Pset_deflate(create.get(), 4), "cannot compress " + name);
+        }
         Handle dataset(check(H5Dcreate2(parent, name.c_str(), file_type, space.get(), H5P_DEFAULT,
                                         create.get(), H5P_DEFAULT),
                              "cannot create dataset " + name),
@@ -207,6 +210,53 @@ struct BodyRecorder::Impl {
                       H5Sclose);
         check_status(H5Dwrite(dataset.get(), memory_type, memory.get(), space.get(), H5P_DEFAULT, data),
                      "cannot write a step of " + name);
+    }
+
+    // What creating and reopening share: the paths, and each body's mesh.
+    void prepare(const std::string &h5, const std::string &xdmf, const std::vector<RecorderUnit> &unit_list,
+                 const std::vector<int> &body_unit) {
+        h5_path = h5;
+        xdmf_path = xdmf;
+        units = unit_list;
+        for (std::size_t k = 0; k < units.size(); ++k) {
+            const TriangleMesh &mesh = units[k].mesh;
+            for (const auto &triangle : mesh.triangles)
+                for (int index : triangle)
+                    if (index < 0 || index >= static_cast<int>(mesh.vertices.size()))
+                        fail("unit " + std::to_string(k) + " (" + units[k].name + ") has a triangle index " +
+                             std::to_string(index) + " outside its " + std::to_string(mesh.vertices.size()) +
+                             " vertices");
+        }
+        for (std::size_t i = 0; i < body_unit.size(); ++i) {
+            if (body_unit[i] < 0 || body_unit[i] >= static_cast<int>(units.size()))
+                fail("body " + std::to_string(i) + " refers to unit " + std::to_string(body_unit[i]) +
+                     " but there are " + std::to_string(units.size()) + " units");
+            const TriangleMesh &mesh = units[static_cast<std::size_t>(body_unit[i])].mesh;
+            body_mesh.push_back(&mesh);
+            vertex_total += static_cast<long>(mesh.vertices.size());
+            triangle_total += static_cast<long>(mesh.triangles.size());
+        }
+        // The XDMF names the HDF5 file relative to itself when they share a
+        // folder, so the pair can be moved or copied together.
+        const fs::path h5_abs = fs::absolute(h5_path).lexically_normal();
+        const fs::path xdmf_abs = fs::absolute(xdmf_path).lexically_normal();
+        h5_reference =
+            h5_abs.parent_path() == xdmf_abs.parent_path() ? h5_abs.filename().string() : h5_abs.string();
+        if (h5_reference.find_first_of(":|") != std::string::npos)
+            fail("the XDMF index cannot name an HDF5 file whose path contains ':' or '|' (its separators)");
+    }
+
+    // Cuts an appendable series back to `steps` rows.
+    void truncate(const Handle &dataset, long steps, const std::string &name) {
+        Handle space(check(H5Dget_space(dataset.get()), "cannot read the space of " + name), H5Sclose);
+        const int rank = H5Sget_simple_extent_ndims(space.get());
+        std::vector<hsize_t> dims(static_cast<std::size_t>(std::max(rank, 1)));
+        H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
+        if (dims[0] < static_cast<hsize_t>(steps))
+            fail(name + " holds " + std::to_string(dims[0]) + " steps, fewer than the " +
+                 std::to_string(steps) + " the checkpoint recorded");
+        dims[0] = static_cast<hsize_t>(steps);
+        check_status(H5Dset_extent(dataset.get(), dims.data()), "cannot truncate " + name);
     }
 
     std::string hdf(const std::string &dataset) const { return xml_escape(h5_reference) + ":" + dataset; }
@@ -271,40 +321,11 @@ struct BodyRecorder::Impl {
 
 BodyRecorder::BodyRecorder(const std::string &h5_path, const std::string &xdmf_path,
                            const std::vector<RecorderUnit> &units, const std::vector<int> &body_unit,
-                           const std::vector<std::pair<std::string, std::string>> &attributes)
+                           const std::vector<std::pair<std::string, std::string>> &attributes, bool compress)
     : impl_(std::make_unique<Impl>()) {
     Impl &r = *impl_;
-    r.h5_path = h5_path;
-    r.xdmf_path = xdmf_path;
-    r.units = units;
-
-    for (std::size_t k = 0; k < units.size(); ++k) {
-        const TriangleMesh &mesh = units[k].mesh;
-        for (const auto &triangle : mesh.triangles)
-            for (int index : triangle)
-                if (index < 0 || index >= static_cast<int>(mesh.vertices.size()))
-                    r.fail("unit " + std::to_string(k) + " (" + units[k].name + ") has a triangle index " +
-                           std::to_string(index) + " outside its " + std::to_string(mesh.vertices.size()) +
-                           " vertices");
-    }
-    for (std::size_t i = 0; i < body_unit.size(); ++i) {
-        if (body_unit[i] < 0 || body_unit[i] >= static_cast<int>(units.size()))
-            r.fail("body " + std::to_string(i) + " refers to unit " + std::to_string(body_unit[i]) +
-                   " but there are " + std::to_string(units.size()) + " units");
-        const TriangleMesh &mesh = r.units[static_cast<std::size_t>(body_unit[i])].mesh;
-        r.body_mesh.push_back(&mesh);
-        r.vertex_total += static_cast<long>(mesh.vertices.size());
-        r.triangle_total += static_cast<long>(mesh.triangles.size());
-    }
-
-    // The XDMF names the HDF5 file relative to itself when they share a
-    // folder, so the pair can be moved or copied together.
-    const fs::path h5_abs = fs::absolute(h5_path).lexically_normal();
-    const fs::path xdmf_abs = fs::absolute(xdmf_path).lexically_normal();
-    r.h5_reference =
-        h5_abs.parent_path() == xdmf_abs.parent_path() ? h5_abs.filename().string() : h5_abs.string();
-    if (r.h5_reference.find_first_of(":|") != std::string::npos)
-        r.fail("the XDMF index cannot name an HDF5 file whose path contains ':' or '|' (its separators)");
+    r.compress = compress;
+    r.prepare(h5_path, xdmf_path, units, body_unit);
 
     QuietErrors quiet;
     r.file = Handle(
@@ -372,6 +393,47 @@ BodyRecorder::BodyRecorder(const std::string &h5_path, const std::string &xdmf_p
 
     r.check_status(H5Fflush(root, H5F_SCOPE_GLOBAL), "cannot flush");
     r.write_xdmf({});
+}
+
+std::unique_ptr<BodyRecorder> BodyRecorder::reopen(const std::string &h5_path, const std::string &xdmf_path,
+                                                   const std::vector<RecorderUnit> &units,
+                                                   const std::vector<int> &body_unit, long keep_steps) {
+    std::unique_ptr<BodyRecorder> recorder(new BodyRecorder());
+    recorder->impl_ = std::make_unique<Impl>();
+    Impl &r = *recorder->impl_;
+    r.prepare(h5_path, xdmf_path, units, body_unit);
+    QuietErrors quiet;
+    r.file = Handle(r.check(H5Fopen(h5_path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), "cannot reopen the file"),
+                    H5Fclose);
+    const hid_t root = r.file.get();
+    const auto open = [&](const std::string &name) {
+        return Handle(r.check(H5Dopen2(root, name.c_str(), H5P_DEFAULT), "cannot open " + name), H5Dclose);
+    };
+    r.time = open("time");
+    for (const SeriesSpec &spec : kBodySeries)
+        r.body_series.push_back(open(std::string("bodies/") + spec.name));
+    r.points = open("shapes/points");
+    {
+        Handle space(r.check(H5Dget_space(r.body_series[0].get()), "cannot read bodies/position"), H5Sclose);
+        hsize_t dims[3] = {0, 0, 0};
+        H5Sget_simple_extent_dims(space.get(), dims, nullptr);
+        if (dims[1] != body_unit.size())
+            r.fail("holds " + std::to_string(dims[1]) + " bodies, the scene " +
+                   std::to_string(body_unit.size()));
+    }
+    r.truncate(r.time, keep_steps, "time");
+    for (std::size_t s = 0; s < r.body_series.size(); ++s)
+        r.truncate(r.body_series[s], keep_steps, std::string("bodies/") + kBodySeries[s].name);
+    r.truncate(r.points, keep_steps, "shapes/points");
+    r.times.assign(static_cast<std::size_t>(keep_steps), 0.0);
+    if (keep_steps > 0)
+        r.check_status(
+            H5Dread(r.time.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, r.times.data()),
+            "cannot read time");
+    r.step_count = keep_steps;
+    r.check_status(H5Fflush(root, H5F_SCOPE_GLOBAL), "cannot flush");
+    r.write_xdmf(r.times);
+    return recorder;
 }
 
 BodyRecorder::~BodyRecorder() {

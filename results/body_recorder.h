@@ -32,6 +32,8 @@
 //     BodyRecorder rec("run.h5", "run.xdmf", units, body_unit, {{"scene", "tank"}, {"dt", "1e-4"}});
 //     rec.append(engine->time(), states);   // once per output step
 //     rec.close();
+//     auto again = BodyRecorder::reopen("run.h5", "run.xdmf", units, body_unit, 120);  // resume after step
+//     120
 #pragma once
 
 #include "mesh.h"
@@ -54,10 +56,21 @@ class BodyRecorder {
     // Creates `h5_path` (truncating) and `xdmf_path`. body_unit[i] is the
     // index in `units` of body i. `attributes` become root string attributes
     // (scene name, engine, dt, ...), next to "units_system" = "SI".
+    // `compress` false (a run with checkpoints): chunks keep a fixed size, so
+    // an append never moves the chunk holding earlier steps; a compressed
+    // chunk grows, is rewritten elsewhere and its old space reused, and a
+    // run killed then may leave the index pointing at overwritten space
+    // (measured: steps before the checkpoint read back wrong after kill -9).
     // Throws InputError("PATH: reason") on any failure.
     BodyRecorder(const std::string &h5_path, const std::string &xdmf_path,
                  const std::vector<RecorderUnit> &units, const std::vector<int> &body_unit,
-                 const std::vector<std::pair<std::string, std::string>> &attributes);
+                 const std::vector<std::pair<std::string, std::string>> &attributes, bool compress = true);
+    // Reopens an earlier `h5_path` of the same bodies for appending, keeping
+    // its first `keep_steps` steps (a resumed run writes the later ones
+    // again), and rewrites `xdmf_path` for them.
+    static std::unique_ptr<BodyRecorder> reopen(const std::string &h5_path, const std::string &xdmf_path,
+                                                const std::vector<RecorderUnit> &units,
+                                                const std::vector<int> &body_unit, long keep_steps);
     ~BodyRecorder(); // closes; never throws
     BodyRecorder(const BodyRecorder &) = delete;
     BodyRecorder &operator=(const BodyRecorder &) = delete;
@@ -72,6 +85,7 @@ class BodyRecorder {
     long steps() const;
 
   private:
+    BodyRecorder() = default;
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };

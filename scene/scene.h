@@ -155,6 +155,7 @@ struct Scene {
     bool force_time_step = false;
     Eigen::Vector3d gravity = Eigen::Vector3d(0, 0, -kStandardGravity);                              // m/s^2
     Eigen::Vector3d domain_min = Eigen::Vector3d(-5, -5, -1), domain_max = Eigen::Vector3d(5, 5, 5); // m
+    double checkpoint_interval = 0.0; // s of simulated time between checkpoints; 0 = none
     // [contact]
     std::string contact_model = "hertz";  // hertz | hooke
     double characteristic_velocity = 1.0; // m/s

@@ -54,6 +54,10 @@ const std::vector<Key<Scene>> &run_keys() {
         key("domain_min", &Scene::domain_min, "m",
             "a corner of the simulated region (with [fluid]: the fluid mesh box)"),
         key("domain_max", &Scene::domain_max, "m", "the opposite corner; each component > domain_min's"),
+        key("checkpoint_interval", &Scene::checkpoint_interval, "s",
+            "simulated time between checkpoints in OUT/checkpoints (`armour run --resume` continues from the "
+            "last); 0 = none; docs/checkpoints.md")
+            .in(Range::at_least(0)),
     };
     return keys;
 }

@@ -338,5 +338,76 @@ TEST_P(Conformance, OrientationRoundTripsThroughThePrincipalFrame) {
         << s.angular_velocity.transpose() << " vs " << expected.transpose();
 }
 
+// A restart continues the same run: one engine runs through, another loads
+// the first one's state at 0.4 s (a cube bouncing on the floor, its contacts
+// live, and a spinning cube under a held load and a turned gravity) and
+// runs to the same end, bit for bit: the saving engine drops what it does
+// not save (Bullet's manifolds and broadphase, LIGGGHTS' neighbour lists),
+// so both continue from the same state (docs/checkpoints.md).
+TEST_P(Conformance, RestartContinuesTheSameRun) {
+    if (!caps().restart)
+        GTEST_SKIP() << GetParam() << " has no restart";
+    const auto build = [&](const std::string &suffix) {
+        EngineSettings es = settings(concrete(0.3, 0.6));
+        es.work_dir += suffix;
+        auto engine = make(es);
+        engine->add_template(test_cube(0.5, 2400.0, kCornerRadius));
+        BodyInit dropped;
+        dropped.pose.position = Eigen::Vector3d(-1.0, 0.0, 0.45);
+        dropped.pose.orientation =
+            Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 1, 0).normalized()));
+        dropped.angular_velocity = Eigen::Vector3d(0.0, 2.0, 0.0);
+        engine->add_body(dropped);
+        BodyInit flying;
+        flying.pose.position = Eigen::Vector3d(1.0, 0.0, 5.0);
+        flying.angular_velocity = Eigen::Vector3d(1.0, -2.0, 3.0);
+        engine->add_body(flying);
+        if (has_contacts())
+            engine->add_wall(floor_plane(3.0));
+        return engine;
+    };
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / ("armour_restart_" + GetParam());
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+
+    auto through = build("_through");
+    through->set_external_load(1, Eigen::Vector3d(0, 0, 3000.0), Eigen::Vector3d(5.0, 0, 0));
+    through->advance(0.2);
+    through->set_gravity(Eigen::Vector3d(0.5, 0.0, -kG));
+    through->advance(0.2003); // not a whole number of steps: the clock keeps the remainder
+    through->save_state(dir.string());
+    const double saved_requested = through->requested_time();
+    const long saved_steps = through->steps();
+    through->advance(0.4);
+
+    auto resumed = build("_resumed");
+    resumed->load_state(dir.string());
+    EXPECT_EQ(resumed->steps(), saved_steps);
+    EXPECT_EQ(resumed->requested_time(), saved_requested);
+    resumed->advance(0.4);
+    EXPECT_EQ(resumed->steps(), through->steps());
+    EXPECT_EQ(resumed->time(), through->time());
+    double largest = 0.0;
+    for (int b = 0; b < 2; ++b) {
+        const BodyState a = through->state(b), r = resumed->state(b);
+        EXPECT_EQ(r.external_force, a.external_force) << "body " << b;
+        EXPECT_EQ(r.external_torque, a.external_torque) << "body " << b;
+        const double moved = (r.pose.position - a.pose.position).norm();
+        const double turned =
+            2.0 * std::acos(std::min(1.0, std::abs(r.pose.orientation.dot(a.pose.orientation))));
+        largest = std::max({largest, moved, 0.5 * turned}); // a turn of 2 rad moves a corner ~ the edge
+        EXPECT_EQ(r.pose.position, a.pose.position) << "body " << b;
+        EXPECT_EQ(r.pose.orientation.coeffs(), a.pose.orientation.coeffs()) << "body " << b;
+        EXPECT_EQ(r.velocity, a.velocity) << "body " << b;
+        EXPECT_EQ(r.angular_velocity, a.angular_velocity) << "body " << b;
+        EXPECT_EQ(r.contact_force, a.contact_force) << "body " << b;
+    }
+    EXPECT_LT(largest, 1e-3 * 0.5);
+    std::printf("[ restart  ] %s: largest difference after 0.4 s resumed: %.3g m (edge 0.5 m)\n",
+                GetParam().c_str(), largest);
+    std::filesystem::remove_all(dir);
+}
+
 INSTANTIATE_TEST_SUITE_P(Registered, Conformance, ::testing::ValuesIn(registered_styles()),
                          [](const ::testing::TestParamInfo<std::string> &p) { return p.param; });

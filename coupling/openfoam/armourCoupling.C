@@ -3,6 +3,7 @@
 \*---------------------------------------------------------------------------*/
 
 #include "armourCoupling.H"
+#include "armourCheckpoint.H"
 #include "armourExchange.H"
 #include "armourForceDensity.H"
 #include "armourRecording.H"
@@ -40,6 +41,7 @@ struct Foam::fv::armourCoupling::armourSide
     armourFoam::forceDensity density;
     std::unique_ptr<armourFoam::recording> recording;
     armourFoam::couplingTimes times;
+    std::unique_ptr<armourFoam::checkpointing> checkpoints;
 };
 
 
@@ -147,22 +149,62 @@ Foam::fv::armourCoupling::armourCoupling
         (
             new armourFoam::recording(runTime, scene.output_interval)
         );
+        // The record sits beside the scene it ran (the run's output
+        // folder), unless the dictionary names another folder.
+        const fileName outDir =
+            coeffs_.lookupOrDefault<fileName>("output", scenePath.path());
+        armour_->checkpoints.reset
+        (
+            new armourFoam::checkpointing
+            (
+                outDir,
+                scene.checkpoint_interval,
+                runTime.value()
+            )
+        );
+        const bool resumed = armour_->checkpoints->resumed();
+        if (resumed)
+        {
+            armour_->checkpoints->loadInto
+            (
+                *armour_->bodies,
+                *armour_->recording,
+                armour_->times
+            );
+            updateFields();
+            Info<< "    armourCoupling: resumed at t = " << runTime.value()
+                << " s from " << armour_->checkpoints->resumedFrom().dir.string()
+                << endl;
+        }
         if (Pstream::master())
         {
-            // The record sits beside the scene it ran (the run's output
-            // folder), unless the dictionary names another folder.
-            armour_->recording->open
-            (
-                coeffs_.lookupOrDefault<fileName>("output", scenePath.path()),
-                scene.name,
-                *armour_->bodies,
-                runTime.value()
-            );
+            if (resumed)
+            {
+                armour_->recording->resume
+                (
+                    outDir,
+                    *armour_->bodies,
+                    armour_->checkpoints->resumedFrom().records,
+                    runTime.value()
+                );
+            }
+            else
+            {
+                armour_->recording->open
+                (
+                    outDir,
+                    scene.name,
+                    *armour_->bodies,
+                    runTime.value(),
+                    scene.checkpoint_interval <= 0
+                );
+            }
             if (coeffs_.found("csv"))
             {
                 armour_->recording->openCsv
                 (
-                    runTime.globalPath()/coeffs_.get<fileName>("csv")
+                    runTime.globalPath()/coeffs_.get<fileName>("csv"),
+                    resumed ? runTime.value() : -1
                 );
             }
         }
@@ -270,6 +312,23 @@ void Foam::fv::armourCoupling::couple
         }
     }
     armour_->recording->csvRow(t, bodies, loads);
+
+    try
+    {
+        // The checkpoint asks OpenFOAM for a one-shot write of the fields
+        // (Time::writeOnce), which the option's const view of Time hides.
+        armour_->checkpoints->step
+        (
+            const_cast<Time&>(runTime),
+            bodies,
+            *armour_->recording,
+            times
+        );
+    }
+    catch (const std::exception& err)
+    {
+        FatalErrorInFunction << "armour: " << err.what() << exit(FatalError);
+    }
 
     if (log)
     {

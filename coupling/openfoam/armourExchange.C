@@ -6,6 +6,8 @@
 
 #include "scene_setup.h"
 
+#include <filesystem>
+
 // * * * * * * * * * * * * * * * Local Functions * * * * * * * * * * * * * * //
 
 namespace
@@ -221,6 +223,21 @@ void armourFoam::bodyExchange::advance
 )
 {
     coupler_->advance(loads, deltaT);
+}
+
+
+void armourFoam::bodyExchange::saveState(const std::string& dir) const
+{
+    std::filesystem::create_directories(dir + "/engine");
+    engine_->save_state(dir + "/engine");
+    armour::write_state_values(dir + "/coupler", coupler_->state());
+}
+
+
+void armourFoam::bodyExchange::loadState(const std::string& dir)
+{
+    engine_->load_state(dir + "/engine");
+    coupler_->set_state(armour::read_state_values(dir + "/coupler"));
 }
 
 

@@ -4,7 +4,39 @@
 
 #include "armourRecording.H"
 
+#include <cstdlib>
 #include <iomanip>
+#include <sstream>
+#include <vector>
+
+// * * * * * * * * * * * * * * * Local Functions * * * * * * * * * * * * * * //
+
+namespace
+{
+
+// A CSV whose first column is time: keeps the header and the rows up to t
+// (a resumed run writes the later ones again).
+void keepRowsUpTo(const std::string& path, double t)
+{
+    std::ifstream in(path);
+    std::vector<std::string> kept;
+    std::string line;
+    for (bool header = true; std::getline(in, line); header = false)
+    {
+        if (header || std::strtod(line.c_str(), nullptr) <= t)
+        {
+            kept.push_back(line);
+        }
+    }
+    in.close();
+    std::ofstream out(path, std::ios::trunc);
+    for (const std::string& row : kept)
+    {
+        out << row << '\n';
+    }
+}
+
+} // End anonymous namespace
 
 // * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
 
@@ -22,7 +54,8 @@ void armourFoam::recording::open
     const std::string& outDir,
     const std::string& sceneName,
     const bodyExchange& bodies,
-    double t
+    double t,
+    bool compress
 )
 {
     const armour::RigidBodyEngine& engine = bodies.engine();
@@ -45,7 +78,8 @@ void armourFoam::recording::open
                 {"dt", std::to_string(engine.time_step_report().used)},
                 {"coupling", "interFoam armourCoupling"},
                 {"external_force", "fluid load F (without gravity)"}
-            }
+            },
+            compress
         )
     );
     std::vector<armour::BodyState> states;
@@ -68,8 +102,43 @@ void armourFoam::recording::open
 }
 
 
-void armourFoam::recording::openCsv(const std::string& path)
+void armourFoam::recording::resume
+(
+    const std::string& outDir,
+    const bodyExchange& bodies,
+    long records,
+    double t
+)
 {
+    std::vector<armour::RecorderUnit> units;
+    for (const armour::UnitTemplate& u : bodies.units())
+    {
+        units.push_back({u.name, u.mesh});
+    }
+    bodies_ = armour::BodyRecorder::reopen
+    (
+        outDir + "/bodies.h5",
+        outDir + "/bodies.xdmf",
+        units,
+        bodies.bodyUnit(),
+        records
+    );
+    timesFile_ = outDir + "/coupling_times.json";
+    keepRowsUpTo(outDir + "/fluid.csv", t);
+    fluidCsv_.open(outDir + "/fluid.csv", std::ios::app);
+    fluidCsv_ << std::setprecision(12);
+}
+
+
+void armourFoam::recording::openCsv(const std::string& path, double resumedAt)
+{
+    if (resumedAt >= 0)
+    {
+        keepRowsUpTo(path, resumedAt);
+        csv_.open(path, std::ios::app);
+        csv_ << std::setprecision(10);
+        return;
+    }
     csv_.open(path);
     if (!csv_)
     {

@@ -1,0 +1,109 @@
+#include "foam_restart.h"
+
+#include "mesh.h"
+
+#include <cerrno>
+#include <charconv>
+#include <cstdlib>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+
+namespace armour {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string text_of(const fs::path &file) {
+    std::ifstream in(file);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+void write_text(const fs::path &file, const std::string &text) {
+    std::ofstream out(file, std::ios::trunc);
+    out << text;
+    if (!out.flush())
+        throw InputError(file.string() + ": write failed");
+}
+
+// Sets `key value;` in an OpenFOAM dictionary file (the case's controlDict).
+void set_entry(const fs::path &dict, const std::string &key, const std::string &value) {
+    const std::string text = text_of(dict);
+    const std::regex entry("(^|\\n)(" + key + ")[ \\t]+[^;\\n]*;");
+    if (!std::regex_search(text, entry))
+        throw InputError(dict.string() + ": no '" + key + "' entry to set");
+    write_text(dict, std::regex_replace(text, entry, "$1$2 " + value + ";"));
+}
+
+// A time folder's time, if the name is one (OpenFOAM names them by their time).
+bool time_of(const std::string &name, double &t) {
+    char *end = nullptr;
+    errno = 0;
+    t = std::strtod(name.c_str(), &end);
+    return !name.empty() && end != name.c_str() && *end == '\0' && errno == 0;
+}
+
+// Removes the time folders of `dir` later than t (a killed run's writes after its checkpoint).
+void remove_later(const fs::path &dir, double t) {
+    std::error_code ec;
+    for (const auto &e : fs::directory_iterator(dir, ec)) {
+        double time = 0.0;
+        if (e.is_directory() && time_of(e.path().filename().string(), time) && time > t * (1 + 1e-12))
+            fs::remove_all(e.path(), ec);
+    }
+}
+
+} // namespace
+
+void write_fields_exactly(const fs::path &case_dir) {
+    const fs::path control = case_dir / "system" / "controlDict";
+    set_entry(control, "writeFormat", "binary");
+    set_entry(control, "writePrecision", "17");
+    // OpenFOAM restarts at the time its folder's NAME reads as (uniform/time's
+    // exact value only warns): names with all 17 digits restart exactly.
+    set_entry(control, "timePrecision", "17");
+    // An adjustable write control stretches the step to land on the write
+    // times, counted from the START time, which a restart moves: the steps
+    // after a restart would differ. Plain runTime writes at the first step
+    // past each write time and leaves the step to the Courant limit alone.
+    set_entry(control, "writeControl", "runTime");
+}
+
+void restore_case(const fs::path &case_dir, const Checkpoint &checkpoint, double end_time) {
+    const fs::path fluid = checkpoint.dir / "fluid";
+    if (!fs::is_directory(fluid))
+        throw InputError(fluid.string() + ": missing (a checkpoint of a run without [fluid]?)");
+    std::error_code ec;
+    for (const auto &e : fs::directory_iterator(fluid)) {
+        const std::string name = e.path().filename().string();
+        if (name.rfind("processor", 0) == 0) { // a parallel run: processor<N>/<time>
+            remove_later(case_dir / name, checkpoint.time);
+            for (const auto &t : fs::directory_iterator(e.path()))
+                fs::copy(t.path(), case_dir / name / t.path().filename(),
+                         fs::copy_options::recursive | fs::copy_options::overwrite_existing);
+        } else {
+            remove_later(case_dir, checkpoint.time);
+            fs::copy(e.path(), case_dir / name,
+                     fs::copy_options::recursive | fs::copy_options::overwrite_existing);
+        }
+    }
+    const fs::path control = case_dir / "system" / "controlDict";
+    set_entry(control, "startFrom", "latestTime");
+    char end[32];
+    *std::to_chars(end, end + sizeof end - 1, end_time).ptr = '\0';
+    set_entry(control, "endTime", end);
+    // The killed run's solver log stays beside the new one.
+    for (int n = 1;; ++n) {
+        const fs::path kept = case_dir / ("log.interFoam." + std::to_string(n));
+        if (!fs::exists(kept)) {
+            fs::rename(case_dir / "log.interFoam", kept, ec);
+            break;
+        }
+    }
+}
+
+} // namespace armour

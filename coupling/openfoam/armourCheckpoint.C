@@ -1,0 +1,184 @@
+/*---------------------------------------------------------------------------*\
+    armour-fsi: two-way coupling of armour units with interFoam
+\*---------------------------------------------------------------------------*/
+
+#include "armourCheckpoint.H"
+
+#include "Pstream.H"
+#include "error.H"
+
+#include <cmath>
+#include <filesystem>
+
+namespace fs = std::filesystem;
+
+// * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
+
+armourFoam::checkpointing::checkpointing
+(
+    const std::string& outDir,
+    double interval,
+    double t0
+)
+:
+    outDir_(outDir),
+    interval_(interval),
+    checkpoints_(outDir, interval, t0),
+    next_
+    (
+        interval > 0
+      ? (std::floor(t0/interval + 1e-9) + 1)*interval
+      : HUGE_VAL
+    )
+{
+    if (t0 <= 0)
+    {
+        return;
+    }
+    const std::optional<armour::Checkpoint> last =
+        armour::last_checkpoint(outDir);
+    // The case names its time folders with 17 digits when it checkpoints
+    // (apps/foam_restart.h), so OpenFOAM restarts at the exact time.
+    if (!last || std::abs(last->time - t0) > 1e-9*std::max(1.0, t0))
+    {
+        FatalErrorInFunction
+            << "armour: the case starts at t = " << t0 << " s but "
+            << outDir << "/checkpoints holds no checkpoint of that time"
+            << " (`armour run --resume` restarts a case from its last"
+            << " checkpoint)" << Foam::exit(Foam::FatalError);
+    }
+    resume_ = last;
+}
+
+
+// * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
+
+void armourFoam::checkpointing::loadInto
+(
+    bodyExchange& bodies,
+    recording& rec,
+    couplingTimes& times
+) const
+{
+    const std::string dir = resume_->dir.string();
+    bodies.loadState(dir);
+    const std::vector<double> c =
+        armour::read_state_values(dir + "/coupling");
+    if (c.size() != 5)
+    {
+        throw armour::InputError(dir + "/coupling: not a coupling state");
+    }
+    rec.setNextRecord(c[0]);
+    times.steps = static_cast<long>(c[1]);
+    times.loadSeconds = c[2];
+    times.demSeconds = c[3];
+    times.maskSeconds = c[4];
+}
+
+
+void armourFoam::checkpointing::commit(const Foam::Time& runTime)
+{
+    // The fields of pending_.time were written at the end of the last step.
+    const fs::path caseDir(runTime.globalPath());
+    const fs::path fluid = fs::path(partial_)/"fluid";
+    fs::create_directories(fluid);
+    fs::copy(caseDir/timeName_, fluid/timeName_, fs::copy_options::recursive);
+    for (const auto& entry : fs::directory_iterator(caseDir))
+    {
+        const std::string name = entry.path().filename().string();
+        if
+        (
+            name.rfind("processor", 0) == 0
+         && fs::is_directory(entry.path()/timeName_)
+        )
+        {
+            fs::copy
+            (
+                entry.path()/timeName_,
+                fluid/name/timeName_,
+                fs::copy_options::recursive
+            );
+        }
+    }
+    checkpoints_.commit(pending_, partial_);
+    Foam::Info<< "    armourCoupling: checkpoint at t = " << pending_.time
+        << " s in " << outDir_ << "/checkpoints" << Foam::endl;
+}
+
+
+void armourFoam::checkpointing::step
+(
+    Foam::Time& runTime,
+    const bodyExchange& bodies,
+    const recording& rec,
+    const couplingTimes& times
+)
+{
+    if (interval_ <= 0)
+    {
+        return;
+    }
+    const double t = runTime.value();
+    const double dt = runTime.deltaTValue();
+    if (phase_ == 2)
+    {
+        if (Foam::Pstream::master())
+        {
+            commit(runTime);
+        }
+        phase_ = 0;
+    }
+    if (phase_ == 1)
+    {
+        // Time t: the engine has advanced to it; the fields of t are
+        // written at the end of this step.
+        pending_.time = t;
+        pending_.records = rec.records();
+        timeName_ = runTime.timeName();
+        std::string dir;
+        if (Foam::Pstream::master())
+        {
+            partial_ = checkpoints_.begin().string();
+            dir = partial_;
+            armour::write_state_values
+            (
+                dir + "/coupling",
+                {
+                    rec.nextRecord(),
+                    static_cast<double>(times.steps),
+                    times.loadSeconds,
+                    times.demSeconds,
+                    times.maskSeconds
+                }
+            );
+        }
+        else
+        {
+            dir = std::string(runTime.globalPath())
+                + "/armourEngine/processor"
+                + std::to_string(Foam::Pstream::myProcNo()) + "/checkpoint";
+            fs::remove_all(dir);
+            fs::create_directories(dir);
+        }
+        bodies.saveState(dir);
+        phase_ = 2;
+        return;
+    }
+    // Two more steps must fit before the end: the run is whole then.
+    if
+    (
+        t >= next_ - 1e-9*interval_
+     && t + 2.5*dt < runTime.endTime().value()
+    )
+    {
+        runTime.writeOnce();
+        phase_ = 1;
+        while (next_ <= t + 1e-9*interval_)
+        {
+            next_ += interval_;
+        }
+    }
+}
+
+
+// ************************************************************************* //

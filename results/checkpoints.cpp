@@ -1,0 +1,126 @@
+#include "checkpoints.h"
+
+#include "mesh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+#include <vector>
+
+namespace armour {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr int kKept = 2;
+
+std::optional<Checkpoint> read_checkpoint(const fs::path &dir) {
+    std::ifstream in(dir / "checkpoint.json");
+    const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+    if (!in || !j.is_object() || !j.contains("time") || !j.contains("records"))
+        return std::nullopt;
+    Checkpoint c;
+    c.time = j["time"].get<double>();
+    c.records = j["records"].get<long>();
+    c.wall_seconds = j.value("wall_seconds", 0.0);
+    c.dir = dir;
+    return c;
+}
+
+// Complete checkpoints, oldest first (names starting with '.' are partial).
+std::vector<Checkpoint> complete(const fs::path &root) {
+    std::vector<Checkpoint> found;
+    std::error_code ec;
+    for (const auto &entry : fs::directory_iterator(root, ec)) {
+        if (!entry.is_directory() || entry.path().filename().string().front() == '.')
+            continue;
+        if (auto c = read_checkpoint(entry.path()))
+            found.push_back(*c);
+    }
+    std::sort(found.begin(), found.end(),
+              [](const Checkpoint &a, const Checkpoint &b) { return a.time < b.time; });
+    return found;
+}
+
+} // namespace
+
+std::string checkpoint_name(double t) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.9g", t);
+    return text;
+}
+
+std::optional<Checkpoint> last_checkpoint(const fs::path &out) {
+    const std::vector<Checkpoint> found = complete(out / "checkpoints");
+    if (found.empty())
+        return std::nullopt;
+    return found.back();
+}
+
+Checkpoints::Checkpoints(fs::path out, double interval, double after)
+    : root_(std::move(out) / "checkpoints"), interval_(interval),
+      next_(interval > 0.0 ? (std::floor(after / interval + 1e-9) + 1.0) * interval : HUGE_VAL) {}
+
+fs::path Checkpoints::write(Checkpoint at, const std::function<void(const fs::path &)> &fill) {
+    const fs::path partial = begin();
+    fill(partial);
+    return commit(at, partial);
+}
+
+fs::path Checkpoints::begin() {
+    std::error_code ec;
+    fs::create_directories(root_, ec);
+    // Partial folders are ours (a killed run's): they go.
+    for (const auto &entry : fs::directory_iterator(root_, ec))
+        if (entry.path().filename().string().rfind(".partial-", 0) == 0)
+            fs::remove_all(entry.path(), ec);
+    const fs::path partial = root_ / (".partial-" + std::to_string(::getpid()));
+    if (!fs::create_directories(partial / "engine", ec) || ec)
+        throw InputError(partial.string() + ": cannot create the checkpoint folder: " + ec.message());
+    return partial;
+}
+
+fs::path Checkpoints::commit(Checkpoint at, const fs::path &partial) {
+    std::error_code ec;
+    const nlohmann::json j = {{"time", at.time},
+                              {"records", at.records},
+                              {"wall_seconds", at.wall_seconds},
+                              {"si_units", {{"time", "s"}, {"wall_seconds", "s"}}}};
+    {
+        std::ofstream out(partial / "checkpoint.json");
+        out << j.dump(2) << "\n";
+        if (!out.flush())
+            throw InputError((partial / "checkpoint.json").string() + ": write failed");
+    }
+    const fs::path final_dir = root_ / checkpoint_name(at.time);
+    fs::remove_all(final_dir, ec); // an earlier run's checkpoint of the same time
+    fs::rename(partial, final_dir, ec);
+    if (ec)
+        throw InputError(final_dir.string() + ": cannot move the checkpoint into place: " + ec.message());
+    // Keep the last two; a later one left by a killed run (resumed from an
+    // earlier one) is superseded by this one. A folder goes by a rename to a
+    // partial name first, so a kill while removing it leaves no half folder
+    // under a checkpoint's name.
+    const auto drop = [&](const fs::path &dir) {
+        const fs::path gone = root_ / (".partial-old-" + std::to_string(::getpid()));
+        fs::rename(dir, gone, ec);
+        fs::remove_all(ec ? dir : gone, ec);
+    };
+    std::vector<Checkpoint> found = complete(root_);
+    for (const Checkpoint &c : found)
+        if (c.time > at.time)
+            drop(c.dir);
+    found = complete(root_);
+    for (std::size_t i = 0; i + kKept < found.size(); ++i)
+        drop(found[i].dir);
+    while (next_ <= at.time + 1e-9 * interval_)
+        next_ += interval_;
+    at.dir = final_dir;
+    return final_dir;
+}
+
+} // namespace armour

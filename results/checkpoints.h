@@ -1,0 +1,70 @@
+// Checkpoints of a run in OUT/checkpoints/<time>/, for `armour run --resume`.
+//
+// Description
+//     A checkpoint is one folder named by its simulated time (s), complete
+//     or absent: it is filled as checkpoints/.partial-<pid> and renamed into
+//     place once whole, its checkpoint.json written last inside it. Only the
+//     last two are kept. What a checkpoint holds:
+//         checkpoint.json  time (s), records (steps of bodies.h5 up to and
+//                          including its time), wall_seconds of the run so far
+//         engine/          the engine's state (RigidBodyEngine::save_state)
+//     and what its writer adds (a coupled run: the fluid's time folder, the
+//     coupler's state; docs/checkpoints.md). Used by `armour run` (dry) and
+//     by the interFoam plugin (coupled), so it knows no scene and no CLI.
+//
+// Usage
+//     Checkpoints ck(out, scene.checkpoint_interval);
+//     if (ck.due(t))
+//         ck.write({t, records, wall}, [&](const fs::path &dir) { engine.save_state(dir / "engine"); });
+//     std::optional<Checkpoint> last = last_checkpoint(out);   // complete ones only
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+
+namespace armour {
+
+struct Checkpoint {
+    double time = 0.0;         // s, simulated
+    long records = 0;          // steps of bodies.h5 up to and including this time
+    double wall_seconds = 0.0; // s, wall time of the run up to it (earlier resumes included)
+    std::filesystem::path dir; // where it lies (set by last_checkpoint and write)
+};
+
+// The complete checkpoint with the latest time, if OUT/checkpoints holds one.
+std::optional<Checkpoint> last_checkpoint(const std::filesystem::path &out);
+
+// The folder name of a checkpoint at time t (s): 9 significant digits, so
+// whole steps of 1e-4 s read as 0.1 rather than 0.10000000000000001.
+std::string checkpoint_name(double t);
+
+class Checkpoints {
+  public:
+    // interval <= 0: never due. `after`: the time already covered (a resumed
+    // run), so the next one falls on the same grid of multiples of interval.
+    Checkpoints(std::filesystem::path out, double interval, double after = 0.0);
+
+    bool due(double t) const { return interval_ > 0.0 && t >= next_ - 1e-9 * interval_; }
+
+    // Writes the checkpoint `at`: `fill` writes the states into the folder it
+    // is given (engine/ already exists), then checkpoint.json, the rename
+    // into place, and the removal of all but the last two. Returns its folder.
+    std::filesystem::path write(Checkpoint at,
+                                const std::function<void(const std::filesystem::path &)> &fill);
+
+    // The same in two parts, for a writer whose states are ready at
+    // different times (the interFoam plugin: the fluid's fields one step
+    // after the engine's): begin() makes the partial folder (with engine/),
+    // commit() finishes it as write() does.
+    std::filesystem::path begin();
+    std::filesystem::path commit(Checkpoint at, const std::filesystem::path &partial);
+
+  private:
+    std::filesystem::path root_;
+    double interval_;
+    double next_;
+};
+
+} // namespace armour
