@@ -31,6 +31,7 @@ IrregularWaves jonswap_components(double hs, double tp, double gamma, int count,
     const double scale = hs / (4.0 * std::sqrt(variance));
     for (double &a : w.amplitude)
         a *= scale;
+    w.shape_scale = scale * scale;
     // Phases from the 53 high bits of a 64-bit Mersenne twister: the same
     // seed gives the same train with any standard library.
     std::mt19937_64 rng(seed);

@@ -32,6 +32,7 @@ struct IrregularWaves {
     std::vector<double> amplitude; // m, a_j (height 2 a_j)
     std::vector<double> phase;     // rad, eta = sum a_j cos(k_j x - 2 pi f_j t + phase_j)
     double frequency_step = 0.0;   // Hz; the train repeats every 1 / frequency_step s
+    double shape_scale = 0.0;      // m^2/Hz: the target density is shape_scale * jonswap_shape(f, fp, gamma)
 };
 
 // Unnormalised JONSWAP shape (alpha = 1, g = 1): only ratios matter here.

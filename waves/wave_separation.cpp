@@ -139,13 +139,14 @@ SpectralParameters spectral_parameters(const std::vector<double> &frequency,
     if (frequency.size() < 2)
         return s;
     const double df = frequency[1] - frequency[0];
-    double m_minus1 = 0.0, peak = -1.0;
+    double m_minus1 = 0.0, m2 = 0.0, peak = -1.0;
     for (std::size_t j = 0; j < frequency.size(); ++j) {
         const double f = frequency[j];
         if (f < f_min - 1e-9 * df || f > f_max + 1e-9 * df)
             continue;
         s.m0 += density[j] * df;
         m_minus1 += density[j] * df / f;
+        m2 += density[j] * df * f * f;
         if (density[j] > peak) {
             peak = density[j];
             s.tp = 1.0 / f;
@@ -153,6 +154,7 @@ SpectralParameters spectral_parameters(const std::vector<double> &frequency,
     }
     s.hm0 = 4.0 * std::sqrt(s.m0);
     s.tm10 = s.m0 > 0.0 ? m_minus1 / s.m0 : 0.0;
+    s.tm02 = m2 > 0.0 ? std::sqrt(s.m0 / m2) : 0.0;
     return s;
 }
 

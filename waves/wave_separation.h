@@ -51,6 +51,7 @@ struct SpectralParameters {
     double hm0 = 0.0;  // m
     double tp = 0.0;   // s
     double tm10 = 0.0; // s, Tm-1,0
+    double tm02 = 0.0; // s, sqrt(m0 / m2), ~ the mean zero-crossing period
 };
 
 struct RegularSeparation {
