@@ -67,6 +67,20 @@ std::string list_of(const std::vector<double> &v, bool one_per_row) {
     return s + ")";
 }
 
+// The outlet's velocity condition (alpha zeroGradient, p_rgh fixedFluxPressure).
+std::string outlet_velocity(const Scene &scene) {
+    const SceneWaves &w = *scene.waves;
+    if (w.outlet == "wall")
+        return "type            noSlip;";
+    if (w.outlet == "shallow_water")
+        return "type            waveVelocity;\n        value           uniform (0 0 0);";
+    // Linear celerity at T (Tp): the depth-mean velocity of a wave leaving is c eta / h.
+    const double depth = depth_of(scene), period = period_of(w);
+    const double c = wavelength(period, depth, scene.gravity.norm()) / period;
+    return "type            armourShallowWaterAbsorption;\n        waterDepth      " + num(depth) +
+           ";\n        celerity        " + num(c) + ";\n        value           uniform (0 0 0);";
+}
+
 std::string wave_properties(const SceneWaves &w) {
     std::ostringstream o;
     o << "inlet\n{\n    alpha           alpha.water;\n    nPaddle         1;\n"
@@ -91,7 +105,7 @@ std::string wave_properties(const SceneWaves &w) {
           << "    waveDirs        " << list_of(zeros, true) << ";\n";
     }
     o << "}\n";
-    if (w.outlet == "absorbing")
+    if (w.outlet == "shallow_water")
         o << "\noutlet\n{\n    alpha           alpha.water;\n    waveModel       shallowWaterAbsorption;\n"
           << "    nPaddle         1;\n}\n";
     return o.str();
@@ -151,9 +165,7 @@ void wave_tokens(const Scene &scene, const std::string &template_text,
         return;
     const SceneWaves &w = *scene.waves;
     tokens["@WAVE_PROPERTIES@"] = wave_properties(w);
-    tokens["@OUTLET_U@"] = w.outlet == "absorbing"
-                               ? "type            waveVelocity;\n        value           uniform (0 0 0);"
-                               : "type            noSlip;";
+    tokens["@OUTLET_U@"] = outlet_velocity(scene);
     const double y = 0.5 * (scene.domain_min.y() + scene.domain_max.y());
     std::string gauges = "(";
     for (const double x : gauge_positions(scene))

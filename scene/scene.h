@@ -159,7 +159,7 @@ struct SceneWaves {
     int components = 40;       // even; the train repeats every components Tp / 2
     double ramp_time = 0.0;    // s (the reader's default: 2 periods)
     bool active_absorption = true; // inlet absorbs waves coming back
-    std::string outlet = "absorbing"; // absorbing | wall
+    std::string outlet = "absorbing"; // absorbing | shallow_water | wall
     std::optional<double> gauge_x;    // m, first gauge of the array (default: one wavelength from the inlet)
 };
 

@@ -356,9 +356,10 @@ const std::vector<Key<SceneWaves>> &wave_keys() {
             "the inlet corrects its velocity so waves coming back leave (shallow-water correction)")
             .written_if(not_solitary),
         key("outlet", &W::outlet, "",
-            "absorbing: OpenFOAM's shallowWaterAbsorption (reflection measured in docs/waves.md); wall: "
-            "a reflecting end wall")
-            .one_of({"absorbing", "wall"})
+            "absorbing: the long-wave condition tuned to the celerity at T (Tp), u = c eta / h "
+            "(armourShallowWaterAbsorption); shallow_water: OpenFOAM's shallowWaterAbsorption, u = "
+            "sqrt(g / h) eta; wall: a reflecting end wall (reflection of each in docs/waves.md)")
+            .one_of({"absorbing", "shallow_water", "wall"})
             .written_if(not_solitary),
         key("gauge_x", &W::gauge_x, "m",
             "x of the first of three gauges (spaced L/10 and L/4 after it, Mansard and Funke); the "

@@ -311,6 +311,14 @@ void read_waves(const Table &root, Scene &s) {
                        "non-repeating train needs no more than 200 (repeat: components Tp / 2)");
         if (w.components % 2 != 0)
             t.fail("components", "must be even (got " + std::to_string(w.components) + ")");
+        const double longest = 2.0 * w.tp; // the lowest component, 0.5 fp
+        const double kh = wave_number(longest, depth, g) * depth;
+        if (kh < kStockWavelengthMinKh)
+            t.fail("Tp",
+                   "the longest component (2 Tp = " + number_text(longest) +
+                       " s) has kh = " + number_text(kh) + " < " + number_text(kStockWavelengthMinKh) +
+                       ": OpenFOAM v1912's irregularMultiDirectional finds wavelengths by a fixed-point "
+                       "iteration that has not converged there (docs/waves.md)");
         // Rayleigh: the largest of ~1000 waves is ~1.8 Hs.
         const double largest = 1.8 * w.hs, miche = miche_height(w.tp, depth, g);
         if (largest > kDepthBreakingRatio * depth || largest > miche)

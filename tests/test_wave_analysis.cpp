@@ -28,7 +28,7 @@ TEST(WaveTheory, WaveNumberSolvesTheDispersionRelation) {
 }
 
 TEST(WaveTheory, AutoPicksByUrsellNumberAndSteepness) {
-    // h = 0.4 m, T = 1.6 s: L = 3.07 m, kh = 0.82.
+    // h = 0.4 m, T = 1.6 s: L = 2.84 m, kh = 0.89.
     EXPECT_EQ(regular_theory("auto", 0.02, 1.6, 0.4, kG), "StokesII");     // Ur = 2.9, H/L0 = 0.005
     EXPECT_EQ(regular_theory("auto", 0.09, 1.6, 0.4, kG), "StokesV");      // H/L0 = 0.0225
     EXPECT_EQ(regular_theory("auto", 0.05, 4.0, 0.2, kG), "cnoidal");      // Ur = 120, kh = 0.23
@@ -43,6 +43,9 @@ TEST(WaveTheory, RefusesBreakingAndOutOfRangeWaves) {
     EXPECT_NE(regular_wave_refusal("StokesV", 0.15, 0.8, 2.0, kG).find("Miche"), std::string::npos);
     EXPECT_NE(regular_wave_refusal("StokesII", 0.05, 4.0, 0.2, kG).find("Ursell"), std::string::npos);
     EXPECT_NE(regular_wave_refusal("cnoidal", 0.02, 1.6, 0.4, kG).find("shallow"), std::string::npos);
+    // kh = 0.32 (T = 4 s in 0.4 m, Ursell 4.7): below the stock wavelength iteration's range.
+    EXPECT_NE(regular_wave_refusal("StokesII", 0.005, 4.0, 0.4, kG).find("fixed-point"), std::string::npos)
+        << regular_wave_refusal("StokesII", 0.005, 4.0, 0.4, kG);
     EXPECT_NE(regular_wave_refusal("streamFunction", 0.02, 1.6, 0.4, kG).find("Fenton"), std::string::npos);
 }
 
@@ -103,8 +106,8 @@ GaugeArray record(const Train &in, const Train &out, const std::vector<double> &
 }
 
 TEST(MansardFunke, SeparatesARegularWaveAndItsReflection) {
-    // h = 0.4 m, T = 1.6 s (L = 3.07 m): H_I = 0.08 m, H_R = 0.024 m (Kr = 0.3)
-    // at an arbitrary phase; gauges 0.3 m (L/10) and 0.75 m (L/4) apart;
+    // h = 0.4 m, T = 1.6 s (L = 2.84 m): H_I = 0.08 m, H_R = 0.024 m (Kr = 0.3)
+    // at an arbitrary phase; gauges 0.3 m (~L/10) and 0.75 m (~L/4) apart;
     // 1 mm of gauge noise; 10 periods.
     const double h = 0.4, period = 1.6;
     const Train in{{1 / period}, {0.04}, {0.4}}, out{{1 / period}, {0.012}, {2.5}};

@@ -21,15 +21,15 @@ using nlohmann::json;
 
 namespace {
 
-struct Run {
+struct FlumeRun {
     int status = -1;
     std::string output;
     fs::path dir;
     json summary;
 };
 
-Run run_flume(const std::string &name, const std::string &sets) {
-    Run r;
+FlumeRun run_flume(const std::string &name, const std::string &sets) {
+    FlumeRun r;
     std::string tmpl = (fs::temp_directory_path() / ("armour_test_wave_flume_" + name + "_XXXXXX")).string();
     if (!mkdtemp(tmpl.data()))
         return r;
@@ -53,7 +53,7 @@ Run run_flume(const std::string &name, const std::string &sets) {
 // Regular: H = 0.06 m, T = 1.6 s, h = 0.4 m (StokesII), 10 periods after the
 // ramp and after the outlet's reflection is back at the gauges.
 TEST(WaveFlume, RegularWaveHeightPeriodAndReflection) {
-    const Run run = run_flume("regular", "");
+    const FlumeRun run = run_flume("regular", "");
     ASSERT_EQ(run.status, 0) << run.output;
     ASSERT_TRUE(run.summary.contains("waves")) << run.output;
     const json &w = run.summary["waves"];
@@ -87,7 +87,7 @@ TEST(WaveFlume, RegularWaveHeightPeriodAndReflection) {
 // (random amplitudes would: ~1/sqrt(24) = 20 % in m0, 10 % in Hm0), what is
 // left is the flume's. Tp is resolved to 1/12 of fp.
 TEST(WaveFlume, IrregularHm0AndTp) {
-    const Run run = run_flume("irregular", "--set waves.type='\"irregular\"' --set run.duration=35");
+    const FlumeRun run = run_flume("irregular", "--set waves.type='\"irregular\"' --set run.duration=35");
     ASSERT_EQ(run.status, 0) << run.output;
     ASSERT_TRUE(run.summary.contains("waves")) << run.output;
     const json &w = run.summary["waves"];

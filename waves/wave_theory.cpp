@@ -80,6 +80,13 @@ std::string regular_wave_refusal(const std::string &theory, double height, doubl
                       ur, kh);
         return buf;
     }
+    if (theory == "StokesII" && kh < kStockWavelengthMinKh) {
+        std::snprintf(buf, sizeof buf,
+                      "kh = %.3g < %.2g: OpenFOAM v1912's StokesII finds the wavelength by a fixed-point "
+                      "iteration that has not converged there; use theory \"cnoidal\" or \"StokesV\"",
+                      kh, kStockWavelengthMinKh);
+        return buf;
+    }
     if (theory == "streamFunction")
         return "theory \"streamFunction\": the stock model needs Fenton's Fourier coefficients (Bjs, Ejs), "
                "which this version does not compute; use \"StokesII\", \"StokesV\", \"cnoidal\" or \"auto\"";

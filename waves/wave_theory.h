@@ -32,6 +32,11 @@ constexpr double kStokesIIUrsellLimit = 26.318945069609; // 8 pi^2 / 3
 constexpr double kDepthBreakingRatio = 0.78;             // H / h, McCowan
 constexpr double kMicheSteepness = 0.142;                // H / L in deep water, Miche
 constexpr double kStokesVSteepness = 0.02;               // H / L0 above which auto picks StokesV
+// OpenFOAM v1912's StokesI/II and irregularMultiDirectional find L by 100
+// fixed-point steps L = L0 tanh(2 pi h / L), which converge ever more slowly
+// as kh falls: their L is off by 4e-4 at kh = 0.34, 3e-3 at 0.29, 3 % at
+// 0.23, 56 % at 0.11 (docs/waves.md). Below this kh they are refused.
+constexpr double kStockWavelengthMinKh = 0.34;
 
 // k (1/m) of a wave of `period` (s) in `depth` (m): omega^2 = g k tanh(k h), Newton to 1e-14.
 double wave_number(double period, double depth, double g);
