@@ -154,11 +154,11 @@ struct SceneWaves {
     double hs = 0.0;              // m, irregular Hm0 (key Hs)
     double tp = 0.0;              // s, irregular peak period (key Tp)
     std::string spectrum = "jonswap";
-    double gamma = 3.3;        // JONSWAP peak enhancement (1 = Pierson-Moskowitz)
-    std::uint64_t seed = 1;    // phases
-    int components = 40;       // even; the train repeats every components Tp / 2
-    double ramp_time = 0.0;    // s (the reader's default: 2 periods)
-    bool active_absorption = true; // inlet absorbs waves coming back
+    double gamma = 3.3;               // JONSWAP peak enhancement (1 = Pierson-Moskowitz)
+    std::uint64_t seed = 1;           // phases
+    int components = 40;              // even; the train repeats every components Tp / 2
+    double ramp_time = 0.0;           // s (the reader's default: 2 periods)
+    bool active_absorption = true;    // inlet absorbs waves coming back
     std::string outlet = "absorbing"; // absorbing | shallow_water | wall
     std::optional<double> gauge_x;    // m, first gauge of the array (default: one wavelength from the inlet)
 };
