@@ -5,10 +5,11 @@
 #include "body_recorder.h"
 #include "clump_io.h"
 #include "engine_registry.h"
-#include "openfoam_environment.h"
 #include "foam_restart.h"
+#include "openfoam_environment.h"
 #include "output_folder.h"
 #include "stl_io.h"
+#include "wave_case.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -378,6 +379,11 @@ std::vector<std::string> check_coupled_scene(const Scene &scene, const SceneSetu
         throw InputError(file + ": key 'fluid.case': no case template " + tmpl.string() +
                          " (known: " + known + ")");
     }
+    {
+        std::map<std::string, std::string>
+            tokens; // [waves] and the template agree, before anything is written
+        wave_tokens(scene, template_text(tmpl), tokens);
+    }
     for (const char *tool : {"blockMesh", "setFields", "interFoam"})
         if (!on_path(tool))
             throw InputError(std::string(tool) +
@@ -395,7 +401,7 @@ std::vector<std::string> check_coupled_scene(const Scene &scene, const SceneSetu
     }
 
     const Eigen::Vector3d h = cell_size(scene);
-    if (h.maxCoeff() > 2.0 * h.minCoeff())
+    if (!setup.bodies.empty() && h.maxCoeff() > 2.0 * h.minCoeff())
         warnings.push_back("fluid cells are stretched (" + num(h.x()) + " x " + num(h.y()) + " x " +
                            num(h.z()) + " m): the mask ramp follows the largest side");
     // A unit resting on a wall (or on the mesh's bottom face) reaches into it
@@ -562,6 +568,8 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
         restore_case(case_dir, *resume, scene.duration);
     else {
         fs::copy(source_dir() / "foam_cases" / f.case_name, case_dir, fs::copy_options::recursive);
+        if (setup.bodies.empty()) // an empty wave flume: interFoam alone, nothing to couple
+            fs::remove(case_dir / "constant" / "fvOptions");
         const std::string used = template_text(case_dir);
         const Eigen::Vector3d &lo = scene.domain_min, &hi = scene.domain_max;
         const Eigen::Vector3d pad = Eigen::Vector3d::Constant(1.0 + (hi - lo).maxCoeff());
@@ -608,13 +616,14 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
             {"@WAVE_HEIGHT@", num(f.wave_height)},
         };
         geometry_tokens(scene, setup, used, tokens);
+        wave_tokens(scene, used, tokens);
         if (used.find("@ARMOUR_WAVES@") != std::string::npos) {
             const std::string waves = waves_library(plugin);
             if (!fs::is_regular_file(waves))
                 throw InputError("fluid.case \"" + f.case_name + "\" needs the wave library " + waves +
                                  ": build the target armourWaves (or set ARMOUR_WAVES_LIB)");
             tokens["@ARMOUR_WAVES@"] = waves;
-            if (f.wave_height <= 0.0)
+            if (f.wave_height <= 0.0 && !makes_wave_train(scene))
                 throw InputError(scene.file + ": key 'fluid.wave_height': fluid.case \"" + f.case_name +
                                  "\" makes a solitary wave: give its height (> 0 m)");
         }
@@ -624,9 +633,8 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
                      f.cells[0], f.cells[1], f.cells[2], f.np, f.np > 1 ? "s" : "", scene.engine.c_str(),
                      case_dir.c_str());
         run_tool("blockMesh", {"blockMesh"}, case_dir, scene.duration, false);
-        // Blocked cells: a template with system/topoSetDict makes the cellSet
-        // "fluid" and the mesh keeps only it, the exposed faces joining the patch
-        // "walls" (foam_cases/slope_waves). Fields come from 0/*.orig afterwards.
+        // Blocked cells: system/topoSetDict makes the cellSet "fluid", the mesh keeps only it, the
+        // exposed faces join the patch "walls" (slope_waves). Fields come from 0/*.orig afterwards.
         if (fs::is_regular_file(case_dir / "system" / "topoSetDict")) {
             run_tool("topoSet", {"topoSet"}, case_dir, scene.duration, false);
             run_tool("subsetMesh", {"subsetMesh", "-overwrite", "fluid", "-patch", "walls"}, case_dir,
@@ -656,8 +664,9 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
     const double wall_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-    const BodiesFile rec = read_bodies_file((out / "bodies.h5").string());
-    if (rec.time.empty() || rec.bodies() != setup.bodies.size())
+    const BodiesFile rec =
+        setup.bodies.empty() ? BodiesFile{} : read_bodies_file((out / "bodies.h5").string());
+    if (!setup.bodies.empty() && (rec.time.empty() || rec.bodies() != setup.bodies.size()))
         throw InputError(out.string() + "/bodies.h5: the plugin recorded no steps");
     const std::string solver_log = read_file(case_dir / "log.interFoam");
 
@@ -666,7 +675,7 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
         spheres[setup.units[k].name] = setup.unit_spheres[k];
         across[setup.units[k].name] = setup.unit_Dn[k] / h.maxCoeff();
     }
-    const double simulated = rec.time.back();
+    const double simulated = rec.time.empty() ? scene.duration : rec.time.back();
     json summary = {
         {"command", "run"},
         {"coupled", true},
@@ -779,6 +788,8 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
                 summary[key] = times.contains(key) ? times[key] : json(nullptr);
         }
     }
+    if (makes_wave_train(scene))
+        add_wave_summary(scene, case_dir, folder, summary);
     write_text_file(folder.claim("summary.json"), summary.dump(2) + "\n");
     std::printf("%s: %d units, %.4g s coupled in %.1f s wall%s%s -> %s\n", scene.name.c_str(),
                 static_cast<int>(setup.bodies.size()), simulated, wall_seconds, result.empty() ? "" : ", ",

@@ -144,6 +144,28 @@ struct SceneFluid {
     double settle_time = 0.0;
 };
 
+// [waves]: the wave train at the inlet of a wave template (docs/waves.md).
+// solitary: the template's solitary wave of fluid.wave_height, as without
+// [waves]; regular and irregular: OpenFOAM's stock wave models
+// (foam_cases/wave_flume), with an array of three gauges for the
+// incident/reflected analysis.
+struct SceneWaves {
+    std::string type = "regular"; // solitary | regular | irregular
+    double height = 0.0;          // m, regular H
+    double period = 0.0;          // s, regular T
+    std::string theory = "auto";  // auto | StokesII | StokesV | cnoidal | streamFunction (resolved on load)
+    double hs = 0.0;              // m, irregular Hm0 (key Hs)
+    double tp = 0.0;              // s, irregular peak period (key Tp)
+    std::string spectrum = "jonswap";
+    double gamma = 3.3;               // JONSWAP peak enhancement (1 = Pierson-Moskowitz)
+    std::uint64_t seed = 1;           // phases
+    int components = 40;              // even; the train repeats every components Tp / 2
+    double ramp_time = 0.0;           // s (the reader's default: 2 periods)
+    bool active_absorption = true;    // inlet absorbs waves coming back
+    std::string outlet = "absorbing"; // absorbing | shallow_water | wall
+    std::optional<double> gauge_x;    // m, first gauge of the array (default: one wavelength from the inlet)
+};
+
 struct Scene {
     std::string file; // path as given
     std::string name;
@@ -182,6 +204,7 @@ struct Scene {
     std::vector<SceneDrop> drops;
     std::vector<ScenePattern> patterns;
     std::optional<SceneFluid> fluid; // [fluid]: a coupled interFoam run
+    std::optional<SceneWaves> waves; // [waves]: needs [fluid]
 };
 
 // `overrides` are "dotted.key=toml_value" strings (from --set).

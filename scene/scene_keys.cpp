@@ -353,6 +353,72 @@ const std::vector<Key<ScenePattern>> &pattern_keys() {
     return keys;
 }
 
+const std::vector<Key<SceneWaves>> &wave_keys() {
+    using W = SceneWaves;
+    // A solitary wave is the template's: the common keys are not its.
+    constexpr auto not_solitary = [](const W &w) { return w.type != "solitary"; };
+    static const std::vector<Key<W>> keys = {
+        key("type", &W::type, "", "the wave train; regular and irregular need fluid.case \"wave_flume\"")
+            .one_of({"solitary", "regular", "irregular"})
+            .required(),
+        key("height", &W::height, "m",
+            "H; the inlet refuses breaking waves (H / h > 0.78, or H > 0.142 L tanh(kh))")
+            .in(Range::above(0))
+            .required(" for type \"regular\" (wave height, m)")
+            .only_for("regular"),
+        key("period", &W::period, "s", "T")
+            .in(Range::above(0))
+            .required(" for type \"regular\" (s)")
+            .only_for("regular"),
+        key("theory", &W::theory, "",
+            "OpenFOAM's model; auto: cnoidal above Ursell 26.3 in shallow water (kh < pi/4), else StokesV "
+            "for H / L0 > 0.02, else StokesII; each refuses waves outside its validity (docs/waves.md)")
+            .one_of({"auto", "StokesII", "StokesV", "cnoidal", "streamFunction"})
+            .only_for("regular"),
+        key("Hs", &W::hs, "m",
+            "significant height Hm0 = 4 sqrt(m0); refused when 1.8 Hs (the largest of ~1000 waves) would "
+            "break at the inlet")
+            .in(Range::above(0))
+            .required(" for type \"irregular\" (Hm0, m)")
+            .only_for("irregular"),
+        key("Tp", &W::tp, "s", "peak period")
+            .in(Range::above(0))
+            .required(" for type \"irregular\" (s)")
+            .only_for("irregular"),
+        key("spectrum", &W::spectrum, "", "spectral shape").one_of({"jonswap"}).only_for("irregular"),
+        key("gamma", &W::gamma, "", "JONSWAP peak enhancement; 1 = Pierson-Moskowitz")
+            .in(Range::closed(1, 10))
+            .only_for("irregular"),
+        key("seed", &W::seed, "", "random phases: the same seed gives the same train")
+            .in(Range::at_least(0))
+            .only_for("irregular"),
+        key("components", &W::components, "",
+            "even; frequencies 0.5 Tp^-1 .. ~2.5 Tp^-1 in steps of 2 / (components Tp): the train repeats "
+            "every components Tp / 2 s")
+            .in(Range::closed(4, 200))
+            .only_for("irregular"),
+        key("ramp_time", &W::ramp_time, "s", "the inlet's amplitude ramps up from 0 over this time")
+            .in(Range::above(0))
+            .defaults("2 `period` (2 `Tp`)")
+            .written_if(not_solitary),
+        key("active_absorption", &W::active_absorption, "",
+            "the inlet corrects its velocity so waves coming back leave (shallow-water correction)")
+            .written_if(not_solitary),
+        key("outlet", &W::outlet, "",
+            "absorbing: the long-wave condition tuned to the celerity at T (Tp), u = c eta / h "
+            "(armourShallowWaterAbsorption); shallow_water: OpenFOAM's shallowWaterAbsorption, u = "
+            "sqrt(g / h) eta; wall: a reflecting end wall (reflection of each in docs/waves.md)")
+            .one_of({"absorbing", "shallow_water", "wall"})
+            .written_if(not_solitary),
+        key("gauge_x", &W::gauge_x, "m",
+            "x of the first of three gauges (spaced L/10 and L/4 after it, Mansard and Funke); the "
+            "array must lie inside the flume")
+            .defaults("one wavelength L (at T or Tp) from the inlet")
+            .written_if(not_solitary),
+    };
+    return keys;
+}
+
 // ---------------------------------------------------------------- text
 
 std::string number_text(double v) {
@@ -531,6 +597,14 @@ const std::vector<SceneSection> &scene_sections() {
          "",
          {},
          [] { return describe_all("pattern", pattern_keys()); }},
+        {"waves",
+         SectionKind::Table,
+         "type",
+         {{"solitary", "the template's solitary wave of `fluid.wave_height`, as without [waves]"},
+          {"regular", "a regular wave train, OpenFOAM's stock wave models (the irregular keys may stay in "
+                      "the file, checked and unused, and the other way round)"},
+          {"irregular", "a JONSWAP train through OpenFOAM's irregularMultiDirectional model"}},
+         [] { return describe_all("waves", wave_keys()); }},
     };
     return sections;
 }

@@ -5,9 +5,11 @@
 #include "scene.h"
 
 #include "engine_registry.h"
+#include "jonswap.h"
 #include "mesh.h"
 #include "scene_keys.h"
 #include "toml_table.h"
+#include "wave_theory.h"
 
 #include <toml++/toml.h>
 
@@ -263,6 +265,82 @@ void read_fluid(const Table &root, Scene &s) {
     s.fluid = f;
 }
 
+// [waves] after [fluid] (the depth is fluid.water_level - run.domain_min.z):
+// the wave must be one the chosen theory describes and must not break at
+// the inlet, and the gauge array must lie in the flume.
+void read_waves(const Table &root, Scene &s) {
+    if (!root.has("waves"))
+        return;
+    const Table t = root.section("waves");
+    const auto &keys = wave_keys();
+    t.only(names_of(keys));
+    SceneWaves w;
+    t.require("type");
+    read_value(t, key_named(keys, "type"), w);
+    if (!s.fluid)
+        t.fail("type", "[waves] makes waves in a coupled run: the scene needs a [fluid] table");
+    // The other type's keys may stay (checked, unused): one file then holds
+    // a regular and an irregular train, picked with --set waves.type=...
+    read_keys(t, keys, w, w.type);
+    for (const auto &k : keys)
+        if (*k.when && w.type != k.when)
+            read_value(t, k, w);
+    if (w.type == "solitary") {
+        for (const char *name : {"ramp_time", "active_absorption", "outlet", "gauge_x"})
+            if (t.has(name))
+                t.fail(name, "not used by type \"solitary\" (the template's solitary wave of "
+                             "fluid.wave_height; docs/waves.md)");
+        s.waves = w;
+        return;
+    }
+    const double depth = s.fluid->water_level - s.domain_min.z(), g = s.gravity.norm();
+    const bool regular = w.type == "regular";
+    const double period = regular ? w.period : w.tp;
+    if (regular) {
+        w.theory = regular_theory(w.theory, w.height, w.period, depth, g);
+        const std::string why = regular_wave_refusal(w.theory, w.height, w.period, depth, g);
+        if (!why.empty())
+            t.fail(why.find("breaks") != std::string::npos ? "height" : "theory", why);
+    } else {
+        // (Integer keys get only their lower bound from the table.)
+        if (w.components > kMaxWaveComponents)
+            t.fail("components",
+                   "must be in [4, " + std::to_string(kMaxWaveComponents) + "] (got " +
+                       std::to_string(w.components) +
+                       "): each component costs a cosine per inlet face and step; a longer "
+                       "non-repeating train needs no more than 200 (repeat: components Tp / 2)");
+        if (w.components % 2 != 0)
+            t.fail("components", "must be even (got " + std::to_string(w.components) + ")");
+        const double longest = 2.0 * w.tp; // the lowest component, 0.5 fp
+        const double kh = wave_number(longest, depth, g) * depth;
+        if (kh < kStockWavelengthMinKh)
+            t.fail("Tp",
+                   "the longest component (2 Tp = " + number_text(longest) +
+                       " s) has kh = " + number_text(kh) + " < " + number_text(kStockWavelengthMinKh) +
+                       ": OpenFOAM v1912's irregularMultiDirectional finds wavelengths by a fixed-point "
+                       "iteration that has not converged there (docs/waves.md)");
+        // Rayleigh: the largest of ~1000 waves is ~1.8 Hs.
+        const double largest = 1.8 * w.hs, miche = miche_height(w.tp, depth, g);
+        if (largest > kDepthBreakingRatio * depth || largest > miche)
+            t.fail("Hs", "1.8 Hs = " + number_text(largest) +
+                             " m (the largest of ~1000 waves) breaks at the inlet: "
+                             "it must stay below 0.78 h = " +
+                             number_text(kDepthBreakingRatio * depth) +
+                             " m and 0.142 L tanh(kh) = " + number_text(miche) + " m at Tp");
+    }
+    if (!t.has("ramp_time"))
+        w.ramp_time = 2.0 * period;
+    const double L = wavelength(period, depth, g);
+    if (!w.gauge_x)
+        w.gauge_x = s.domain_min.x() + L;
+    t.check(*w.gauge_x > s.domain_min.x() && *w.gauge_x + 0.25 * L < s.domain_max.x(), "gauge_x",
+            "the gauge array x .. x + L/4 (L = " + number_text(L) +
+                " m) must lie inside the flume run.domain_min.x .. run.domain_max.x = (" +
+                number_text(s.domain_min.x()) + ", " + number_text(s.domain_max.x()) + ") m",
+            *w.gauge_x);
+    s.waves = w;
+}
+
 std::string unit_of(const Table &t, const Scene &s, const std::string &u) {
     std::vector<std::string> names;
     for (const auto &unit : s.units)
@@ -332,7 +410,9 @@ void read_placements(const Table &root, Scene &s) {
                                "; a pattern needs a \"slope\" wall");
         s.patterns.push_back(p);
     }
-    if (s.bodies.empty() && s.drops.empty() && s.patterns.empty())
+    // An empty wave flume ([waves] regular or irregular) is a scene too.
+    const bool wave_flume = s.waves && s.waves->type != "solitary";
+    if (s.bodies.empty() && s.drops.empty() && s.patterns.empty() && !wave_flume)
         root.fail("body", "the scene places no units: add a [[body]], [[drop]] or [[pattern]]");
 }
 
@@ -505,6 +585,7 @@ Scene load_scene(const std::string &path, const std::vector<std::string> &overri
     read_run(root, s);
     read_contact_and_analysis(root, s);
     read_fluid(root, s);
+    read_waves(root, s);
     // A coupled run without run.engine takes exact hulls where the build has
     // them: there interFoam takes 97-99 % of the time whichever engine runs,
     // and sphere clumps change the answer (the platform case: 3 of 3 cubes

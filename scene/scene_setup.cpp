@@ -565,7 +565,8 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
         throw InputError(scene.file + ": initial placement: bodies overlap (pairs " + pairs +
                          "); move them apart");
     }
-    if (setup.bodies.empty())
+    const bool wave_flume = scene.waves && scene.waves->type != "solitary"; // an empty flume is a scene
+    if (setup.bodies.empty() && !wave_flume)
         throw InputError(scene.file + ": no bodies: add [[body]], [[drop]] or [[pattern]]");
     return setup;
 }

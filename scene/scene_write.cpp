@@ -90,6 +90,10 @@ std::string resolved_scene_toml(const Scene &s) {
     write_table(o, "analysis", analysis_keys(), s);
     if (s.fluid)
         write_table(o, "fluid", fluid_keys(), *s.fluid);
+    if (s.waves) {
+        o << "\n[waves]\n";
+        write_keys(o, wave_keys(), *s.waves, s.waves->type);
+    }
     write_entries(o, "material", material_keys(), s.materials, none);
     write_entries(o, "material_pair", material_pair_keys(), s.material_pairs, none);
     write_entries(o, "unit", unit_keys(), s.units, [](const SceneUnit &u) { return u.shape; });

@@ -869,7 +869,11 @@ TEST_F(SceneFile, EveryTableKeyIsRead) {
         write(std::string(kFull) + "\n[fluid]\nwater_level = 0.5\ncells = [4, 4, 4]\n"
                                    "water_box_min = [-1, -1, -1]\nwater_box_max = [0, 0, 0]\n",
               "cells.toml"),
-        write(std::string(kFull) + "\n[fluid]\nwater_level = 0.5\ncell_size = 0.5\n", "cell_size.toml")};
+        write(std::string(kFull) + "\n[fluid]\nwater_level = 0.5\ncell_size = 0.5\n", "cell_size.toml"),
+        write(std::string(kFull) +
+                  "\n[fluid]\nwater_level = 0.5\ncell_size = 0.5\n[waves]\ntype = \"regular\"\n"
+                  "height = 0.1\nperiod = 1.6\n",
+              "waves.toml")};
     for (const auto &base : bases)
         ASSERT_EQ(error_of(base), "") << base;
     // kFull's entries by shape and wall type.
@@ -941,4 +945,46 @@ TEST_F(SceneFile, EveryShippedSceneParses) {
         expect_same(a, b);
     }
     EXPECT_GE(scenes, 13);
+}
+
+// [waves]: a wave the chosen theory does not describe, one that breaks at
+// the inlet, an odd number of components and gauges outside the flume are
+// refused, each naming its key (docs/waves.md).
+TEST_F(SceneFile, WavesOutsideTheirLimitsAreRefusedNamingTheKey) {
+    // kFull: domain x -2 .. 4 m, z from -1 m; water_level 0.5 m: depth h = 1.5 m.
+    const std::string fluid = std::string(kFull) + "\n[fluid]\nwater_level = 0.5\ncell_size = 0.5\n";
+    const std::string regular = fluid + "[waves]\ntype = \"regular\"\nheight = 0.1\nperiod = 1.6\n";
+    const std::string p = write(regular);
+    ASSERT_EQ(error_of(p), "");
+    EXPECT_EQ(load_scene(p).waves->theory, "StokesV"); // H / L0 = 0.025
+    EXPECT_NE(error_of(p, {"waves.height=1.2"}).find("key 'waves.height': H / h = 0.8 > 0.78"),
+              std::string::npos)
+        << error_of(p, {"waves.height=1.2"});
+    EXPECT_NE(error_of(p, {"waves.height=0.6", "waves.period=1.2"}).find("key 'waves.height': H = 0.6 m > "),
+              std::string::npos);
+    // T = 12 s in 1.5 m: L = 45 m, Ursell 60 with H = 0.1 m.
+    const std::string ursell =
+        error_of(p, {"waves.period=12", "waves.theory=\"StokesII\"", "run.domain_max=[90, 3, 5]"});
+    EXPECT_NE(ursell.find("key 'waves.theory': Ursell number"), std::string::npos) << ursell;
+    EXPECT_EQ(error_of(p, {"waves.period=12", "run.domain_max=[90, 3, 5]"}), ""); // auto: cnoidal
+    const std::string irregular =
+        error_of(p, {"waves.type=\"irregular\"", "waves.Hs=0.1", "waves.Tp=1.6", "waves.components=41"});
+    EXPECT_NE(irregular.find("key 'waves.components': must be even (got 41)"), std::string::npos)
+        << irregular;
+    EXPECT_NE(error_of(p, {"waves.type=\"irregular\"", "waves.Hs=0.7", "waves.Tp=1.6"})
+                  .find("key 'waves.Hs': 1.8 Hs"),
+              std::string::npos);
+    EXPECT_NE(
+        error_of(p, {"waves.type=\"irregular\"", "waves.Hs=0.1", "waves.Tp=1.6", "waves.components=202"})
+            .find("key 'waves.components': must be in [4, 200]"),
+        std::string::npos);
+    EXPECT_NE(error_of(p, {"waves.gauge_x=3.5"}).find("key 'waves.gauge_x': the gauge array"),
+              std::string::npos);
+    EXPECT_NE(error_of(p, {"waves.type=\"irregular\""}).find("key 'waves.Hs': missing required key"),
+              std::string::npos);
+    // [waves] needs a coupled run.
+    const std::string dry =
+        write(std::string(kFull) + "\n[waves]\ntype = \"regular\"\nheight = 0.1\nperiod = 1.6\n", "dry.toml");
+    EXPECT_NE(error_of(dry).find("key 'waves.type': [waves] makes waves in a coupled run"), std::string::npos)
+        << error_of(dry);
 }

@@ -35,6 +35,7 @@ armourShallowWaterAbsorptionFvPatchVectorField
     fixedValueFvPatchVectorField(p, iF),
     h_(1),
     nonlinear_(false),
+    celerity_(0),
     alphaName_("alpha.water")
 {}
 
@@ -50,12 +51,19 @@ armourShallowWaterAbsorptionFvPatchVectorField
     fixedValueFvPatchVectorField(p, iF, dict),
     h_(dict.get<scalar>("waterDepth")),
     nonlinear_(readFormulation(dict)),
+    celerity_(dict.getOrDefault<scalar>("celerity", 0)),
     alphaName_(dict.getOrDefault<word>("alpha", "alpha.water"))
 {
     if (h_ <= 0)
     {
         FatalIOErrorInFunction(dict)
             << "waterDepth must be positive, got " << h_ << exit(FatalIOError);
+    }
+    if (celerity_ < 0 || (celerity_ > 0 && nonlinear_))
+    {
+        FatalIOErrorInFunction(dict)
+            << "celerity must be positive and goes with formulation linear,"
+            << " got " << celerity_ << exit(FatalIOError);
     }
 }
 
@@ -72,6 +80,7 @@ armourShallowWaterAbsorptionFvPatchVectorField
     fixedValueFvPatchVectorField(ptf, p, iF, mapper),
     h_(ptf.h_),
     nonlinear_(ptf.nonlinear_),
+    celerity_(ptf.celerity_),
     alphaName_(ptf.alphaName_)
 {}
 
@@ -85,6 +94,7 @@ armourShallowWaterAbsorptionFvPatchVectorField
     fixedValueFvPatchVectorField(ptf),
     h_(ptf.h_),
     nonlinear_(ptf.nonlinear_),
+    celerity_(ptf.celerity_),
     alphaName_(ptf.alphaName_)
 {}
 
@@ -99,6 +109,7 @@ armourShallowWaterAbsorptionFvPatchVectorField
     fixedValueFvPatchVectorField(ptf, iF),
     h_(ptf.h_),
     nonlinear_(ptf.nonlinear_),
+    celerity_(ptf.celerity_),
     alphaName_(ptf.alphaName_)
 {}
 
@@ -125,6 +136,8 @@ void Foam::armourShallowWaterAbsorptionFvPatchVectorField::updateCoeffs()
     const scalar uOut =
         nonlinear_
       ? eta*Foam::sqrt(mag(g)/max(level, SMALL))
+      : celerity_ > 0
+      ? eta*celerity_/h_
       : eta*Foam::sqrt(mag(g)/h_);
 
     // frame.ex points into the domain; the wave leaves along -ex.
@@ -152,6 +165,10 @@ void Foam::armourShallowWaterAbsorptionFvPatchVectorField::write
     fvPatchVectorField::write(os);
     os.writeEntry("waterDepth", h_);
     os.writeEntry("formulation", word(nonlinear_ ? "nonlinear" : "linear"));
+    if (celerity_ > 0)
+    {
+        os.writeEntry("celerity", celerity_);
+    }
     os.writeEntry("alpha", alphaName_);
     writeEntry("value", os);
 }
