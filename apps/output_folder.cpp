@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <fcntl.h>
@@ -13,6 +14,7 @@
 #include <sys/file.h>
 #include <sys/stat.h>
 #include <system_error>
+#include <thread>
 #include <unistd.h>
 #include <utility>
 
@@ -151,6 +153,7 @@ void OutputFolder::create_target() {
 // locked while anything we started may still write into it.
 void OutputFolder::lock() {
     const fs::path file = target_ / kLock;
+    const auto patience = std::chrono::steady_clock::now() + std::chrono::seconds(10);
     for (;;) {
         const int fd = ::open(file.c_str(), O_RDWR | O_CREAT, 0644);
         if (fd < 0)
@@ -172,6 +175,19 @@ void OutputFolder::lock() {
             ::close(fd);
             std::string holder(text, got > 0 ? static_cast<std::size_t>(got) : 0);
             holder.erase(std::min(holder.size(), holder.find_first_not_of("0123456789"))); // the pid only
+            // A command killed with -9 leaves what it started holding the lock
+            // for a moment (MPI's orted daemon ends within milliseconds of its
+            // parent): give those a few seconds rather than refuse at once.
+            const bool holder_ended =
+                !holder.empty() && ::kill(static_cast<pid_t>(std::stol(holder)), 0) != 0 && errno == ESRCH;
+            if (holder_ended && std::chrono::steady_clock::now() < patience) {
+                std::this_thread::sleep_for(std::chrono::milliseconds(50));
+                continue;
+            }
+            if (holder_ended)
+                throw InputError(
+                    "--out " + target_.string() + ": in use by a program the ended armour command " + holder +
+                    " started (interFoam or mpirun still running?); end it or choose " + "another folder");
             throw InputError("--out " + target_.string() + ": in use by another armour command (pid " +
                              (holder.empty() ? "unknown" : holder) +
                              "); wait for it to end or choose another folder");
