@@ -76,7 +76,7 @@ class Reader {
         if (!n)
             return "";
         if (!n->is_string())
-            fail(section + "." + key, "must be a string");
+            fail(section.empty() ? key : section + "." + key, "must be a string");
         return std::string(*n->value<std::string>());
     }
 
