@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <unistd.h>
 
 namespace fs = std::filesystem;
 using armour::BodiesFile;
@@ -48,7 +49,8 @@ class Analysis : public ::testing::Test {
   protected:
     void SetUp() override {
         dir_ = fs::temp_directory_path() / (std::string("armour_analysis_") +
-                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+                                            ::testing::UnitTest::GetInstance()->current_test_info()->name() +
+                                            "_" + std::to_string(::getpid()));
         fs::remove_all(dir_);
         fs::create_directories(dir_);
     }

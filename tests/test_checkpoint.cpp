@@ -15,10 +15,12 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <fcntl.h>
 #include <filesystem>
 #include <fstream>
 #include <random>
 #include <string>
+#include <sys/file.h>
 #include <sys/wait.h>
 #include <thread>
 #include <unistd.h>
@@ -58,7 +60,7 @@ class Resume : public ::testing::TestWithParam<std::string> {
     void SetUp() override {
         std::string name = ::testing::UnitTest::GetInstance()->current_test_info()->name();
         std::replace(name.begin(), name.end(), '/', '_');
-        dir_ = fs::temp_directory_path() / ("armour_checkpoint_" + name);
+        dir_ = fs::temp_directory_path() / ("armour_checkpoint_" + name + "_" + std::to_string(::getpid()));
         fs::remove_all(dir_);
         fs::create_directories(dir_);
         cache_ = (dir_ / "cache").string();
@@ -155,6 +157,22 @@ TEST_P(Resume, KilledRunResumedEndsAsTheUninterruptedOne) {
         delay *= 0.5;
     }
     EXPECT_FALSE(fs::exists(killed / "summary.json"));
+    // The --out lock is free only once every process holding its descriptor
+    // has ended: MPI's singleton start (LIGGGHTS) forks a helper that inherits
+    // it and outlives the killed run for a moment; a resume started then is
+    // refused as "in use".
+    const auto unlocked = [&] {
+        const int fd = ::open((killed / ".armour-lock").c_str(), O_RDWR);
+        if (fd < 0)
+            return true;
+        const bool free = ::flock(fd, LOCK_EX | LOCK_NB) == 0;
+        ::close(fd);
+        return free;
+    };
+    for (const auto since_kill = std::chrono::steady_clock::now(); !unlocked();) {
+        ASSERT_LT(seconds_since(since_kill), 30.0) << "the killed run's lock is still held";
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
 
     // At most two checkpoints, each whole (partial ones carry a '.' name).
     int kept = 0;

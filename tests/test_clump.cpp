@@ -12,6 +12,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <unistd.h>
 
 using namespace armour;
 
@@ -351,7 +352,8 @@ TEST(ClumpTolerance, ReportsWhenItCannotBeMet) {
 
 TEST(ClumpFiles, SphereFileRoundTripsAndSnippetCarriesExactMass) {
     const Clump clump = build_clump(unit_cube(), ClumpMethod::optimised, 6);
-    const auto dir = std::filesystem::temp_directory_path() / "armour_test_clump_files";
+    const auto dir =
+        std::filesystem::temp_directory_path() / ("armour_test_clump_files_" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
     const std::string path = (dir / "clump.spheres").string();
     write_sphere_file(clump, path, "test");

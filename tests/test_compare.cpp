@@ -14,7 +14,7 @@
 namespace fs = std::filesystem;
 
 TEST(Compare, TinySceneProducesAllFilesWithConsistentEntries) {
-    const fs::path dir = fs::temp_directory_path() / "armour_compare_test";
+    const fs::path dir = fs::temp_directory_path() / ("armour_compare_test_" + std::to_string(::getpid()));
     fs::remove_all(dir);
     fs::create_directories(dir);
     std::ofstream(dir / "scene.toml")
@@ -97,7 +97,8 @@ TEST(Compare, TinySceneProducesAllFilesWithConsistentEntries) {
 }
 
 TEST(Compare, KeepsTheUsersFiles) {
-    const fs::path dir = fs::temp_directory_path() / "armour_compare_output_rule";
+    const fs::path dir =
+        fs::temp_directory_path() / ("armour_compare_output_rule_" + std::to_string(::getpid()));
     fs::remove_all(dir);
     fs::create_directories(dir);
     const std::string scene = (dir / "scene.toml").string(), cache = (dir / "cache").string();
@@ -129,6 +130,7 @@ TEST(Compare, KeepsTheUsersFiles) {
 #include "mesh.h" // InputError
 
 #include <cmath>
+#include <unistd.h>
 
 namespace {
 
@@ -323,7 +325,8 @@ TEST(CompareStats, NoAdviceWhereNoRunHasTheFigure) {
 }
 
 TEST(Compare, RefusesAToleranceForAFigureTheAnalysisHasNot) {
-    const fs::path dir = fs::temp_directory_path() / "armour_compare_tolerance";
+    const fs::path dir =
+        fs::temp_directory_path() / ("armour_compare_tolerance_" + std::to_string(::getpid()));
     fs::remove_all(dir);
     fs::create_directories(dir);
     std::ofstream(dir / "scene.toml")
@@ -348,7 +351,7 @@ TEST(Compare, RefusesAToleranceForAFigureTheAnalysisHasNot) {
 
 TEST(Compare, CountsABlowUpAsAFailureOutOfTheStatistics) {
     // A threshold far below any real gain: every run that gained energy blew up.
-    const fs::path dir = fs::temp_directory_path() / "armour_compare_blow_up";
+    const fs::path dir = fs::temp_directory_path() / ("armour_compare_blow_up_" + std::to_string(::getpid()));
     fs::remove_all(dir);
     fs::create_directories(dir);
     std::ofstream(dir / "scene.toml")

@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <random>
 #include <string>
+#include <unistd.h>
 #include <vector>
 
 using namespace armour;
@@ -60,6 +61,20 @@ const Tolerances &tolerances(const std::string &style) {
                              "': add its row to kTolerances");
 }
 
+// This process's scratch folder for the engines' work files, removed when the
+// process ends: per process, so two checkouts can run their suites at once.
+const std::filesystem::path &scratch() {
+    static const struct Scratch {
+        std::filesystem::path path =
+            std::filesystem::temp_directory_path() / ("armour_test_engines_" + std::to_string(::getpid()));
+        ~Scratch() {
+            std::error_code ec;
+            std::filesystem::remove_all(path, ec);
+        }
+    } folder;
+    return folder.path;
+}
+
 class Conformance : public ::testing::TestWithParam<std::string> {
   protected:
     const Tolerances &tol() const { return tolerances(GetParam()); }
@@ -70,7 +85,7 @@ class Conformance : public ::testing::TestWithParam<std::string> {
         const auto *info = ::testing::UnitTest::GetInstance()->current_test_info();
         std::string name = std::string(info->name());
         std::replace(name.begin(), name.end(), '/', '_');
-        s.work_dir = (std::filesystem::temp_directory_path() / ("armour_conformance_" + name)).string();
+        s.work_dir = (scratch() / ("conformance_" + name)).string();
         s.materials = {std::move(material)};
         s.domain_min = Eigen::Vector3d(-3, -3, -1);
         s.domain_max = Eigen::Vector3d(3, 3, 8);
@@ -110,7 +125,7 @@ TEST(EngineRegistry, EveryStyleHasConformanceTolerancesAndAFactory) {
         EXPECT_NO_THROW(tolerances(s.name)) << s.name;
         EngineSettings settings;
         settings.materials = {concrete(0.5, 0.5)};
-        settings.work_dir = (std::filesystem::temp_directory_path() / "armour_registry").string();
+        settings.work_dir = (scratch() / "registry").string();
         auto engine = s.make(settings);
         ASSERT_TRUE(engine) << s.name;
         EXPECT_EQ(engine->name(), s.name);
@@ -366,8 +381,8 @@ TEST_P(Conformance, RestartContinuesTheSameRun) {
             engine->add_wall(floor_plane(3.0));
         return engine;
     };
-    const std::filesystem::path dir =
-        std::filesystem::temp_directory_path() / ("armour_restart_" + GetParam());
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                                      ("armour_restart_" + GetParam() + "_" + std::to_string(::getpid()));
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
 

@@ -5,6 +5,7 @@
 #include "mesh.h"
 #include "scene.h"
 #include "stl_io.h"
+#include "sweep/sweep_file.h"
 
 #include <gtest/gtest.h>
 
@@ -54,4 +55,10 @@ TEST(FuzzInputs, StlsAreReadOrRefusedInOneLine) {
                                                    static_cast<std::size_t>(v) < mesh.vertices.size());
                            }),
               0);
+}
+
+// The hand-made inputs name ../../../scenes/tilt_cube.toml as their scene, so
+// that the reader gets past the scene check to the key it is tested on.
+TEST(FuzzInputs, SweepFilesAreReadOrRefusedInOneLine) {
+    EXPECT_GT(check_inputs("sweep", [](const std::string &path) { (void)armour::read_sweep_file(path); }), 0);
 }

@@ -11,15 +11,30 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <unistd.h>
 
 using namespace armour;
 using namespace armour::test;
 
 namespace {
 
+// This process's scratch folder for the engines' work files, removed when the
+// process ends: per process, so two checkouts can run their suites at once.
+const std::filesystem::path &scratch() {
+    static const struct Scratch {
+        std::filesystem::path path =
+            std::filesystem::temp_directory_path() / ("armour_test_liggghts_" + std::to_string(::getpid()));
+        ~Scratch() {
+            std::error_code ec;
+            std::filesystem::remove_all(path, ec);
+        }
+    } folder;
+    return folder.path;
+}
+
 EngineSettings settings_for(const std::string &test, Material material) {
     EngineSettings s;
-    s.work_dir = (std::filesystem::temp_directory_path() / ("armour_liggghts_" + test)).string();
+    s.work_dir = (scratch() / test).string();
     s.materials = {std::move(material)};
     s.domain_min = Eigen::Vector3d(-3, -3, -1);
     s.domain_max = Eigen::Vector3d(3, 3, 8);

@@ -32,7 +32,8 @@ class OutputLock : public ::testing::Test {
     void SetUp() override {
         dir_ =
             fs::temp_directory_path() /
-            ("armour_lock_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+            ("armour_lock_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
+             "_" + std::to_string(::getpid()));
         fs::remove_all(dir_);
         fs::create_directories(dir_);
     }

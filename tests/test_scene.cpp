@@ -16,6 +16,7 @@
 #include <sstream>
 #include <string>
 #include <tuple>
+#include <unistd.h>
 #include <vector>
 
 namespace fs = std::filesystem;
@@ -167,7 +168,8 @@ class SceneFile : public ::testing::Test {
     void SetUp() override {
         dir_ =
             fs::temp_directory_path() /
-            ("armour_scene_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+            ("armour_scene_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
+             "_" + std::to_string(::getpid()));
         fs::remove_all(dir_);
         fs::create_directories(dir_ / "meshes");
         std::ofstream(dir_ / "meshes" / "unit.stl") << "solid x\nendsolid x\n";

@@ -208,8 +208,10 @@ armour::Scene write_and_load(const std::string &name, const std::string &text) {
     return armour::load_scene(file.string());
 }
 
+// The clump cache, shared by this build's test processes (each test is one process
+// under ctest) but not with another checkout's, which may run its suite at the same time.
 std::string cache_dir() {
-    return (std::filesystem::temp_directory_path() / "armour_test_slope_cache").string();
+    return ARMOUR_TEST_CACHE;
 }
 
 } // namespace

@@ -3,7 +3,9 @@
 #include "mesh.h"
 #include "sweep_toml.h"
 
+#include <cmath>
 #include <filesystem>
+#include <limits>
 
 namespace armour {
 
@@ -11,12 +13,27 @@ namespace fs = std::filesystem;
 
 namespace {
 
+std::string one_line(const std::string &text) {
+    std::string out;
+    for (const char c : text) {
+        if (c == '\n')
+            out += "\\n";
+        else if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+            out += '?';
+        else
+            out += c;
+    }
+    return out;
+}
+
 class Reader {
   public:
     explicit Reader(std::string file) : file_(std::move(file)) {}
 
+    // Keys and values come from the file and may hold control characters (a
+    // quoted key "a\nb"): escaped, so that the error stays one line.
     [[noreturn]] void fail(const std::string &key, const std::string &reason) const {
-        throw InputError(file_ + ": key '" + key + "': " + reason);
+        throw InputError(file_ + ": key '" + one_line(key) + "': " + one_line(reason));
     }
 
     // A value as --set takes it: TOML text of a scalar or an array.
@@ -44,8 +61,13 @@ class Reader {
         std::optional<double> v = n->value<double>();
         if (!v || (std::is_integral_v<T> && !n->is_integer()))
             fail(full, std::is_integral_v<T> ? "must be an integer" : "must be a number");
+        if (!std::isfinite(*v))
+            fail(full, "must be a finite number");
         if (*v < static_cast<double>(minimum))
             fail(full, "must be at least " + std::to_string(minimum));
+        // The cast below is undefined past the type's range (np = 3000000000).
+        if (*v > static_cast<double>(std::numeric_limits<T>::max()))
+            fail(full, "must be at most " + std::to_string(std::numeric_limits<T>::max()));
         return static_cast<T>(*v);
     }
 
@@ -54,7 +76,7 @@ class Reader {
         if (!n)
             return "";
         if (!n->is_string())
-            fail(section + "." + key, "must be a string");
+            fail(section.empty() ? key : section + "." + key, "must be a string");
         return std::string(*n->value<std::string>());
     }
 
@@ -88,7 +110,7 @@ SweepSpec read_sweep_file(const std::string &path) {
         root = toml::parse_file(path);
     } catch (const toml::parse_error &e) {
         throw InputError(path + ":" + std::to_string(e.source().begin.line) + ": " +
-                         std::string(e.description()));
+                         one_line(std::string(e.description())));
     }
     const Reader r(path);
     r.only_keys(root, "", {"scene", "seeds", "seed_key", "vary", "case", "set", "run", "slurm"});
@@ -102,8 +124,6 @@ SweepSpec read_sweep_file(const std::string &path) {
     if (scene_path.is_relative())
         scene_path = fs::absolute(path).parent_path() / scene_path;
     spec.scene = scene_path.lexically_normal().string();
-    if (!fs::is_regular_file(spec.scene, ec))
-        r.fail("scene", "no such file: " + spec.scene);
 
     if (const toml::node *vary = root.get("vary")) {
         if (!vary->is_table())
@@ -190,6 +210,10 @@ SweepSpec read_sweep_file(const std::string &path) {
             }
         }
     }
+    // Checked last, so that every other key is checked too when the sweep
+    // file is read away from its scene (the fuzzer reads a copy in /tmp).
+    if (!fs::is_regular_file(spec.scene, ec))
+        r.fail("scene", "no such file: " + spec.scene);
     return spec;
 }
 
