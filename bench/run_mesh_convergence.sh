@@ -4,11 +4,13 @@
 # a / n; blockMesh rounds the count per axis):
 #   floating  scenes/floating_cube.toml: draft (m), against rho_u / rho_w a
 #   dambreak  scenes/dambreak_two_cubes.toml: peak streamwise fluid force on
-#             the first and second cube (N); run for DB_DURATION s (both peaks
-#             come before 0.5 s), fluid step <= 2 ms at every level and
+#             the first and second cube as the bore hits them, before the
+#             first catches the second (N); run for DB_DURATION s (both peaks
+#             come before 0.45 s), fluid step <= 2 ms at every level and
 #             recorded every 2 ms, so the peak is sampled at each fluid step
-#   platform  scenes/solitary_cubes_platform.toml: largest cube displacement
-#             (m) and the crest at the gauge (m)
+#   platform  scenes/solitary_cubes_platform.toml, 3 s (the cubes lie on the
+#             floor by 2.6 s): largest cube displacement (m) and the crest at
+#             the gauge (m)
 # The observed order p and the extrapolated value come from the three finest
 # levels that ran (Richardson, unequal ratios); each level's error is taken
 # against the extrapolated value. Runs whose summary.json exists are kept, so
@@ -46,6 +48,7 @@ scene_of() {
 extra_of() {
   case "$1" in
     dambreak) echo "run.duration=$db_duration run.output_interval=0.002 fluid.max_time_step=0.002" ;;
+    platform) echo "run.duration=3.0" ;;
     *) echo "" ;;
   esac
 }
