@@ -106,4 +106,17 @@ BodiesFile read_bodies_file(const std::string &path) {
     return rec;
 }
 
+void BodiesFile::states_at(std::size_t step, std::vector<BodyState> &states) const {
+    states.resize(bodies());
+    for (std::size_t b = 0; b < bodies(); ++b) {
+        states[b].pose.position = position[step][b];
+        states[b].pose.orientation = orientation[step][b];
+        states[b].velocity = velocity[step][b];
+        states[b].angular_velocity = angular_velocity[step][b];
+        states[b].external_force = external_force[step][b];
+        states[b].external_torque = external_torque[step][b];
+        states[b].contact_force = contact_force[step][b];
+    }
+}
+
 } // namespace armour

@@ -22,6 +22,8 @@
 //     const std::string engine = rec.attribute("engine");
 #pragma once
 
+#include "rigid_body_engine.h"
+
 #include <Eigen/Geometry>
 
 #include <map>
@@ -44,6 +46,8 @@ struct BodiesFile {
     std::size_t bodies() const { return unit.size(); }
     // The root attribute `name`, or "" when the file has none.
     std::string attribute(const std::string &name) const;
+    // The recorded state of every body at `step` (what the analyses sample).
+    void states_at(std::size_t step, std::vector<BodyState> &states) const;
 };
 
 // Throws InputError("PATH: reason") when the file cannot be opened or lacks

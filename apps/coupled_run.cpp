@@ -721,15 +721,7 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
                        [&](const std::string &name) { return folder.claim(name).string(); }});
     std::vector<BodyState> states(rec.bodies());
     for (std::size_t s = 0; s < rec.steps(); ++s) {
-        for (std::size_t b = 0; b < rec.bodies(); ++b) {
-            states[b].pose.position = rec.position[s][b];
-            states[b].pose.orientation = rec.orientation[s][b];
-            states[b].velocity = rec.velocity[s][b];
-            states[b].angular_velocity = rec.angular_velocity[s][b];
-            states[b].external_force = rec.external_force[s][b];
-            states[b].external_torque = rec.external_torque[s][b];
-            states[b].contact_force = rec.contact_force[s][b];
-        }
+        rec.states_at(s, states);
         analysis->sample(rec.time[s], states);
     }
     const std::string result = analysis->write(summary);

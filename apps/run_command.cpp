@@ -196,15 +196,7 @@ int run_dem(OutputFolder &folder, const Scene &scene, SceneSetup &setup, std::ve
     if (resume) {
         for (long step = 0; step < resume->records; ++step) {
             const auto s = static_cast<std::size_t>(step);
-            for (std::size_t b = 0; b < states.size(); ++b) {
-                states[b].pose.position = earlier.position[s][b];
-                states[b].pose.orientation = earlier.orientation[s][b];
-                states[b].velocity = earlier.velocity[s][b];
-                states[b].angular_velocity = earlier.angular_velocity[s][b];
-                states[b].external_force = earlier.external_force[s][b];
-                states[b].external_torque = earlier.external_torque[s][b];
-                states[b].contact_force = earlier.contact_force[s][b];
-            }
+            earlier.states_at(s, states);
             account();
             analysis->sample(earlier.time[s], states);
         }
