@@ -5,6 +5,7 @@
 #include "body_recorder.h"
 #include "clump_io.h"
 #include "engine_registry.h"
+#include "fluid_models.h"
 #include "foam_restart.h"
 #include "openfoam_environment.h"
 #include "output_folder.h"
@@ -628,6 +629,7 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
                                  "\" makes a solitary wave: give its height (> 0 m)");
         }
         fill_tokens(case_dir, tokens);
+        write_fluid_models(scene, case_dir);
 
         std::fprintf(stderr, "run: %s: %d x %d x %d cells, %d rank%s, engine %s -> %s\n", scene.name.c_str(),
                      f.cells[0], f.cells[1], f.cells[2], f.np, f.np > 1 ? "s" : "", scene.engine.c_str(),
@@ -640,6 +642,9 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
             run_tool("subsetMesh", {"subsetMesh", "-overwrite", "fluid", "-patch", "walls"}, case_dir,
                      scene.duration, false);
         }
+        if (needs_porous_zones(scene)) // after subsetMesh: its cellZones stay
+            run_tool("topoSet.porous", {"topoSet", "-dict", "system/topoSetDict.porous"}, case_dir,
+                     scene.duration, false);
         for (const auto &e : fs::directory_iterator(case_dir / "0"))
             if (e.path().extension() == ".orig")
                 fs::copy_file(e.path(), case_dir / "0" / e.path().stem(),
@@ -782,6 +787,7 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
     }
     if (makes_wave_train(scene))
         add_wave_summary(scene, case_dir, folder, summary);
+    add_fluid_models_summary(scene, summary);
     write_text_file(folder.claim("summary.json"), summary.dump(2) + "\n");
     std::printf("%s: %d units, %.4g s coupled in %.1f s wall%s%s -> %s\n", scene.name.c_str(),
                 static_cast<int>(setup.bodies.size()), simulated, wall_seconds, result.empty() ? "" : ", ",

@@ -142,6 +142,23 @@ struct SceneFluid {
     // coupled run starts from the settled poses, written to
     // OUT/settle/scene.settled.toml.
     double settle_time = 0.0;
+    // Turbulence closure (docs/turbulence.md): laminar, or OpenFOAM's RAS
+    // kOmegaSST with k and omega at the start from an intensity of the
+    // shallow-water celerity sqrt(g depth) and a length scale.
+    std::string turbulence = "laminar";
+    double turbulence_intensity = 0.01; // I [-]: k = 1.5 (I sqrt(g depth))^2
+    double turbulence_length = 0.01;    // m, l: omega = sqrt(k) / (Cmu^0.25 l)
+};
+
+// [[porous]]: a permeable box (rock underlayer, core) as a Darcy-Forchheimer
+// medium, coefficients from van Gent (1995) (docs/porous.md).
+struct ScenePorous {
+    std::string name;
+    Eigen::Vector3d min = Eigen::Vector3d::Zero(), max = Eigen::Vector3d::Zero(); // m
+    double stone_size = 0.0;                                                      // m, Dn50
+    double porosity = 0.4;                                                        // n [-]
+    double alpha = 1000.0; // van Gent's laminar coefficient [-]
+    double beta = 1.1;     // van Gent's turbulent coefficient [-]
 };
 
 // [waves]: the wave train at the inlet of a wave template (docs/waves.md).
@@ -205,6 +222,7 @@ struct Scene {
     std::vector<ScenePattern> patterns;
     std::optional<SceneFluid> fluid; // [fluid]: a coupled interFoam run
     std::optional<SceneWaves> waves; // [waves]: needs [fluid]
+    std::vector<ScenePorous> porous; // [[porous]]: needs [fluid]
 };
 
 // `overrides` are "dotted.key=toml_value" strings (from --set).

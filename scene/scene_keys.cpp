@@ -177,6 +177,16 @@ const std::vector<Key<SceneFluid>> &fluid_keys() {
         key("settle_time", &F::settle_time, "s",
             "settle the units in the DEM under the still water this long before coupling (below)")
             .in(Range::at_least(0)),
+        key("turbulence", &F::turbulence, "",
+            "laminar, or OpenFOAM's RAS kOmegaSST with wall functions (over-damps waves in propagation: "
+            "turbulence.md)")
+            .one_of({"laminar", "kOmegaSST"}),
+        key("turbulence_intensity", &F::turbulence_intensity, "",
+            "kOmegaSST's initial and inflow k = 1.5 (I sqrt(g depth))^2")
+            .in(Range::open_closed(0, 1)),
+        key("turbulence_length", &F::turbulence_length, "m",
+            "kOmegaSST's initial and inflow omega = sqrt(k) / (0.09^0.25 l)")
+            .in(Range::above(0)),
     };
     return keys;
 }
@@ -419,6 +429,25 @@ const std::vector<Key<SceneWaves>> &wave_keys() {
     return keys;
 }
 
+const std::vector<Key<ScenePorous>> &porous_keys() {
+    using P = ScenePorous;
+    static const std::vector<Key<P>> keys = {
+        key("name", &P::name, "", "names the region (the cellZone porous_NAME); unique").required(),
+        key("min", &P::min, "m", "a corner of the permeable box, inside run.domain_min .. domain_max")
+            .required(),
+        key("max", &P::max, "m", "the opposite corner; > min").required(),
+        key("stone_size", &P::stone_size, "m", "Dn50 of the rock").in(Range::above(0)).required(),
+        key("porosity", &P::porosity, "", "n, the void fraction").in(Range::open(0, 1)),
+        key("alpha", &P::alpha, "",
+            "van Gent's laminar coefficient: Darcy d = alpha (1 - n)^2 / (n^3 Dn50^2) (porous.md)")
+            .in(Range::above(0)),
+        key("beta", &P::beta, "",
+            "van Gent's turbulent coefficient: Forchheimer f = 2 beta (1 - n) / (n^3 Dn50)")
+            .in(Range::above(0)),
+    };
+    return keys;
+}
+
 // ---------------------------------------------------------------- text
 
 std::string number_text(double v) {
@@ -605,6 +634,7 @@ const std::vector<SceneSection> &scene_sections() {
                       "the file, checked and unused, and the other way round)"},
           {"irregular", "a JONSWAP train through OpenFOAM's irregularMultiDirectional model"}},
          [] { return describe_all("waves", wave_keys()); }},
+        {"porous", SectionKind::ArrayOfTables, "", {}, [] { return describe_all("porous", porous_keys()); }},
     };
     return sections;
 }

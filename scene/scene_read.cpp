@@ -352,6 +352,33 @@ std::string unit_of(const Table &t, const Scene &s, const std::string &u) {
     return u;
 }
 
+// [[porous]] after [fluid]: boxes inside the fluid mesh, unique names (each
+// is the cellZone porous_NAME of the case).
+void read_porous(const Table &root, Scene &s) {
+    const std::string domain = "run.domain_min .. run.domain_max";
+    for (const Table &t : root.entries("porous")) {
+        t.only(names_of(porous_keys()));
+        ScenePorous p;
+        read_keys(t, porous_keys(), p);
+        if (!s.fluid)
+            t.fail("name", "a porous region is in the fluid: the scene needs a [fluid] table");
+        if (p.name.empty() || p.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                                       "0123456789_") != std::string::npos)
+            t.fail("name", "letters, digits and _ only (got " + toml_string(p.name) + ")");
+        for (const ScenePorous &other : s.porous)
+            if (other.name == p.name)
+                t.fail("name", "a second [[porous]] named " + toml_string(p.name));
+        if (!(p.max.array() > p.min.array()).all())
+            t.fail("max", "must exceed min " + vec_text(p.min) + " m in every component (got " +
+                              vec_text(p.max) + ")");
+        if (!inside(p.min, s.domain_min, s.domain_max))
+            t.fail("min", "must lie inside " + domain + " (got " + vec_text(p.min) + ")");
+        if (!inside(p.max, s.domain_min, s.domain_max))
+            t.fail("max", "must lie inside " + domain + " (got " + vec_text(p.max) + ")");
+        s.porous.push_back(p);
+    }
+}
+
 void read_placements(const Table &root, Scene &s) {
     const std::string domain =
         "run.domain_min " + vec_text(s.domain_min) + " .. run.domain_max " + vec_text(s.domain_max) + " m";
@@ -586,6 +613,7 @@ Scene load_scene(const std::string &path, const std::vector<std::string> &overri
     read_contact_and_analysis(root, s);
     read_fluid(root, s);
     read_waves(root, s);
+    read_porous(root, s);
     // A coupled run without run.engine takes exact hulls where the build has
     // them: there interFoam takes 97-99 % of the time whichever engine runs,
     // and sphere clumps change the answer (the platform case: 3 of 3 cubes

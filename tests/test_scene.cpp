@@ -874,7 +874,8 @@ TEST_F(SceneFile, EveryTableKeyIsRead) {
         write(std::string(kFull) + "\n[fluid]\nwater_level = 0.5\ncell_size = 0.5\n", "cell_size.toml"),
         write(std::string(kFull) +
                   "\n[fluid]\nwater_level = 0.5\ncell_size = 0.5\n[waves]\ntype = \"regular\"\n"
-                  "height = 0.1\nperiod = 1.6\n",
+                  "height = 0.1\nperiod = 1.6\n[[porous]]\nname = \"core\"\nmin = [0, 0, -1]\n"
+                  "max = [1, 1, 0]\nstone_size = 0.02\n",
               "waves.toml")};
     for (const auto &base : bases)
         ASSERT_EQ(error_of(base), "") << base;

@@ -1,0 +1,185 @@
+#include "fluid_models.h"
+
+#include "output_folder.h"
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace armour {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+// Shortest text that reads back as the same double.
+std::string num(double v) {
+    char buf[64];
+    const auto result = std::to_chars(buf, buf + sizeof buf, v);
+    return std::string(buf, result.ptr);
+}
+
+std::string read_text(const fs::path &path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+std::string header(const std::string &cls, const std::string &object) {
+    return "FoamFile\n{\n    version     2.0;\n    format      ascii;\n    class       " + cls +
+           ";\n    object      " + object +
+           ";\n}\n// Written by armour run from the scene (apps/fluid_models.cpp).\n\n";
+}
+
+// A turbulence field: `wall_type` on every patch of type wall (the patch
+// group "wall" takes precedence over the wildcard), `open_type` elsewhere.
+std::string turbulence_field(const std::string &name, const std::string &dimensions, double value,
+                             const std::string &wall_type, const std::string &open_type) {
+    const std::string v = "uniform " + num(value);
+    return header("volScalarField", name) + "dimensions      " + dimensions + ";\ninternalField   " + v +
+           ";\n\nboundaryField\n{\n    #includeEtc \"caseDicts/setConstraintTypes\"\n\n    \".*\"\n    {\n"
+           "        type            " +
+           open_type + ";\n" + (open_type == "inletOutlet" ? "        inletValue      " + v + ";\n" : "") +
+           "        value           " + v + ";\n    }\n    wall\n    {\n        type            " +
+           wall_type + ";\n        value           " + v + ";\n    }\n}\n";
+}
+
+void append(const fs::path &path, const std::string &text) {
+    write_text_file(path, read_text(path) + "\n// Appended by armour run (apps/fluid_models.cpp).\n" + text);
+}
+
+void write_turbulence(const Scene &scene, const fs::path &case_dir) {
+    const TurbulenceStart s = turbulence_start(scene);
+    write_text_file(case_dir / "constant" / "turbulenceProperties",
+                    header("dictionary", "turbulenceProperties") +
+                        "simulationType  RAS;\n\nRAS\n{\n    RASModel        " + scene.fluid->turbulence +
+                        ";\n    turbulence      on;\n    printCoeffs     on;\n}\n");
+    const fs::path zero = case_dir / "0";
+    write_text_file(zero / "k.orig",
+                    turbulence_field("k", "[0 2 -2 0 0 0 0]", s.k, "kqRWallFunction", "inletOutlet"));
+    write_text_file(zero / "omega.orig", turbulence_field("omega", "[0 0 -1 0 0 0 0]", s.omega,
+                                                          "omegaWallFunction", "inletOutlet"));
+    write_text_file(zero / "nut.orig",
+                    turbulence_field("nut", "[0 2 -1 0 0 0 0]", 0.0, "nutkWallFunction", "calculated"));
+    // Upwind k and omega: bounded, and their diffusion dwarfs the scheme's.
+    append(case_dir / "system" / "fvSchemes",
+           "divSchemes\n{\n    div(phi,k)      Gauss upwind;\n    div(phi,omega)  Gauss upwind;\n}\n\n"
+           "wallDist\n{\n    method          meshWave;\n}\n");
+    append(
+        case_dir / "system" / "fvSolution",
+        "solvers\n{\n    \"(k|omega).*\"\n    {\n        solver          smoothSolver;\n"
+        "        smoother        symGaussSeidel;\n        tolerance       1e-8;\n        relTol          0;\n"
+        "    }\n}\n");
+}
+
+void write_porosity(const Scene &scene, const fs::path &case_dir) {
+    const SceneFluid &f = *scene.fluid;
+    std::string actions, options;
+    for (const ScenePorous &p : scene.porous) {
+        const std::string zone = "porous_" + p.name;
+        const DarcyForchheimer c = darcy_forchheimer(p, f.viscosity, scene.gravity.norm());
+        const std::string d = num(c.d), fc = num(c.f);
+        actions += "    {\n        name    " + zone +
+                   ";\n        type    cellSet;\n        action  new;\n"
+                   "        source  boxToCell;\n        box     (" +
+                   num(p.min.x()) + " " + num(p.min.y()) + " " + num(p.min.z()) + ") (" + num(p.max.x()) +
+                   " " + num(p.max.y()) + " " + num(p.max.z()) + ");\n    }\n    {\n        name    " + zone +
+                   ";\n        type    cellZoneSet;\n        action  new;\n        source  setToCellZone;\n"
+                   "        set     " +
+                   zone + ";\n    }\n";
+        options += "// van Gent (1995): Dn50 " + num(p.stone_size) + " m, n " + num(p.porosity) + ", alpha " +
+                   num(p.alpha) + ", beta " + num(p.beta) + ": a = " + num(c.a) + " s/m, b = " + num(c.b) +
+                   " s^2/m^2\n" + zone +
+                   "\n{\n    type            explicitPorositySource;\n    active          yes;\n\n"
+                   "    explicitPorositySourceCoeffs\n    {\n        selectionMode   cellZone;\n"
+                   "        cellZone        " +
+                   zone +
+                   ";\n        type            DarcyForchheimer;\n\n        DarcyForchheimerCoeffs\n"
+                   "        {\n            d   [0 -2 0 0 0 0 0] (" +
+                   d + " " + d + " " + d + ");\n            f   [0 -1 0 0 0 0 0] (" + fc + " " + fc + " " +
+                   fc +
+                   ");\n            coordinateSystem\n            {\n                type    cartesian;\n"
+                   "                origin  (0 0 0);\n                e1      (1 0 0);\n"
+                   "                e2      (0 1 0);\n            }\n        }\n    }\n}\n\n";
+    }
+    write_text_file(case_dir / "system" / "topoSetDict.porous",
+                    header("dictionary", "topoSetDict") + "actions\n(\n" + actions + ");\n");
+    const fs::path fv_options = case_dir / "constant" / "fvOptions";
+    if (fs::is_regular_file(fv_options))
+        append(fv_options, options);
+    else
+        write_text_file(fv_options, header("dictionary", "fvOptions") + options);
+}
+
+} // namespace
+
+DarcyForchheimer darcy_forchheimer(const ScenePorous &p, double viscosity, double gravity) {
+    const double n = p.porosity, D = p.stone_size, n3 = n * n * n;
+    DarcyForchheimer c;
+    c.a = p.alpha * (1.0 - n) * (1.0 - n) / n3 * viscosity / (gravity * D * D);
+    c.b = p.beta * (1.0 - n) / n3 / (gravity * D);
+    c.d = gravity * c.a / viscosity;
+    c.f = 2.0 * gravity * c.b;
+    return c;
+}
+
+TurbulenceStart turbulence_start(const Scene &scene) {
+    const SceneFluid &f = *scene.fluid;
+    // The reference speed: the shallow-water celerity at the still-water depth
+    // (the mesh's height for a dry start, a dam break's column).
+    double depth = f.water_level - scene.domain_min.z();
+    if (depth <= 0.0)
+        depth = scene.domain_max.z() - scene.domain_min.z();
+    const double speed = std::sqrt(scene.gravity.norm() * depth);
+    const double c_mu = 0.09;
+    TurbulenceStart s;
+    s.k = 1.5 * std::pow(f.turbulence_intensity * speed, 2);
+    s.omega = std::sqrt(s.k) / (std::pow(c_mu, 0.25) * f.turbulence_length);
+    s.nut = s.k / s.omega;
+    return s;
+}
+
+void write_fluid_models(const Scene &scene, const fs::path &case_dir) {
+    if (scene.fluid->turbulence != "laminar")
+        write_turbulence(scene, case_dir);
+    if (needs_porous_zones(scene))
+        write_porosity(scene, case_dir);
+}
+
+bool needs_porous_zones(const Scene &scene) {
+    return !scene.porous.empty();
+}
+
+void add_fluid_models_summary(const Scene &scene, json &summary) {
+    const SceneFluid &f = *scene.fluid;
+    json turbulence = {{"model", f.turbulence}};
+    if (f.turbulence != "laminar") {
+        const TurbulenceStart s = turbulence_start(scene);
+        turbulence["k0"] = s.k;
+        turbulence["omega0"] = s.omega;
+        turbulence["nut0"] = s.nut;
+        turbulence["nut0_over_nu"] = s.nut / f.viscosity;
+    }
+    summary["fluid"]["turbulence"] = turbulence;
+    if (scene.porous.empty())
+        return;
+    json regions = json::array();
+    for (const ScenePorous &p : scene.porous) {
+        const DarcyForchheimer c = darcy_forchheimer(p, f.viscosity, scene.gravity.norm());
+        regions.push_back({{"name", p.name},
+                           {"zone", "porous_" + p.name},
+                           {"stone_size", p.stone_size},
+                           {"porosity", p.porosity},
+                           {"a", c.a},
+                           {"b", c.b},
+                           {"d", c.d},
+                           {"f", c.f}});
+    }
+    summary["fluid"]["porous"] = regions;
+}
+
+} // namespace armour
