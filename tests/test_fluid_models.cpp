@@ -189,3 +189,146 @@ TEST(PorousPlug, SteadyFlowFollowsVanGentsLaw) {
     // Richardson extrapolation of the first-order error: 0.15 %.
     EXPECT_NEAR((2 * fine - coarse) / u, 1.0, 0.003) << coarse << " " << fine;
 }
+
+// A breakwater's underlayer and core as slope_layer regions of the slope
+// wall of scenes/armour_slope_waves.toml: read, written back, and the bad
+// inputs each named by their key.
+TEST(PorousScene, SlopeLayersOfABreakwater) {
+    const fs::path dir = temp_dir("porous_slope_scene");
+    const std::string slope = read_text(fs::path(ARMOUR_SOURCE_DIR) / "scenes/armour_slope_waves.toml");
+    const std::string layers = "[[porous]]\nname = \"underlayer\"\ntype = \"slope_layer\"\nwall = \"slope\"\n"
+                               "thickness = 0.03\nstone_size = 0.02\nporosity = 0.4\n\n"
+                               "[[porous]]\nname = \"core\"\ntype = \"slope_layer\"\nwall = \"slope\"\n"
+                               "depth = 0.03\nstone_size = 0.01\nporosity = 0.35\n";
+    const fs::path file = dir / "scene.toml";
+    write_text(file, slope + "\n" + layers);
+    const Scene s = load_scene(file.string());
+    ASSERT_EQ(s.porous.size(), 2u);
+    EXPECT_EQ(s.porous[0].type, "slope_layer");
+    EXPECT_DOUBLE_EQ(s.porous[0].depth, 0.0);
+    EXPECT_DOUBLE_EQ(s.porous[0].thickness.value_or(0), 0.03);
+    EXPECT_DOUBLE_EQ(s.porous[1].depth, 0.03);
+    EXPECT_FALSE(s.porous[1].thickness.has_value());
+    write_text(file, resolved_scene_toml(s));
+    const Scene again = load_scene(file.string());
+    ASSERT_EQ(again.porous.size(), 2u);
+    EXPECT_EQ(again.porous[1].wall, "slope");
+    EXPECT_DOUBLE_EQ(again.porous[1].porosity, 0.35);
+    EXPECT_FALSE(again.porous[1].thickness.has_value());
+
+    auto error = [&](const std::string &from, const std::string &to) {
+        return load_error(dir, slope + "\n" + std::regex_replace(layers, std::regex(from), to));
+    };
+    EXPECT_NE(error("wall = \"slope\"\nthickness", "wall = \"inlet_end\"\nthickness").find("porous.0.wall"),
+              std::string::npos);
+    EXPECT_NE(error("thickness = 0.03", "thickness = 0.0").find("porous.0.thickness"), std::string::npos);
+    EXPECT_NE(error("depth = 0.03", "depth = -0.01").find("porous.1.depth"), std::string::npos);
+    EXPECT_NE(error("porosity = 0.35", "porosity = -0.35").find("porous.1.porosity"), std::string::npos);
+    EXPECT_NE(error("stone_size = 0.01", "stone_size = 0.0").find("porous.1.stone_size"), std::string::npos);
+    EXPECT_NE(error("depth = 0.03", "depth = 0.03\nmin = [0.0, 0.0, 0.0]").find("porous.1"),
+              std::string::npos);
+    EXPECT_NE(error("type = \"slope_layer\"\nwall = \"slope\"\nthickness", "thickness")
+                  .find("porous.0.thickness': not used by porous type \"box\""),
+              std::string::npos);
+    EXPECT_NE(error("type = \"slope_layer\"\nwall = \"slope\"\nthickness = 0.03", "")
+                  .find("porous.0.min': missing required key"),
+              std::string::npos)
+        << error("type = \"slope_layer\"\nwall = \"slope\"\nthickness = 0.03", "");
+    fs::remove_all(dir);
+}
+
+// The cells the slope_layer regions select, and that the mesh keeps: a 2D
+// mesh of 50 x 25 square cells (0.02 m), a 1:1.5 slope from the toe at x =
+// 0.303 m to the crest at z = 0.317 m cut out by the slope_waves template's
+// topoSetDict, an underlayer 0.045 m thick and a core from 0.09 m down. A
+// cell whose centre lies under the face and the crest at a distance d below
+// the nearer of the two is in the underlayer (d < 0.045 m) or the core (d >=
+// 0.09 m) and stays in the mesh; the band between stays cut out (solid):
+// counted exactly from the cell centres.
+TEST(PorousSlope, LayersFollowTheFaceAndStayInTheMesh) {
+    const fs::path dir = temp_dir("porous_slope");
+    fs::create_directories(dir / "system");
+    fs::create_directories(dir / "constant");
+    fs::create_directories(dir / "0");
+    for (const char *f : {"controlDict", "fvSchemes", "fvSolution"})
+        fs::copy_file(fs::path(ARMOUR_SOURCE_DIR) / "tests/foam_cases/porous_plug/system" / f,
+                      dir / "system" / f);
+    write_text(
+        dir / "system/blockMeshDict",
+        "FoamFile { version 2.0; format ascii; class dictionary; object blockMeshDict; }\n"
+        "vertices ((0 0 0) (1 0 0) (1 0.02 0) (0 0.02 0) (0 0 0.5) (1 0 0.5) (1 0.02 0.5) (0 0.02 0.5));\n"
+        "blocks (hex (0 1 2 3 4 5 6 7) (50 1 25) simpleGrading (1 1 1));\n"
+        "boundary ( walls { type wall; faces ((0 4 7 3) (1 2 6 5) (0 1 2 3) (4 5 6 7)); }\n"
+        "  sides { type empty; faces ((0 1 5 4) (3 7 6 2)); } );\n");
+    const double toe = 0.303, cot = 1.5, height = 0.317, thickness = 0.045;
+    std::string cut = read_text(fs::path(ARMOUR_SOURCE_DIR) / "foam_cases/slope_waves/system/topoSetDict");
+    cut = std::regex_replace(cut, std::regex("@SLOPE_TOE_X@"), std::to_string(toe));
+    cut = std::regex_replace(cut, std::regex("@SLOPE_CREST_X@"), std::to_string(toe + cot * height));
+    cut = std::regex_replace(cut, std::regex("@SLOPE_CREST_Z@"), std::to_string(height));
+    cut = std::regex_replace(cut, std::regex("@Z0@"), "0");
+    write_text(dir / "system/topoSetDict", cut);
+
+    Scene scene;
+    scene.gravity = {0, 0, -9.81};
+    scene.domain_max = {1.0, 0.02, 0.5};
+    scene.fluid.emplace();
+    SceneWall wall;
+    wall.name = "slope";
+    wall.type = "slope";
+    wall.toe_x = toe;
+    wall.cot = cot;
+    wall.height = height;
+    scene.walls.push_back(wall);
+    ScenePorous under = rock(0.02, 0.4), core = rock(0.01, 0.35);
+    under.name = "underlayer";
+    under.type = core.type = "slope_layer";
+    under.wall = core.wall = "slope";
+    under.thickness = thickness;
+    core.name = "core";
+    core.depth = 2 * thickness;
+    scene.porous = {under, core};
+    write_fluid_models(scene, dir);
+    const std::string cmd = "cd '" + dir.string() +
+                            "' && export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam} && "
+                            "blockMesh > log.blockMesh 2>&1 && topoSet > log.topoSet 2>&1 && "
+                            "topoSet -dict system/topoSetDict.porous > log.topoSet.porous 2>&1 && "
+                            "subsetMesh -overwrite fluid -patch walls > log.subsetMesh 2>&1";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << "see " << dir;
+
+    const double sin_t = 1 / std::sqrt(1 + cot * cot), cos_t = cot * sin_t;
+    int above = 0, in_under = 0, in_core = 0, solid = 0;
+    for (int i = 0; i < 50; ++i)
+        for (int k = 0; k < 25; ++k) {
+            const double x = 0.02 * (i + 0.5), z = 0.02 * (k + 0.5);
+            const double below = std::min((x - toe) * sin_t - z * cos_t, height - z);
+            if (below < 0)
+                ++above;
+            else if (below < thickness)
+                ++in_under;
+            else if (below < 2 * thickness)
+                ++solid;
+            else
+                ++in_core;
+        }
+    ASSERT_GT(in_under, 20);
+    ASSERT_GT(solid, 20);
+    ASSERT_GT(in_core, 20);
+    const std::string log = read_text(dir / "log.topoSet.porous");
+    EXPECT_NE(log.find("cellZoneSet porous_underlayer now size " + std::to_string(in_under)),
+              std::string::npos)
+        << in_under << "\n"
+        << log;
+    EXPECT_NE(log.find("cellZoneSet porous_core now size " + std::to_string(in_core)), std::string::npos)
+        << in_core;
+    // The mesh keeps the water's cells and the two layers', not the solid band between.
+    EXPECT_NE(read_text(dir / "log.subsetMesh")
+                  .find("Subset " + std::to_string(above + in_under + in_core) + " of 1250 cells"),
+              std::string::npos);
+    const std::string zones = read_text(dir / "constant/polyMesh/cellZones");
+    std::smatch m;
+    ASSERT_TRUE(
+        std::regex_search(zones, m, std::regex("porous_underlayer\\s*\\{[^}]*List<label>\\s*(\\d+)")));
+    EXPECT_EQ(std::stoi(m[1]), in_under);
+    if (!HasFailure())
+        fs::remove_all(dir);
+}
