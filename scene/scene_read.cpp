@@ -387,6 +387,33 @@ void read_porous(const Table &root, Scene &s) {
         }
         s.porous.push_back(p);
     }
+    // A slope_layer below the surface must lie under other layers of its wall
+    // that reach down to it: the slope between would be cut out of the mesh
+    // (slope_waves), closing the layer off from the water, and interFoam
+    // cannot solve a closed region (its pressure has no level).
+    const auto tables = root.entries("porous");
+    for (std::size_t k = 0; k < s.porous.size(); ++k) {
+        const ScenePorous &p = s.porous[k];
+        if (p.type != "slope_layer")
+            continue;
+        double reached = 0.0;
+        for (bool grew = true; grew && reached < p.depth;) {
+            grew = false;
+            for (const ScenePorous &o : s.porous)
+                if (o.type == "slope_layer" && o.wall == p.wall && o.depth <= reached + 1e-9 && o.thickness &&
+                    o.depth + *o.thickness > reached + 1e-9) {
+                    reached = o.depth + *o.thickness;
+                    grew = true;
+                }
+        }
+        if (reached < p.depth - 1e-9)
+            tables[k].fail("depth", "the slope_layers of wall " + toml_string(p.wall) + " reach down to " +
+                                        number_text(reached) + " m only: the slope between that and " +
+                                        number_text(p.depth) +
+                                        " m is impermeable and closes this layer off from the water; "
+                                        "start it at " +
+                                        number_text(reached) + " m or add a layer between");
+    }
 }
 
 void read_placements(const Table &root, Scene &s) {
