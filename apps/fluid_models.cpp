@@ -109,16 +109,17 @@ std::string slope_layer_actions(const ScenePorous &p, const SceneWall &w, const 
     };
     const std::string above_floor =
         "source boxToCell; box " + foam_point(-far, -far, w.floor_z) + " " + foam_point(far, far, far) + ";";
-    std::string a = set_action(set, "new", under_face(d0, d1)) +
-                    set_action(set, "subset", under_crest(d0, far)) + set_action(set, "subset", above_floor);
+    std::string actions = set_action(set, "new", under_face(d0, d1)) +
+                          set_action(set, "subset", under_crest(d0, far)) +
+                          set_action(set, "subset", above_floor);
     if (p.thickness) { // and the band under the crest, where the face is further
         const std::string crest = set + "_crest";
-        a += set_action(crest, "new", under_crest(d0, d1)) +
-             set_action(crest, "subset", under_face(d0, far)) + set_action(crest, "subset", above_floor) +
-             set_action(set, "add", "source cellToCell; set " + crest + ";") +
-             set_action(crest, "remove", "");
+        actions +=
+            set_action(crest, "new", under_crest(d0, d1)) + set_action(crest, "subset", under_face(d0, far)) +
+            set_action(crest, "subset", above_floor) +
+            set_action(set, "add", "source cellToCell; set " + crest + ";") + set_action(crest, "remove", "");
     }
-    return a;
+    return actions;
 }
 
 // The zones and sources of the [[porous]] regions. A template that cuts
