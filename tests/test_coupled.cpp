@@ -245,10 +245,11 @@ TEST(CoupledRun, FloatingCubeSettlesAtItsDraft) {
                  expected = r.summary["draft_expected"].get<double>();
     std::printf(
         "[ coupled  ] floating: draft %.5f m (mean over %d periods), expected %.5f m, error %.2f %%, final "
-        "%.5f m, heave amplitude in the last fifth %.3g m, %.1f s wall\n",
+        "%.5f m, heave amplitude in the last fifth %.3g m, heave period %.3f s, %.1f s wall\n",
         draft, r.summary.value("heave_periods_averaged", 0), expected,
         100 * r.summary["draft_error"].get<double>(), r.summary["draft_final"].get<double>(),
-        r.summary["heave_amplitude_last_fifth"].get<double>(), r.summary["wall_seconds"].get<double>());
+        r.summary["heave_amplitude_last_fifth"].get<double>(), r.summary.value("heave_period", 0.0),
+        r.summary["wall_seconds"].get<double>());
     EXPECT_NEAR(expected, 0.1, 1e-12);
     EXPECT_GE(r.summary.value("heave_periods_averaged", 0), 1);
     EXPECT_LT(r.summary["draft_error"].get<double>(), 0.03);
