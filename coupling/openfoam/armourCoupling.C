@@ -44,8 +44,8 @@ struct Foam::fv::armourCoupling::armourSide
     armourFoam::couplingTimes times;
     std::unique_ptr<armourFoam::checkpointing> checkpoints;
     //- Keep the interior of units piercing the surface in the outside's
-    //  phase (armourInterior.H); `mirrorInterior false;` turns it off
-    bool mirrorInterior = true;
+    //  phase (armourInterior.H): the scene's fluid.mirror_interior
+    bool mirrorInterior = false;
 };
 
 
@@ -121,8 +121,7 @@ Foam::fv::armourCoupling::armourCoupling
                 << exit(FatalIOError);
         }
         penalty_ = scene.fluid->penalty;
-        armour_->mirrorInterior =
-            coeffs_.lookupOrDefault<Switch>("mirrorInterior", true);
+        armour_->mirrorInterior = scene.fluid->mirror_interior;
         engineName = scene.engine;
         armour_->times.frozen = scene.fluid->frozen;
 
