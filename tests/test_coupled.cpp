@@ -234,10 +234,10 @@ TEST(CoupledRun, RestingCubeDoesNotDrift) {
 // "settling" is checked as decay: released 0.1 m (the whole draft) from
 // equilibrium, less than half of that swing is left in the last fifth.
 // Exact solid fractions (the default): draft 0.09880 m (-1.2 %), heave
-// +-32 mm in the last fifth. Until the units' interior mirrored the outside
-// water (coupling/openfoam/armourInterior.H) the cube carried its interior
-// air below the surface and read +5.7 % here, +7 % from 4 to 8 cells across
-// (docs/coupling.md, the interior).
+// +-32 mm in the last fifth. The scene mirrors the outside water into the
+// cube's interior (fluid.mirror_interior, coupling/openfoam/armourInterior.H);
+// without it the cube carries its interior air below the surface and reads
+// +5.7 % here, +7 % from 4 to 8 cells across (docs/coupling.md, the interior).
 TEST(CoupledRun, FloatingCubeSettlesAtItsDraft) {
     const Outcome r = armour_run("floating_cube.toml", "float");
     ASSERT_EQ(r.status, 0) << r.err;
