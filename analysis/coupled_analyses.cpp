@@ -140,6 +140,15 @@ class FloatAnalysis : public History {
             summary["draft_averaged_from"] = time_[crests.front()];
             summary["draft_averaged_to"] = time_[crests.back()];
             summary["heave_periods_averaged"] = crests.size() - 1;
+            // The free-decay period, each crest placed by the parabola
+            // through its three samples (the record is 0.01 s apart).
+            const auto crest_time = [&](std::size_t s) {
+                const double curvature = zb[s - 1] - 2 * zb[s] + zb[s + 1];
+                const double shift = curvature != 0 ? 0.5 * (zb[s - 1] - zb[s + 1]) / curvature : 0.0;
+                return time_[s] + shift * 0.5 * (time_[s + 1] - time_[s - 1]);
+            };
+            summary["heave_period"] = (crest_time(crests.back()) - crest_time(crests.front())) /
+                                      static_cast<double>(crests.size() - 1);
         }
         const double expected = rho_u / f.fluid_density * a;
         double zmin = HUGE_VAL, zmax = -HUGE_VAL;

@@ -137,6 +137,9 @@ struct SceneFluid {
     // Benchmark reference: units held where they start, mask imposed once, no
     // load integration and no engine advance (bench/run_coupled_bench.sh).
     bool frozen = false;
+    // Cells wholly inside a unit that pierces the free surface take the
+    // outside water's phase at their height (docs/coupling.md, the interior).
+    bool mirror_interior = false;
     // s: settle the units in the DEM, under the still water's buoyancy, this
     // long before coupling (0 = start coupling from the placed poses). The
     // coupled run starts from the settled poses, written to

@@ -174,6 +174,9 @@ const std::vector<Key<SceneFluid>> &fluid_keys() {
             .defaults("`run.duration`"),
         key("frozen", &F::frozen, "",
             "benchmark reference: units held, mask imposed once, no loads, no engine advance"),
+        key("mirror_interior", &F::mirror_interior, "",
+            "cells wholly inside a unit piercing the free surface take the outside water's phase at "
+            "their height each step (floating units; docs/coupling.md)"),
         key("settle_time", &F::settle_time, "s",
             "settle the units in the DEM under the still water this long before coupling (below)")
             .in(Range::at_least(0)),

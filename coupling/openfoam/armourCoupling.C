@@ -6,6 +6,7 @@
 #include "armourCheckpoint.H"
 #include "armourExchange.H"
 #include "armourForceDensity.H"
+#include "armourInterior.H"
 #include "armourRecording.H"
 
 #include "addToRunTimeSelectionTable.H"
@@ -42,6 +43,9 @@ struct Foam::fv::armourCoupling::armourSide
     std::unique_ptr<armourFoam::recording> recording;
     armourFoam::couplingTimes times;
     std::unique_ptr<armourFoam::checkpointing> checkpoints;
+    //- Keep the interior of units piercing the surface in the outside's
+    //  phase (armourInterior.H): the scene's fluid.mirror_interior
+    bool mirrorInterior = false;
 };
 
 
@@ -117,6 +121,7 @@ Foam::fv::armourCoupling::armourCoupling
                 << exit(FatalIOError);
         }
         penalty_ = scene.fluid->penalty;
+        armour_->mirrorInterior = scene.fluid->mirror_interior;
         engineName = scene.engine;
         armour_->times.frozen = scene.fluid->frozen;
 
@@ -243,6 +248,31 @@ void Foam::fv::armourCoupling::updateFields()
 }
 
 
+void Foam::fv::armourCoupling::mirrorInterior()
+{
+    // alpha changes between this step's alpha solve and the next: the next
+    // solve advects it and sets rho from it; rho stays as solved here.
+    if (!mesh_.foundObject<volScalarField>("alpha.water"))
+    {
+        return;
+    }
+    const vector g =
+        mesh_.time().lookupObject<uniformDimensionedVectorField>("g").value();
+    armourFoam::mirrorInterior
+    (
+        mesh_,
+        armour_->bodies->body(),
+        chi_.primitiveField(),
+        armour_->bodies->names().size(),
+        -g/mag(g),
+        const_cast<volScalarField&>
+        (
+            mesh_.lookupObject<volScalarField>("alpha.water")
+        )
+    );
+}
+
+
 void Foam::fv::armourCoupling::couple
 (
     const volScalarField& rho,
@@ -283,6 +313,10 @@ void Foam::fv::armourCoupling::couple
             bodies.advance(loads.loads, runTime.deltaTValue());
             const clock::time_point t2 = clock::now();
             updateFields();
+            if (armour_->mirrorInterior)
+            {
+                mirrorInterior();
+            }
             times.loadSeconds += seconds(t0, t1);
             times.demSeconds += seconds(t1, t2);
             times.maskSeconds += seconds(t2, clock::now());
