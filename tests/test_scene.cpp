@@ -986,6 +986,22 @@ TEST_F(SceneFile, WavesOutsideTheirLimitsAreRefusedNamingTheKey) {
         std::string::npos);
     EXPECT_NE(error_of(p, {"waves.gauge_x=3.5"}).find("key 'waves.gauge_x': the gauge array"),
               std::string::npos);
+    EXPECT_NE(error_of(p, {"waves.gauge_x=-2"}).find("key 'waves.gauge_x': the gauge array"),
+              std::string::npos);
+    // Each theory's own limit, named: cnoidal in deep water, StokesII where
+    // v1912's wavelength iteration has not converged, stream function (no
+    // solver for Fenton's coefficients), an irregular train too long for it.
+    const std::string cnoidal = error_of(p, {"waves.theory=\"cnoidal\""});
+    EXPECT_NE(cnoidal.find("key 'waves.theory': cnoidal theory needs shallow water"), std::string::npos)
+        << cnoidal;
+    const std::string slow = error_of(p, {"waves.period=30", "waves.height=0.001",
+                                          "waves.theory=\"StokesII\"", "run.domain_max=[900, 3, 5]"});
+    EXPECT_NE(slow.find("key 'waves.theory': kh = 0.0"), std::string::npos) << slow;
+    EXPECT_NE(error_of(p, {"waves.theory=\"streamFunction\""})
+                  .find("key 'waves.theory': theory \"streamFunction\""),
+              std::string::npos);
+    const std::string long_tp = error_of(p, {"waves.type=\"irregular\"", "waves.Hs=0.1", "waves.Tp=20"});
+    EXPECT_NE(long_tp.find("key 'waves.Tp': the longest component"), std::string::npos) << long_tp;
     EXPECT_NE(error_of(p, {"waves.type=\"irregular\""}).find("key 'waves.Hs': missing required key"),
               std::string::npos);
     // [waves] needs a coupled run.

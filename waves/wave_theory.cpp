@@ -88,8 +88,10 @@ std::string regular_wave_refusal(const std::string &theory, double height, doubl
         return buf;
     }
     if (theory == "streamFunction")
-        return "theory \"streamFunction\": the stock model needs Fenton's Fourier coefficients (Bjs, Ejs), "
-               "which this version does not compute; use \"StokesII\", \"StokesV\", \"cnoidal\" or \"auto\"";
+        return "theory \"streamFunction\": OpenFOAM v1912's model solves nothing, it reads Fenton's (1988) "
+               "Fourier solution (waveLength, uMean and the coefficients Bjs, Ejs) from waveProperties, and "
+               "armour "
+               "has no solver for it; use \"StokesII\", \"StokesV\", \"cnoidal\" or \"auto\"";
     return "";
 }
 

@@ -12,8 +12,9 @@
 //       StokesV   Ur <= 8 pi^2 / 3 as well, for steeper waves (H / L0 > 0.02,
 //                 where second order misses more than a few percent);
 //       cnoidal   Ur > 8 pi^2 / 3 and kh < pi / 4 (h / L < 1/8: shallow water);
-//       streamFunction (Fenton): any non-breaking wave; the stock model needs
-//                 Fenton's coefficients computed outside, not generated here.
+//       streamFunction (Fenton): any non-breaking wave, but v1912's model
+//                 reads Fenton's solution (waveLength, uMean, Bjs, Ejs) and
+//                 solves nothing; no solver here: refused.
 //     `auto` picks StokesII, StokesV or cnoidal by these limits. Breaking at
 //     the wave maker: H / h <= 0.78 (McCowan) and H <= 0.142 L tanh(kh)
 //     (Miche, 1/7 in deep water).

@@ -131,7 +131,26 @@ void Foam::armourShallowWaterAbsorptionFvPatchVectorField::updateCoeffs()
         alpha.boundaryField()[patch().index()].patchInternalField()
     );
     const scalar level = frame.waterLevel(patch(), alphaCells);
-    const scalar eta = level - h_;
+    scalar eta = level - h_;
+    if (celerity_ > 0)
+    {
+        // The outgoing wave reaches the patch d/c after the cell centres.
+        const Time& time = db().time();
+        if (time.timeIndex() != indexNow_)
+        {
+            etaPrev_ = etaNow_;
+            timePrev_ = timeNow_;
+            indexPrev_ = indexNow_;
+            indexNow_ = time.timeIndex();
+        }
+        etaNow_ = eta;
+        timeNow_ = time.value();
+        if (indexPrev_ == indexNow_ - 1 && timeNow_ > timePrev_)
+        {
+            const scalar d = gAverage(1.0/patch().deltaCoeffs());
+            eta -= d/celerity_*(etaNow_ - etaPrev_)/(timeNow_ - timePrev_);
+        }
+    }
 
     const scalar uOut =
         nonlinear_
