@@ -1,11 +1,9 @@
 #include "fluid_models.h"
 
 #include "output_folder.h"
+#include "scene_keys.h"
 
-#include <charconv>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 #include <string>
 
 namespace armour {
@@ -15,18 +13,9 @@ using nlohmann::json;
 
 namespace {
 
-// Shortest text that reads back as the same double.
+// Shortest text that reads back as the same double: the case holds the scene's values.
 std::string num(double v) {
-    char buf[64];
-    const auto result = std::to_chars(buf, buf + sizeof buf, v);
-    return std::string(buf, result.ptr);
-}
-
-std::string read_text(const fs::path &path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
+    return number_text(v);
 }
 
 std::string header(const std::string &cls, const std::string &object) {
@@ -49,7 +38,8 @@ std::string turbulence_field(const std::string &name, const std::string &dimensi
 }
 
 void append(const fs::path &path, const std::string &text) {
-    write_text_file(path, read_text(path) + "\n// Appended by armour run (apps/fluid_models.cpp).\n" + text);
+    write_text_file(path,
+                    read_text_file(path) + "\n// Appended by armour run (apps/fluid_models.cpp).\n" + text);
 }
 
 void write_turbulence(const Scene &scene, const fs::path &case_dir) {
