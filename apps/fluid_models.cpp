@@ -167,10 +167,12 @@ void write_porosity(const Scene &scene, const fs::path &case_dir) {
 DarcyForchheimer darcy_forchheimer(const ScenePorous &p, double viscosity, double gravity) {
     const double n = p.porosity, D = p.stone_size, n3 = n * n * n;
     DarcyForchheimer c;
-    c.a = p.alpha * (1.0 - n) * (1.0 - n) / n3 * viscosity / (gravity * D * D);
-    c.b = p.beta * (1.0 - n) / n3 / (gravity * D);
-    c.d = gravity * c.a / viscosity;
-    c.f = 2.0 * gravity * c.b;
+    // d and f straight from the rock (the case needs no g, nor nu); a and b,
+    // the hydraulic gradient's, through them.
+    c.d = p.alpha * (1.0 - n) * (1.0 - n) / (n3 * D * D);
+    c.f = 2.0 * p.beta * (1.0 - n) / (n3 * D);
+    c.a = c.d * viscosity / gravity;
+    c.b = c.f / (2.0 * gravity);
     return c;
 }
 
