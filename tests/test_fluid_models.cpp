@@ -50,6 +50,27 @@ fs::path temp_dir(const std::string &name) {
     return tmpl;
 }
 
+// A copy of tests/foam_cases/NAME with each token in `files` replaced by its value.
+fs::path filled_case(const std::string &name, const std::vector<std::string> &files,
+                     const std::vector<std::pair<std::string, std::string>> &tokens) {
+    const fs::path dir = temp_dir(name);
+    fs::copy(fs::path(ARMOUR_SOURCE_DIR) / "tests/foam_cases" / name, dir, fs::copy_options::recursive);
+    for (const std::string &f : files) {
+        std::string text = read_text(dir / f);
+        for (const auto &[token, value] : tokens)
+            text = std::regex_replace(text, std::regex(token), value);
+        write_text(dir / f, text);
+    }
+    return dir;
+}
+
+// Runs the shell command line `tools` in the case with Debian's OpenFOAM: its exit status.
+int run_foam(const fs::path &dir, const std::string &tools) {
+    const std::string cmd = "cd '" + dir.string() +
+                            "' && export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam} && " + tools;
+    return std::system(cmd.c_str());
+}
+
 ScenePorous rock(double stone_size, double porosity) {
     ScenePorous p;
     p.name = "plug";
@@ -162,23 +183,15 @@ TEST(PorousPlug, SteadyFlowFollowsVanGentsLaw) {
     ASSERT_NEAR(u, 0.046890, 1e-6);
 
     auto flux_velocity = [&](int cells) {
-        const fs::path dir = temp_dir("porous_plug");
-        fs::copy(fs::path(ARMOUR_SOURCE_DIR) / "tests/foam_cases/porous_plug", dir,
-                 fs::copy_options::recursive);
-        for (const char *f : {"system/blockMeshDict", "0/p_rgh"}) {
-            std::string text = read_text(dir / f);
-            text = std::regex_replace(text, std::regex("@NX@"), std::to_string(cells));
-            text = std::regex_replace(text, std::regex("@HEAD_PRESSURE@"), std::to_string(rho * g * head));
-            write_text(dir / f, text);
-        }
+        const fs::path dir = filled_case(
+            "porous_plug", {"system/blockMeshDict", "0/p_rgh"},
+            {{"@NX@", std::to_string(cells)}, {"@HEAD_PRESSURE@", std::to_string(rho * g * head)}});
         write_fluid_models(scene, dir);
-        const std::string cmd = "cd '" + dir.string() +
-                                "' && export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam} && "
-                                "blockMesh > log.blockMesh 2>&1 && "
+        EXPECT_EQ(run_foam(dir, "blockMesh > log.blockMesh 2>&1 && "
                                 "topoSet -dict system/topoSetDict.porous > log.topoSet 2>&1 && "
-                                "interFoam > log.interFoam 2>&1";
-        const int rc = std::system(cmd.c_str());
-        EXPECT_EQ(rc, 0) << "see " << dir;
+                                "interFoam > log.interFoam 2>&1"),
+                  0)
+            << "see " << dir;
         EXPECT_NE(read_text(dir / "log.topoSet")
                       .find("cellZoneSet porous_plug now size " + std::to_string(cells / 5)),
                   std::string::npos);
@@ -302,12 +315,11 @@ TEST(PorousSlope, LayersFollowTheFaceAndStayInTheMesh) {
     scene.domain_max = {1.0, 0.02, 0.5};
     scene.walls.push_back(wall);
     write_fluid_models(scene, dir);
-    const std::string cmd = "cd '" + dir.string() +
-                            "' && export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam} && "
-                            "blockMesh > log.blockMesh 2>&1 && topoSet > log.topoSet 2>&1 && "
+    ASSERT_EQ(run_foam(dir, "blockMesh > log.blockMesh 2>&1 && topoSet > log.topoSet 2>&1 && "
                             "topoSet -dict system/topoSetDict.porous > log.topoSet.porous 2>&1 && "
-                            "subsetMesh -overwrite fluid -patch walls > log.subsetMesh 2>&1";
-    ASSERT_EQ(std::system(cmd.c_str()), 0) << "see " << dir;
+                            "subsetMesh -overwrite fluid -patch walls > log.subsetMesh 2>&1"),
+              0)
+        << "see " << dir;
 
     const double sin_t = 1 / std::sqrt(1 + cot * cot), cos_t = cot * sin_t;
     int above = 0, in_under = 0, in_core = 0, solid = 0;
@@ -414,27 +426,20 @@ struct ColumnRun {
 };
 
 ColumnRun drain_column(const Scene &scene, int cells, double dt, double h0, double end) {
-    const fs::path dir = temp_dir("porous_column");
-    fs::copy(fs::path(ARMOUR_SOURCE_DIR) / "tests/foam_cases/porous_column", dir,
-             fs::copy_options::recursive);
     const int every = static_cast<int>(std::lround(0.05 / dt));
-    for (const char *f : {"system/blockMeshDict", "system/controlDict", "system/setFieldsDict"}) {
-        std::string text = read_text(dir / f);
-        text = std::regex_replace(text, std::regex("@NZ@"), std::to_string(cells));
-        text = std::regex_replace(text, std::regex("@DT@"), std::to_string(dt));
-        text = std::regex_replace(text, std::regex("@END@"), std::to_string(end));
-        text = std::regex_replace(text, std::regex("@EVERY@"), std::to_string(every));
-        text = std::regex_replace(text, std::regex("@H0@"), std::to_string(h0));
-        write_text(dir / f, text);
-    }
+    const fs::path dir =
+        filled_case("porous_column", {"system/blockMeshDict", "system/controlDict", "system/setFieldsDict"},
+                    {{"@NZ@", std::to_string(cells)},
+                     {"@DT@", std::to_string(dt)},
+                     {"@END@", std::to_string(end)},
+                     {"@EVERY@", std::to_string(every)},
+                     {"@H0@", std::to_string(h0)}});
     write_fluid_models(scene, dir);
-    const std::string cmd = "cd '" + dir.string() +
-                            "' && export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam} && "
-                            "blockMesh > log.blockMesh 2>&1 && "
+    EXPECT_EQ(run_foam(dir, "blockMesh > log.blockMesh 2>&1 && "
                             "topoSet -dict system/topoSetDict.porous > log.topoSet 2>&1 && "
-                            "setFields > log.setFields 2>&1 && interFoam > log.interFoam 2>&1";
-    const int rc = std::system(cmd.c_str());
-    EXPECT_EQ(rc, 0) << "see " << dir;
+                            "setFields > log.setFields 2>&1 && interFoam > log.interFoam 2>&1"),
+              0)
+        << "see " << dir;
     ColumnRun run;
     auto series = [&](const std::string &file) {
         std::ifstream in(dir / file);
