@@ -160,6 +160,16 @@ TEST(PorousScene, ReadsChecksAndWritesRegions) {
     const std::string k_epsilon = std::regex_replace(flume_with(""), std::regex("\\[fluid\\]\n"),
                                                      "[fluid]\nturbulence = \"kEpsilon\"\n");
     EXPECT_NE(load_error(dir, k_epsilon).find("fluid.turbulence"), std::string::npos);
+    // Without gravity k's start and the mirror's heights are undefined (NaN in the case).
+    write_text(file, flume_with(""));
+    for (const char *option : {"fluid.turbulence=\"kOmegaSST\"", "fluid.mirror_interior=true"}) {
+        try {
+            load_scene(file.string(), {"run.gravity=[0, 0, 0]", option});
+            ADD_FAILURE() << option;
+        } catch (const std::exception &e) {
+            EXPECT_NE(std::string(e.what()).find("needs gravity"), std::string::npos) << e.what();
+        }
+    }
     fs::remove_all(dir);
 }
 
@@ -245,6 +255,9 @@ TEST(PorousScene, SlopeLayersOfABreakwater) {
               std::string::npos);
     EXPECT_NE(error("thickness = 0.03", "thickness = 0.0").find("porous.0.thickness"), std::string::npos);
     EXPECT_NE(error("depth = 0.03", "depth = -0.01").find("porous.1.depth"), std::string::npos);
+    EXPECT_NE(error("depth = 0.03", "depth = 0.4")
+                  .find("porous.1.depth': must be less than wall \"slope\"'s height"),
+              std::string::npos);
     // A gap under the underlayer would cut the core off from the water.
     EXPECT_NE(error("depth = 0.03", "depth = 0.05")
                   .find("porous.1.depth': the slope_layers of wall \"slope\" "
