@@ -51,13 +51,6 @@ std::string foam_vector(const Eigen::Vector3d &v) {
     return "(" + num(v.x()) + " " + num(v.y()) + " " + num(v.z()) + ")";
 }
 
-std::string read_file(const fs::path &path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
-
 fs::path source_dir() {
 #ifdef ARMOUR_SOURCE_DIR
     return ARMOUR_SOURCE_DIR;
@@ -190,7 +183,7 @@ void run_tool(const std::string &name, const std::vector<std::string> &args, con
         std::this_thread::sleep_for(std::chrono::milliseconds(10));
         if (!show_progress || ++naps % 25 != 0)
             continue;
-        const double t = last_solver_time(read_file(log));
+        const double t = last_solver_time(read_text_file(log));
         const double fraction = std::min(1.0, t / end_time);
         const double elapsed =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -207,7 +200,7 @@ void run_tool(const std::string &name, const std::vector<std::string> &args, con
     }
     if (show_progress && terminal)
         std::fputc('\n', stderr);
-    const std::string text = read_file(log);
+    const std::string text = read_text_file(log);
     const std::string fatal = fatal_line(text);
     const bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
     // mpirun may exit 0 although a rank reported FOAM FATAL.
@@ -240,7 +233,7 @@ void fill_tokens(const fs::path &case_dir, const std::map<std::string, std::stri
     for (const auto &entry : fs::recursive_directory_iterator(case_dir)) {
         if (!entry.is_regular_file())
             continue;
-        std::string text = read_file(entry.path());
+        std::string text = read_text_file(entry.path());
         if (text.find('@') == std::string::npos)
             continue;
         for (const auto &[key, value] : tokens)
@@ -275,7 +268,7 @@ std::string template_text(const fs::path &dir) {
     std::error_code ec;
     for (const auto &e : fs::recursive_directory_iterator(dir, ec))
         if (e.is_regular_file())
-            text += read_file(e.path());
+            text += read_text_file(e.path());
     return text;
 }
 
@@ -359,7 +352,7 @@ std::string waves_library(const std::string &plugin) {
 // nCells of the mesh as written (the note in constant/polyMesh/owner): templates
 // with several blocks or blocked cells are not cells[0] x cells[1] x cells[2].
 long mesh_cells(const fs::path &case_dir) {
-    const std::string owner = read_file(case_dir / "constant" / "polyMesh" / "owner");
+    const std::string owner = read_text_file(case_dir / "constant" / "polyMesh" / "owner");
     const auto at = owner.find("nCells:");
     return at == std::string::npos ? -1 : std::atol(owner.c_str() + at + 7);
 }
@@ -673,7 +666,7 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
         setup.bodies.empty() ? BodiesFile{} : read_bodies_file((out / "bodies.h5").string());
     if (!setup.bodies.empty() && (rec.time.empty() || rec.bodies() != setup.bodies.size()))
         throw InputError(out.string() + "/bodies.h5: the plugin recorded no steps");
-    const std::string solver_log = read_file(case_dir / "log.interFoam");
+    const std::string solver_log = read_text_file(case_dir / "log.interFoam");
 
     json spheres = json::object(), across = json::object();
     for (std::size_t k = 0; k < setup.units.size(); ++k) {

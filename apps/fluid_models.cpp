@@ -1,11 +1,9 @@
 #include "fluid_models.h"
 
 #include "output_folder.h"
+#include "scene_keys.h"
 
-#include <charconv>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 #include <string>
 
 namespace armour {
@@ -15,18 +13,9 @@ using nlohmann::json;
 
 namespace {
 
-// Shortest text that reads back as the same double.
+// Shortest text that reads back as the same double: the case holds the scene's values.
 std::string num(double v) {
-    char buf[64];
-    const auto result = std::to_chars(buf, buf + sizeof buf, v);
-    return std::string(buf, result.ptr);
-}
-
-std::string read_text(const fs::path &path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
+    return number_text(v);
 }
 
 std::string header(const std::string &cls, const std::string &object) {
@@ -49,7 +38,8 @@ std::string turbulence_field(const std::string &name, const std::string &dimensi
 }
 
 void append(const fs::path &path, const std::string &text) {
-    write_text_file(path, read_text(path) + "\n// Appended by armour run (apps/fluid_models.cpp).\n" + text);
+    write_text_file(path,
+                    read_text_file(path) + "\n// Appended by armour run (apps/fluid_models.cpp).\n" + text);
 }
 
 void write_turbulence(const Scene &scene, const fs::path &case_dir) {
@@ -177,10 +167,12 @@ void write_porosity(const Scene &scene, const fs::path &case_dir) {
 DarcyForchheimer darcy_forchheimer(const ScenePorous &p, double viscosity, double gravity) {
     const double n = p.porosity, D = p.stone_size, n3 = n * n * n;
     DarcyForchheimer c;
-    c.a = p.alpha * (1.0 - n) * (1.0 - n) / n3 * viscosity / (gravity * D * D);
-    c.b = p.beta * (1.0 - n) / n3 / (gravity * D);
-    c.d = gravity * c.a / viscosity;
-    c.f = 2.0 * gravity * c.b;
+    // d and f straight from the rock (the case needs no g, nor nu); a and b,
+    // the hydraulic gradient's, through them.
+    c.d = p.alpha * (1.0 - n) * (1.0 - n) / (n3 * D * D);
+    c.f = 2.0 * p.beta * (1.0 - n) / (n3 * D);
+    c.a = c.d * viscosity / gravity;
+    c.b = c.f / (2.0 * gravity);
     return c;
 }
 

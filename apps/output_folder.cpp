@@ -10,6 +10,7 @@
 #include <fcntl.h>
 #include <fstream>
 #include <signal.h>
+#include <sstream>
 #include <stdexcept>
 #include <sys/file.h>
 #include <sys/stat.h>
@@ -372,6 +373,13 @@ void write_text_file(const fs::path &path, const std::string &text) {
             throw InputError(path.string() + ": write failed");
     }
     fs::rename(temporary, path);
+}
+
+std::string read_text_file(const fs::path &path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
 }
 
 } // namespace armour

@@ -98,4 +98,7 @@ class OutputFolder {
 // Writes text to path through a temporary file and a rename.
 void write_text_file(const std::filesystem::path &path, const std::string &text);
 
+// The whole file, byte for byte ("" when it cannot be read).
+std::string read_text_file(const std::filesystem::path &path);
+
 } // namespace armour

@@ -212,6 +212,15 @@ void read_fluid(const Table &root, Scene &s) {
     f.max_time_step = std::min(f.max_time_step, s.output_interval);
     f.write_interval = s.duration;
     read_keys(t, keys, f);
+    // Both take their scale from gravity (without it, NaN in the case): the
+    // height at which the interior mirrors the outside, and k's start from
+    // the celerity sqrt(g depth).
+    if (s.gravity.norm() == 0 && f.mirror_interior)
+        t.fail("mirror_interior", "needs gravity: the interior takes the outside's phase at its height "
+                                  "along gravity, and gravity is [0, 0, 0]");
+    if (s.gravity.norm() == 0 && f.turbulence != "laminar")
+        t.fail("turbulence",
+               "needs gravity: k starts from the celerity sqrt(g depth), and gravity is [0, 0, 0]");
     if (f.case_name.find('/') != std::string::npos || f.case_name[0] == '.')
         t.fail("case", "must name a template folder in foam_cases/, e.g. \"tank\" (got " +
                            toml_string(f.case_name) + ")");
@@ -352,10 +361,22 @@ std::string unit_of(const Table &t, const Scene &s, const std::string &u) {
     return u;
 }
 
+// The keys min and max of table t: a box inside the run's domain.
+void check_box(const Table &t, const Eigen::Vector3d &min, const Eigen::Vector3d &max, const Scene &s) {
+    const std::string domain =
+        "run.domain_min " + vec_text(s.domain_min) + " .. run.domain_max " + vec_text(s.domain_max) + " m";
+    if (!(max.array() > min.array()).all())
+        t.fail("max",
+               "must exceed min " + vec_text(min) + " m in every component (got " + vec_text(max) + ")");
+    if (!inside(min, s.domain_min, s.domain_max))
+        t.fail("min", "must lie inside " + domain + " (got " + vec_text(min) + ")");
+    if (!inside(max, s.domain_min, s.domain_max))
+        t.fail("max", "must lie inside " + domain + " (got " + vec_text(max) + ")");
+}
+
 // [[porous]] after [fluid] and the walls: boxes inside the fluid mesh, or
 // layers under a slope wall; unique names (each is the cellZone porous_NAME).
 void read_porous(const Table &root, Scene &s) {
-    const std::string domain = "run.domain_min .. run.domain_max";
     const auto &keys = porous_keys();
     for (const Table &t : root.entries("porous")) {
         t.only(names_of(keys));
@@ -376,14 +397,12 @@ void read_porous(const Table &root, Scene &s) {
                                            [&](const SceneWall &w) { return w.name == p.wall; });
             if (wall == s.walls.end() || wall->type != "slope")
                 t.fail("wall", "no [[wall]] of type \"slope\" named " + toml_string(p.wall));
+            // Deeper than the slope is high, the layer holds no cell.
+            if (wall->height <= p.depth)
+                t.fail("depth", "must be less than wall " + toml_string(p.wall) + "'s height " +
+                                    number_text(wall->height) + " m (got " + number_text(p.depth) + ")");
         } else {
-            if (!(p.max.array() > p.min.array()).all())
-                t.fail("max", "must exceed min " + vec_text(p.min) + " m in every component (got " +
-                                  vec_text(p.max) + ")");
-            if (!inside(p.min, s.domain_min, s.domain_max))
-                t.fail("min", "must lie inside " + domain + " (got " + vec_text(p.min) + ")");
-            if (!inside(p.max, s.domain_min, s.domain_max))
-                t.fail("max", "must lie inside " + domain + " (got " + vec_text(p.max) + ")");
+            check_box(t, p.min, p.max, s);
         }
         s.porous.push_back(p);
     }
@@ -451,13 +470,7 @@ void read_placements(const Table &root, Scene &s) {
         SceneDrop d;
         read_keys(t, drop_keys(), d);
         unit_of(t, s, d.unit);
-        if (!(d.max.array() > d.min.array()).all())
-            t.fail("max", "must exceed min " + vec_text(d.min) + " m in every component (got " +
-                              vec_text(d.max) + ")");
-        if (!inside(d.min, s.domain_min, s.domain_max))
-            t.fail("min", "must lie inside " + domain + " (got " + vec_text(d.min) + ")");
-        if (!inside(d.max, s.domain_min, s.domain_max))
-            t.fail("max", "must lie inside " + domain + " (got " + vec_text(d.max) + ")");
+        check_box(t, d.min, d.max, s);
         s.drops.push_back(d);
     }
     for (const Table &t : root.entries("pattern")) {

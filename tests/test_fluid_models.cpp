@@ -7,6 +7,7 @@
 // only with armourWaves); the slope layers take < 1 s, the plug ~5 s, the
 // column ~20 s, the flume ~1.5 min on an idle 2-core machine.
 #include "fluid_models.h"
+#include "output_folder.h"
 #include "scene.h"
 
 #include <gtest/gtest.h>
@@ -32,22 +33,32 @@ using namespace armour;
 
 namespace {
 
-std::string read_text(const fs::path &path) {
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-void write_text(const fs::path &path, const std::string &text) {
-    std::ofstream(path) << text;
-}
-
 fs::path temp_dir(const std::string &name) {
     std::string tmpl = (fs::temp_directory_path() / ("armour_test_" + name + "_XXXXXX")).string();
     if (!mkdtemp(tmpl.data()))
         return {};
     return tmpl;
+}
+
+// A copy of tests/foam_cases/NAME with each token in `files` replaced by its value.
+fs::path filled_case(const std::string &name, const std::vector<std::string> &files,
+                     const std::vector<std::pair<std::string, std::string>> &tokens) {
+    const fs::path dir = temp_dir(name);
+    fs::copy(fs::path(ARMOUR_SOURCE_DIR) / "tests/foam_cases" / name, dir, fs::copy_options::recursive);
+    for (const std::string &f : files) {
+        std::string text = read_text_file(dir / f);
+        for (const auto &[token, value] : tokens)
+            text = std::regex_replace(text, std::regex(token), value);
+        write_text_file(dir / f, text);
+    }
+    return dir;
+}
+
+// Runs the shell command line `tools` in the case with Debian's OpenFOAM: its exit status.
+int run_foam(const fs::path &dir, const std::string &tools) {
+    const std::string cmd = "cd '" + dir.string() +
+                            "' && export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam} && " + tools;
+    return std::system(cmd.c_str());
 }
 
 ScenePorous rock(double stone_size, double porosity) {
@@ -69,13 +80,13 @@ Scene water_with(const std::vector<ScenePorous> &regions) {
 
 // The empty flume with one [[porous]] block appended (TOML text).
 std::string flume_with(const std::string &porous_block) {
-    return read_text(fs::path(ARMOUR_SOURCE_DIR) / "scenes/wave_flume.toml") + "\n" + porous_block;
+    return read_text_file(fs::path(ARMOUR_SOURCE_DIR) / "scenes/wave_flume.toml") + "\n" + porous_block;
 }
 
 // load_scene's error line for a scene text ("" when it loads).
 std::string load_error(const fs::path &dir, const std::string &text) {
     const fs::path file = dir / "scene.toml";
-    write_text(file, text);
+    write_text_file(file, text);
     try {
         load_scene(file.string());
     } catch (const std::exception &e) {
@@ -107,7 +118,7 @@ TEST(PorousScene, ReadsChecksAndWritesRegions) {
     const std::string block = "[[porous]]\nname = \"core\"\nmin = [6.0, 0.0, 0.0]\nmax = [8.0, 0.05, 0.3]\n"
                               "stone_size = 0.02\n";
     const fs::path file = dir / "scene.toml";
-    write_text(file, flume_with(block));
+    write_text_file(file, flume_with(block));
     const Scene s = load_scene(file.string());
     ASSERT_EQ(s.porous.size(), 1u);
     EXPECT_EQ(s.porous[0].name, "core");
@@ -116,7 +127,7 @@ TEST(PorousScene, ReadsChecksAndWritesRegions) {
     EXPECT_DOUBLE_EQ(s.porous[0].beta, 1.1);
     EXPECT_EQ(s.fluid->turbulence, "laminar");
     // The resolved scene reads back the same region.
-    write_text(file, resolved_scene_toml(s));
+    write_text_file(file, resolved_scene_toml(s));
     const Scene again = load_scene(file.string());
     ASSERT_EQ(again.porous.size(), 1u);
     EXPECT_EQ(again.porous[0].max, s.porous[0].max);
@@ -139,6 +150,16 @@ TEST(PorousScene, ReadsChecksAndWritesRegions) {
     const std::string k_epsilon = std::regex_replace(flume_with(""), std::regex("\\[fluid\\]\n"),
                                                      "[fluid]\nturbulence = \"kEpsilon\"\n");
     EXPECT_NE(load_error(dir, k_epsilon).find("fluid.turbulence"), std::string::npos);
+    // Without gravity k's start and the mirror's heights are undefined (NaN in the case).
+    write_text_file(file, flume_with(""));
+    for (const char *option : {"fluid.turbulence=\"kOmegaSST\"", "fluid.mirror_interior=true"}) {
+        try {
+            load_scene(file.string(), {"run.gravity=[0, 0, 0]", option});
+            ADD_FAILURE() << option;
+        } catch (const std::exception &e) {
+            EXPECT_NE(std::string(e.what()).find("needs gravity"), std::string::npos) << e.what();
+        }
+    }
     fs::remove_all(dir);
 }
 
@@ -162,28 +183,20 @@ TEST(PorousPlug, SteadyFlowFollowsVanGentsLaw) {
     ASSERT_NEAR(u, 0.046890, 1e-6);
 
     auto flux_velocity = [&](int cells) {
-        const fs::path dir = temp_dir("porous_plug");
-        fs::copy(fs::path(ARMOUR_SOURCE_DIR) / "tests/foam_cases/porous_plug", dir,
-                 fs::copy_options::recursive);
-        for (const char *f : {"system/blockMeshDict", "0/p_rgh"}) {
-            std::string text = read_text(dir / f);
-            text = std::regex_replace(text, std::regex("@NX@"), std::to_string(cells));
-            text = std::regex_replace(text, std::regex("@HEAD_PRESSURE@"), std::to_string(rho * g * head));
-            write_text(dir / f, text);
-        }
+        const fs::path dir = filled_case(
+            "porous_plug", {"system/blockMeshDict", "0/p_rgh"},
+            {{"@NX@", std::to_string(cells)}, {"@HEAD_PRESSURE@", std::to_string(rho * g * head)}});
         write_fluid_models(scene, dir);
-        const std::string cmd = "cd '" + dir.string() +
-                                "' && export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam} && "
-                                "blockMesh > log.blockMesh 2>&1 && "
+        EXPECT_EQ(run_foam(dir, "blockMesh > log.blockMesh 2>&1 && "
                                 "topoSet -dict system/topoSetDict.porous > log.topoSet 2>&1 && "
-                                "interFoam > log.interFoam 2>&1";
-        const int rc = std::system(cmd.c_str());
-        EXPECT_EQ(rc, 0) << "see " << dir;
-        EXPECT_NE(read_text(dir / "log.topoSet")
+                                "interFoam > log.interFoam 2>&1"),
+                  0)
+            << "see " << dir;
+        EXPECT_NE(read_text_file(dir / "log.topoSet")
                       .find("cellZoneSet porous_plug now size " + std::to_string(cells / 5)),
                   std::string::npos);
         // Face fluxes (m^3/s) through the 0.01 x 0.01 m duct: all equal.
-        const std::string phi = read_text(dir / "0.5" / "phi");
+        const std::string phi = read_text_file(dir / "0.5" / "phi");
         std::smatch m;
         const bool found = std::regex_search(phi, m, std::regex("internalField[^(]*\\(\\s*([-0-9.eE+]+)"));
         EXPECT_TRUE(found) << dir;
@@ -204,13 +217,13 @@ TEST(PorousPlug, SteadyFlowFollowsVanGentsLaw) {
 // inputs each named by their key.
 TEST(PorousScene, SlopeLayersOfABreakwater) {
     const fs::path dir = temp_dir("porous_slope_scene");
-    const std::string slope = read_text(fs::path(ARMOUR_SOURCE_DIR) / "scenes/armour_slope_waves.toml");
+    const std::string slope = read_text_file(fs::path(ARMOUR_SOURCE_DIR) / "scenes/armour_slope_waves.toml");
     const std::string layers = "[[porous]]\nname = \"underlayer\"\ntype = \"slope_layer\"\nwall = \"slope\"\n"
                                "thickness = 0.03\nstone_size = 0.02\nporosity = 0.4\n\n"
                                "[[porous]]\nname = \"core\"\ntype = \"slope_layer\"\nwall = \"slope\"\n"
                                "depth = 0.03\nstone_size = 0.01\nporosity = 0.35\n";
     const fs::path file = dir / "scene.toml";
-    write_text(file, slope + "\n" + layers);
+    write_text_file(file, slope + "\n" + layers);
     const Scene s = load_scene(file.string());
     ASSERT_EQ(s.porous.size(), 2u);
     EXPECT_EQ(s.porous[0].type, "slope_layer");
@@ -218,7 +231,7 @@ TEST(PorousScene, SlopeLayersOfABreakwater) {
     EXPECT_DOUBLE_EQ(s.porous[0].thickness.value_or(0), 0.03);
     EXPECT_DOUBLE_EQ(s.porous[1].depth, 0.03);
     EXPECT_FALSE(s.porous[1].thickness.has_value());
-    write_text(file, resolved_scene_toml(s));
+    write_text_file(file, resolved_scene_toml(s));
     const Scene again = load_scene(file.string());
     ASSERT_EQ(again.porous.size(), 2u);
     EXPECT_EQ(again.porous[1].wall, "slope");
@@ -232,6 +245,9 @@ TEST(PorousScene, SlopeLayersOfABreakwater) {
               std::string::npos);
     EXPECT_NE(error("thickness = 0.03", "thickness = 0.0").find("porous.0.thickness"), std::string::npos);
     EXPECT_NE(error("depth = 0.03", "depth = -0.01").find("porous.1.depth"), std::string::npos);
+    EXPECT_NE(error("depth = 0.03", "depth = 0.4")
+                  .find("porous.1.depth': must be less than wall \"slope\"'s height"),
+              std::string::npos);
     // A gap under the underlayer would cut the core off from the water.
     EXPECT_NE(error("depth = 0.03", "depth = 0.05")
                   .find("porous.1.depth': the slope_layers of wall \"slope\" "
@@ -270,7 +286,7 @@ TEST(PorousSlope, LayersFollowTheFaceAndStayInTheMesh) {
     for (const char *f : {"controlDict", "fvSchemes", "fvSolution"})
         fs::copy_file(fs::path(ARMOUR_SOURCE_DIR) / "tests/foam_cases/porous_plug/system" / f,
                       dir / "system" / f);
-    write_text(
+    write_text_file(
         dir / "system/blockMeshDict",
         "FoamFile { version 2.0; format ascii; class dictionary; object blockMeshDict; }\n"
         "vertices ((0 0 0) (1 0 0) (1 0.02 0) (0 0.02 0) (0 0 0.5) (1 0 0.5) (1 0.02 0.5) (0 0.02 0.5));\n"
@@ -278,12 +294,13 @@ TEST(PorousSlope, LayersFollowTheFaceAndStayInTheMesh) {
         "boundary ( walls { type wall; faces ((0 4 7 3) (1 2 6 5) (0 1 2 3) (4 5 6 7)); }\n"
         "  sides { type empty; faces ((0 1 5 4) (3 7 6 2)); } );\n");
     const double toe = 0.303, cot = 1.5, height = 0.317, thickness = 0.045;
-    std::string cut = read_text(fs::path(ARMOUR_SOURCE_DIR) / "foam_cases/slope_waves/system/topoSetDict");
+    std::string cut =
+        read_text_file(fs::path(ARMOUR_SOURCE_DIR) / "foam_cases/slope_waves/system/topoSetDict");
     cut = std::regex_replace(cut, std::regex("@SLOPE_TOE_X@"), std::to_string(toe));
     cut = std::regex_replace(cut, std::regex("@SLOPE_CREST_X@"), std::to_string(toe + cot * height));
     cut = std::regex_replace(cut, std::regex("@SLOPE_CREST_Z@"), std::to_string(height));
     cut = std::regex_replace(cut, std::regex("@Z0@"), "0");
-    write_text(dir / "system/topoSetDict", cut);
+    write_text_file(dir / "system/topoSetDict", cut);
 
     SceneWall wall;
     wall.name = "slope";
@@ -302,12 +319,11 @@ TEST(PorousSlope, LayersFollowTheFaceAndStayInTheMesh) {
     scene.domain_max = {1.0, 0.02, 0.5};
     scene.walls.push_back(wall);
     write_fluid_models(scene, dir);
-    const std::string cmd = "cd '" + dir.string() +
-                            "' && export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam} && "
-                            "blockMesh > log.blockMesh 2>&1 && topoSet > log.topoSet 2>&1 && "
+    ASSERT_EQ(run_foam(dir, "blockMesh > log.blockMesh 2>&1 && topoSet > log.topoSet 2>&1 && "
                             "topoSet -dict system/topoSetDict.porous > log.topoSet.porous 2>&1 && "
-                            "subsetMesh -overwrite fluid -patch walls > log.subsetMesh 2>&1";
-    ASSERT_EQ(std::system(cmd.c_str()), 0) << "see " << dir;
+                            "subsetMesh -overwrite fluid -patch walls > log.subsetMesh 2>&1"),
+              0)
+        << "see " << dir;
 
     const double sin_t = 1 / std::sqrt(1 + cot * cot), cos_t = cot * sin_t;
     int above = 0, in_under = 0, in_core = 0, solid = 0;
@@ -327,7 +343,7 @@ TEST(PorousSlope, LayersFollowTheFaceAndStayInTheMesh) {
     ASSERT_GT(in_under, 20);
     ASSERT_GT(solid, 20);
     ASSERT_GT(in_core, 20);
-    const std::string log = read_text(dir / "log.topoSet.porous");
+    const std::string log = read_text_file(dir / "log.topoSet.porous");
     EXPECT_NE(log.find("cellZoneSet porous_underlayer now size " + std::to_string(in_under)),
               std::string::npos)
         << in_under << "\n"
@@ -335,10 +351,10 @@ TEST(PorousSlope, LayersFollowTheFaceAndStayInTheMesh) {
     EXPECT_NE(log.find("cellZoneSet porous_core now size " + std::to_string(in_core)), std::string::npos)
         << in_core;
     // The mesh keeps the water's cells and the two layers', not the solid band between.
-    EXPECT_NE(read_text(dir / "log.subsetMesh")
+    EXPECT_NE(read_text_file(dir / "log.subsetMesh")
                   .find("Subset " + std::to_string(above + in_under + in_core) + " of 1250 cells"),
               std::string::npos);
-    const std::string zones = read_text(dir / "constant/polyMesh/cellZones");
+    const std::string zones = read_text_file(dir / "constant/polyMesh/cellZones");
     std::smatch m;
     ASSERT_TRUE(
         std::regex_search(zones, m, std::regex("porous_underlayer\\s*\\{[^}]*List<label>\\s*(\\d+)")));
@@ -354,20 +370,20 @@ TEST(PorousSlope, LayersFollowTheFaceAndStayInTheMesh) {
 // builds both porous zones and runs.
 TEST(PorousSlope, ArmourRunKeepsTheLayersInTheSlopesMesh) {
     const fs::path dir = temp_dir("porous_slope_run");
-    std::string scene = read_text(fs::path(ARMOUR_SOURCE_DIR) / "scenes/armour_slope_waves.toml");
+    std::string scene = read_text_file(fs::path(ARMOUR_SOURCE_DIR) / "scenes/armour_slope_waves.toml");
     scene = scene.substr(0, scene.find("\n[[pattern]]")) +
             "\n[[body]]\nunit = \"cube\"\nposition = [0.6, 0.0, 0.45]\n\n"
             "[[porous]]\nname = \"underlayer\"\ntype = \"slope_layer\"\nwall = \"slope\"\nthickness = 0.04\n"
             "stone_size = 0.02\n\n[[porous]]\nname = \"berm\"\nmin = [-0.2, -0.14, 0.0]\n"
             "max = [0.0, 0.14, 0.04]\nstone_size = 0.04\n";
-    write_text(dir / "scene.toml", scene);
+    write_text_file(dir / "scene.toml", scene);
     const std::string cmd =
         std::string("'") + ARMOUR_EXE + "' run '" + (dir / "scene.toml").string() + "' --out '" +
         (dir / "out").string() +
         "' --set run.duration=0.02 --set fluid.settle_time=0 --set 'run.engine=\"free_body\"' > '" +
         (dir / "run.log").string() + "' 2>&1";
     const int rc = std::system(cmd.c_str());
-    ASSERT_TRUE(WIFEXITED(rc) && WEXITSTATUS(rc) == 0) << read_text(dir / "run.log");
+    ASSERT_TRUE(WIFEXITED(rc) && WEXITSTATUS(rc) == 0) << read_text_file(dir / "run.log");
     const fs::path case_dir = dir / "out/case";
     auto last_size = [](const std::string &log, const std::string &what) {
         int size = -1;
@@ -378,8 +394,8 @@ TEST(PorousSlope, ArmourRunKeepsTheLayersInTheSlopesMesh) {
             size = std::stoi((*it)[1]);
         return size;
     };
-    const int fluid = last_size(read_text(case_dir / "log.topoSet"), "cellSet fluid");
-    const std::string porous = read_text(case_dir / "log.topoSet.porous");
+    const int fluid = last_size(read_text_file(case_dir / "log.topoSet"), "cellSet fluid");
+    const std::string porous = read_text_file(case_dir / "log.topoSet.porous");
     const int under = last_size(porous, "cellZoneSet porous_underlayer"),
               berm = last_size(porous, "cellZoneSet porous_berm");
     // 0.04 m under the face and crest of 0.02 m cells: ~2 cells deep, across 14.
@@ -388,13 +404,13 @@ TEST(PorousSlope, ArmourRunKeepsTheLayersInTheSlopesMesh) {
     // 95 x 14 x 26 cells; the slope below the underlayer stays cut out, the berm was water.
     const int kept = fluid + under;
     EXPECT_LT(kept, 95 * 14 * 26);
-    EXPECT_NE(read_text(case_dir / "log.subsetMesh").find("Subset " + std::to_string(kept) + " of "),
+    EXPECT_NE(read_text_file(case_dir / "log.subsetMesh").find("Subset " + std::to_string(kept) + " of "),
               std::string::npos)
         << fluid << " + " << under;
-    const std::string solver = read_text(case_dir / "log.interFoam");
+    const std::string solver = read_text_file(case_dir / "log.interFoam");
     EXPECT_NE(solver.find("creating porous zone: porous_underlayer"), std::string::npos);
     EXPECT_NE(solver.find("creating porous zone: porous_berm"), std::string::npos);
-    const json summary = json::parse(read_text(dir / "out/summary.json"));
+    const json summary = json::parse(read_text_file(dir / "out/summary.json"));
     EXPECT_EQ(summary["fluid"]["cells_total"].get<int>(), kept);
     EXPECT_EQ(summary["fluid"]["porous"].size(), 2u);
     if (!HasFailure())
@@ -414,27 +430,20 @@ struct ColumnRun {
 };
 
 ColumnRun drain_column(const Scene &scene, int cells, double dt, double h0, double end) {
-    const fs::path dir = temp_dir("porous_column");
-    fs::copy(fs::path(ARMOUR_SOURCE_DIR) / "tests/foam_cases/porous_column", dir,
-             fs::copy_options::recursive);
     const int every = static_cast<int>(std::lround(0.05 / dt));
-    for (const char *f : {"system/blockMeshDict", "system/controlDict", "system/setFieldsDict"}) {
-        std::string text = read_text(dir / f);
-        text = std::regex_replace(text, std::regex("@NZ@"), std::to_string(cells));
-        text = std::regex_replace(text, std::regex("@DT@"), std::to_string(dt));
-        text = std::regex_replace(text, std::regex("@END@"), std::to_string(end));
-        text = std::regex_replace(text, std::regex("@EVERY@"), std::to_string(every));
-        text = std::regex_replace(text, std::regex("@H0@"), std::to_string(h0));
-        write_text(dir / f, text);
-    }
+    const fs::path dir =
+        filled_case("porous_column", {"system/blockMeshDict", "system/controlDict", "system/setFieldsDict"},
+                    {{"@NZ@", std::to_string(cells)},
+                     {"@DT@", std::to_string(dt)},
+                     {"@END@", std::to_string(end)},
+                     {"@EVERY@", std::to_string(every)},
+                     {"@H0@", std::to_string(h0)}});
     write_fluid_models(scene, dir);
-    const std::string cmd = "cd '" + dir.string() +
-                            "' && export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam} && "
-                            "blockMesh > log.blockMesh 2>&1 && "
+    EXPECT_EQ(run_foam(dir, "blockMesh > log.blockMesh 2>&1 && "
                             "topoSet -dict system/topoSetDict.porous > log.topoSet 2>&1 && "
-                            "setFields > log.setFields 2>&1 && interFoam > log.interFoam 2>&1";
-    const int rc = std::system(cmd.c_str());
-    EXPECT_EQ(rc, 0) << "see " << dir;
+                            "setFields > log.setFields 2>&1 && interFoam > log.interFoam 2>&1"),
+              0)
+        << "see " << dir;
     ColumnRun run;
     auto series = [&](const std::string &file) {
         std::ifstream in(dir / file);
@@ -579,11 +588,12 @@ TEST(Turbulence, KOmegaSSTFlumeRunsAndReportsItsHeight) {
                             "--set waves.gauge_x=6.5 > '" +
                             (dir / "run.log").string() + "' 2>&1";
     const int rc = std::system(cmd.c_str());
-    ASSERT_TRUE(WIFEXITED(rc) && WEXITSTATUS(rc) == 0) << read_text(dir / "run.log");
-    EXPECT_NE(read_text(dir / "out/case/constant/turbulenceProperties").find("kOmegaSST"), std::string::npos);
-    EXPECT_NE(read_text(dir / "out/case/log.interFoam").find("Selecting RAS turbulence model kOmegaSST"),
+    ASSERT_TRUE(WIFEXITED(rc) && WEXITSTATUS(rc) == 0) << read_text_file(dir / "run.log");
+    EXPECT_NE(read_text_file(dir / "out/case/constant/turbulenceProperties").find("kOmegaSST"),
               std::string::npos);
-    const json summary = json::parse(read_text(dir / "out/summary.json"));
+    EXPECT_NE(read_text_file(dir / "out/case/log.interFoam").find("Selecting RAS turbulence model kOmegaSST"),
+              std::string::npos);
+    const json summary = json::parse(read_text_file(dir / "out/summary.json"));
     const json &t = summary["fluid"]["turbulence"];
     EXPECT_EQ(t["model"], "kOmegaSST");
     // k0 = 1.5 (0.01 sqrt(9.81 x 0.4))^2, omega0 = sqrt(k0) / (0.09^0.25 x 0.01 m).
