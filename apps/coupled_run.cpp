@@ -635,15 +635,15 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
                      f.cells[0], f.cells[1], f.cells[2], f.np, f.np > 1 ? "s" : "", scene.engine.c_str(),
                      case_dir.c_str());
         run_tool("blockMesh", {"blockMesh"}, case_dir, scene.duration, false);
-        // Blocked cells: system/topoSetDict makes the cellSet "fluid", the mesh keeps only it, the
-        // exposed faces join the patch "walls" (slope_waves). Fields come from 0/*.orig afterwards.
-        if (fs::is_regular_file(case_dir / "system" / "topoSetDict")) {
+        // system/topoSetDict: the cellSet "fluid" (porous zones join it) that the mesh keeps (slope_waves).
+        const bool blocked = fs::is_regular_file(case_dir / "system" / "topoSetDict");
+        if (blocked)
             run_tool("topoSet", {"topoSet"}, case_dir, scene.duration, false);
-            run_tool("subsetMesh", {"subsetMesh", "-overwrite", "fluid", "-patch", "walls"}, case_dir,
-                     scene.duration, false);
-        }
-        if (needs_porous_zones(scene)) // after subsetMesh: its cellZones stay
+        if (needs_porous_zones(scene))
             run_tool("topoSet.porous", {"topoSet", "-dict", "system/topoSetDict.porous"}, case_dir,
+                     scene.duration, false);
+        if (blocked)
+            run_tool("subsetMesh", {"subsetMesh", "-overwrite", "fluid", "-patch", "walls"}, case_dir,
                      scene.duration, false);
         for (const auto &e : fs::directory_iterator(case_dir / "0"))
             if (e.path().extension() == ".orig")

@@ -76,21 +76,77 @@ void write_turbulence(const Scene &scene, const fs::path &case_dir) {
         "    }\n}\n");
 }
 
+std::string foam_point(double x, double y, double z) {
+    return "(" + num(x) + " " + num(y) + " " + num(z) + ")";
+}
+
+// One topoSet action on the cellSet `set`.
+std::string set_action(const std::string &set, const std::string &action, const std::string &source) {
+    return "    { name " + set + "; type cellSet; action " + action + "; " + source + " }\n";
+}
+
+// The cells of a slope_layer region: under the slope's face (its plane, from
+// the toe rising at 1:cot) and its crest (z = floor + height), above the
+// floor, whose centre's distance below the nearer of the two (the distance
+// to the surface inside the convex body) lies in [depth, depth + thickness).
+// `far` is beyond the mesh: it stands for an unbounded side.
+std::string slope_layer_actions(const ScenePorous &p, const SceneWall &w, const std::string &set,
+                                double far) {
+    const double sin_t = 1.0 / std::sqrt(1.0 + w.cot * w.cot), cos_t = w.cot * sin_t;
+    const double crest_z = w.floor_z + w.height, d0 = p.depth, d1 = p.thickness ? d0 + *p.thickness : far;
+    // Between distances a and b below the face plane: a box along the face
+    // (i up it, j across, k into the body: right-handed), from far below the
+    // toe to far above the crest.
+    auto under_face = [&](double a, double b) {
+        const double x = w.toe_x - far * cos_t + a * sin_t, z = w.floor_z - far * sin_t - a * cos_t;
+        return "source rotatedBoxToCell; origin " + foam_point(x, far, z) + "; i " +
+               foam_point(2 * far * cos_t, 0, 2 * far * sin_t) + "; j " + foam_point(0, -2 * far, 0) +
+               "; k " + foam_point((b - a) * sin_t, 0, -(b - a) * cos_t) + ";";
+    };
+    auto under_crest = [&](double a, double b) {
+        return "source boxToCell; box " + foam_point(-far, -far, crest_z - b) + " " +
+               foam_point(far, far, crest_z - a) + ";";
+    };
+    const std::string above_floor =
+        "source boxToCell; box " + foam_point(-far, -far, w.floor_z) + " " + foam_point(far, far, far) + ";";
+    std::string a = set_action(set, "new", under_face(d0, d1)) +
+                    set_action(set, "subset", under_crest(d0, far)) + set_action(set, "subset", above_floor);
+    if (p.thickness) { // and the band under the crest, where the face is further
+        const std::string crest = set + "_crest";
+        a += set_action(crest, "new", under_crest(d0, d1)) +
+             set_action(crest, "subset", under_face(d0, far)) + set_action(crest, "subset", above_floor) +
+             set_action(set, "add", "source cellToCell; set " + crest + ";") +
+             set_action(crest, "remove", "");
+    }
+    return a;
+}
+
+// The zones and sources of the [[porous]] regions. A template that cuts
+// cells out of the mesh (system/topoSetDict makes the cellSet "fluid" that
+// subsetMesh keeps) keeps the porous cells too: this dictionary runs
+// between the two, and subsetMesh keeps the zones.
 void write_porosity(const Scene &scene, const fs::path &case_dir) {
     const SceneFluid &f = *scene.fluid;
+    const bool cuts_cells = fs::is_regular_file(case_dir / "system" / "topoSetDict");
+    const double far = 10.0 * (1.0 + (scene.domain_max - scene.domain_min).norm());
     std::string actions, options;
     for (const ScenePorous &p : scene.porous) {
         const std::string zone = "porous_" + p.name;
         const DarcyForchheimer c = darcy_forchheimer(p, f.viscosity, scene.gravity.norm());
         const std::string d = num(c.d), fc = num(c.f);
-        actions += "    {\n        name    " + zone +
-                   ";\n        type    cellSet;\n        action  new;\n"
-                   "        source  boxToCell;\n        box     (" +
-                   num(p.min.x()) + " " + num(p.min.y()) + " " + num(p.min.z()) + ") (" + num(p.max.x()) +
-                   " " + num(p.max.y()) + " " + num(p.max.z()) + ");\n    }\n    {\n        name    " + zone +
-                   ";\n        type    cellZoneSet;\n        action  new;\n        source  setToCellZone;\n"
-                   "        set     " +
-                   zone + ";\n    }\n";
+        if (p.type == "slope_layer") {
+            for (const SceneWall &w : scene.walls)
+                if (w.name == p.wall)
+                    actions += slope_layer_actions(p, w, zone, far);
+        } else {
+            actions += set_action(zone, "new",
+                                  "source boxToCell; box " + foam_point(p.min.x(), p.min.y(), p.min.z()) +
+                                      " " + foam_point(p.max.x(), p.max.y(), p.max.z()) + ";");
+        }
+        actions += "    { name " + zone + "; type cellZoneSet; action new; source setToCellZone; set " +
+                   zone + "; }\n";
+        if (cuts_cells)
+            actions += set_action("fluid", "add", "source cellToCell; set " + zone + ";");
         options += "// van Gent (1995): Dn50 " + num(p.stone_size) + " m, n " + num(p.porosity) + ", alpha " +
                    num(p.alpha) + ", beta " + num(p.beta) + ": a = " + num(c.a) + " s/m, b = " + num(c.b) +
                    " s^2/m^2\n" + zone +

@@ -11,15 +11,20 @@
 //     repeated dictionary). k and omega start from the scene's intensity and
 //     length scale (turbulence_start).
 //
-//     Each [[porous]] box becomes the cellZone porous_NAME (the cells whose
-//     centre lies in the box: system/topoSetDict.porous, run with topoSet
-//     once the mesh is final) and an explicitPorositySource with OpenFOAM's
-//     DarcyForchheimer model appended to constant/fvOptions, its d and f from
-//     van Gent (1995) (darcy_forchheimer).
+//     Each [[porous]] region becomes the cellZone porous_NAME (the cells whose
+//     centre lies in its box, or in its layer under a slope wall's face and
+//     crest: system/topoSetDict.porous) and an explicitPorositySource with
+//     OpenFOAM's DarcyForchheimer model appended to constant/fvOptions, its d
+//     and f from van Gent (1995) (darcy_forchheimer). When the template cuts
+//     cells out of the mesh (its system/topoSetDict makes the cellSet "fluid"
+//     for subsetMesh), the porous cells join "fluid": the rock under a slope
+//     stays in the mesh, permeable, and the rest stays cut out.
 //
 // Usage
 //     write_fluid_models(scene, case_dir);   // after the template's tokens are filled
+//     blockMesh; topoSet (the template's, if any);
 //     if (needs_porous_zones(scene)) topoSet -dict system/topoSetDict.porous
+//     subsetMesh -overwrite fluid -patch walls (if the template cuts cells)
 //     add_fluid_models_summary(scene, summary);
 #pragma once
 

@@ -146,19 +146,24 @@ struct SceneFluid {
     // kOmegaSST with k and omega at the start from an intensity of the
     // shallow-water celerity sqrt(g depth) and a length scale.
     std::string turbulence = "laminar";
-    double turbulence_intensity = 0.01; // I [-]: k = 1.5 (I sqrt(g depth))^2
+    double turbulence_intensity = 1e-4; // I [-]: k = 1.5 (I sqrt(g depth))^2
     double turbulence_length = 0.01;    // m, l: omega = sqrt(k) / (Cmu^0.25 l)
 };
 
-// [[porous]]: a permeable box (rock underlayer, core) as a Darcy-Forchheimer
-// medium, coefficients from van Gent (1995) (docs/porous.md).
+// [[porous]]: a permeable region (rock underlayer, core) as a Darcy-Forchheimer
+// medium, coefficients from van Gent (1995) (docs/porous.md): a box, or a
+// layer under a slope wall's face and crest between two distances below it.
 struct ScenePorous {
     std::string name;
-    Eigen::Vector3d min = Eigen::Vector3d::Zero(), max = Eigen::Vector3d::Zero(); // m
-    double stone_size = 0.0;                                                      // m, Dn50
-    double porosity = 0.4;                                                        // n [-]
-    double alpha = 1000.0; // van Gent's laminar coefficient [-]
-    double beta = 1.1;     // van Gent's turbulent coefficient [-]
+    std::string type = "box";                                                     // box | slope_layer
+    Eigen::Vector3d min = Eigen::Vector3d::Zero(), max = Eigen::Vector3d::Zero(); // m, box
+    std::string wall;                // slope_layer: a [[wall]] of type "slope"
+    double depth = 0.0;              // m, slope_layer: its top below the slope's surface
+    std::optional<double> thickness; // m, slope_layer: absent = everything below depth (a core)
+    double stone_size = 0.0;         // m, Dn50
+    double porosity = 0.4;           // n [-]
+    double alpha = 1000.0;           // van Gent's laminar coefficient [-]
+    double beta = 1.1;               // van Gent's turbulent coefficient [-]
 };
 
 // [waves]: the wave train at the inlet of a wave template (docs/waves.md).

@@ -433,9 +433,22 @@ const std::vector<Key<ScenePorous>> &porous_keys() {
     using P = ScenePorous;
     static const std::vector<Key<P>> keys = {
         key("name", &P::name, "", "names the region (the cellZone porous_NAME); unique").required(),
+        key("type", &P::type, "", "the region's shape").one_of({"box", "slope_layer"}),
         key("min", &P::min, "m", "a corner of the permeable box, inside run.domain_min .. domain_max")
-            .required(),
-        key("max", &P::max, "m", "the opposite corner; > min").required(),
+            .required(" for type \"box\"")
+            .only_for("box"),
+        key("max", &P::max, "m", "the opposite corner; > min").required(" for type \"box\"").only_for("box"),
+        key("wall", &P::wall, "", "a [[wall]] of type \"slope\": the layer lies under its face and crest")
+            .required(" for type \"slope_layer\"")
+            .only_for("slope_layer"),
+        key("depth", &P::depth, "m",
+            "the layer's top: its distance below the slope's face and crest, along their normals")
+            .in(Range::at_least(0))
+            .only_for("slope_layer"),
+        key("thickness", &P::thickness, "m", "the layer's thickness along the normals (an underlayer)")
+            .in(Range::above(0))
+            .defaults("everything below `depth` down to the floor (a core)")
+            .only_for("slope_layer"),
         key("stone_size", &P::stone_size, "m", "Dn50 of the rock").in(Range::above(0)).required(),
         key("porosity", &P::porosity, "", "n, the void fraction").in(Range::open(0, 1)),
         key("alpha", &P::alpha, "",
@@ -634,7 +647,14 @@ const std::vector<SceneSection> &scene_sections() {
                       "the file, checked and unused, and the other way round)"},
           {"irregular", "a JONSWAP train through OpenFOAM's irregularMultiDirectional model"}},
          [] { return describe_all("waves", wave_keys()); }},
-        {"porous", SectionKind::ArrayOfTables, "", {}, [] { return describe_all("porous", porous_keys()); }},
+        {"porous",
+         SectionKind::ArrayOfTables,
+         "type",
+         {{"box", "the cells whose centre lies in a box"},
+          {"slope_layer",
+           "the cells under a slope wall's face and crest whose centre lies between `depth` and "
+           "`depth + thickness` below them (porous.md)"}},
+         [] { return describe_all("porous", porous_keys()); }},
     };
     return sections;
 }

@@ -352,14 +352,17 @@ std::string unit_of(const Table &t, const Scene &s, const std::string &u) {
     return u;
 }
 
-// [[porous]] after [fluid]: boxes inside the fluid mesh, unique names (each
-// is the cellZone porous_NAME of the case).
+// [[porous]] after [fluid] and the walls: boxes inside the fluid mesh, or
+// layers under a slope wall; unique names (each is the cellZone porous_NAME).
 void read_porous(const Table &root, Scene &s) {
     const std::string domain = "run.domain_min .. run.domain_max";
+    const auto &keys = porous_keys();
     for (const Table &t : root.entries("porous")) {
-        t.only(names_of(porous_keys()));
+        t.only(names_of(keys));
         ScenePorous p;
-        read_keys(t, porous_keys(), p);
+        read_value(t, key_named(keys, "type"), p);
+        forbid_other_variants(t, keys, p.type, "porous type");
+        read_keys(t, keys, p, p.type);
         if (!s.fluid)
             t.fail("name", "a porous region is in the fluid: the scene needs a [fluid] table");
         if (p.name.empty() || p.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
@@ -368,13 +371,20 @@ void read_porous(const Table &root, Scene &s) {
         for (const ScenePorous &other : s.porous)
             if (other.name == p.name)
                 t.fail("name", "a second [[porous]] named " + toml_string(p.name));
-        if (!(p.max.array() > p.min.array()).all())
-            t.fail("max", "must exceed min " + vec_text(p.min) + " m in every component (got " +
-                              vec_text(p.max) + ")");
-        if (!inside(p.min, s.domain_min, s.domain_max))
-            t.fail("min", "must lie inside " + domain + " (got " + vec_text(p.min) + ")");
-        if (!inside(p.max, s.domain_min, s.domain_max))
-            t.fail("max", "must lie inside " + domain + " (got " + vec_text(p.max) + ")");
+        if (p.type == "slope_layer") {
+            const auto wall = std::find_if(s.walls.begin(), s.walls.end(),
+                                           [&](const SceneWall &w) { return w.name == p.wall; });
+            if (wall == s.walls.end() || wall->type != "slope")
+                t.fail("wall", "no [[wall]] of type \"slope\" named " + toml_string(p.wall));
+        } else {
+            if (!(p.max.array() > p.min.array()).all())
+                t.fail("max", "must exceed min " + vec_text(p.min) + " m in every component (got " +
+                                  vec_text(p.max) + ")");
+            if (!inside(p.min, s.domain_min, s.domain_max))
+                t.fail("min", "must lie inside " + domain + " (got " + vec_text(p.min) + ")");
+            if (!inside(p.max, s.domain_min, s.domain_max))
+                t.fail("max", "must lie inside " + domain + " (got " + vec_text(p.max) + ")");
+        }
         s.porous.push_back(p);
     }
 }
@@ -613,7 +623,6 @@ Scene load_scene(const std::string &path, const std::vector<std::string> &overri
     read_contact_and_analysis(root, s);
     read_fluid(root, s);
     read_waves(root, s);
-    read_porous(root, s);
     // A coupled run without run.engine takes exact hulls where the build has
     // them: there interFoam takes 97-99 % of the time whichever engine runs,
     // and sphere clumps change the answer (the platform case: 3 of 3 cubes
@@ -628,6 +637,7 @@ Scene load_scene(const std::string &path, const std::vector<std::string> &overri
     read_materials(root, s);
     read_units(root, s);
     read_walls(root, s);
+    read_porous(root, s);
     if (s.analysis == "damage" &&
         std::none_of(s.walls.begin(), s.walls.end(), [](const SceneWall &w) { return w.type == "slope"; }))
         root.section("analysis")
