@@ -96,10 +96,17 @@ class DamageAnalysis : public Analysis {
             reference[i].pose = units_[i].reference();
         const LayerRegion region = layer_region(frame_, setup_, reference);
         std::optional<double> S;
-        if (!region.bodies.empty())
-            S = eroded_area(armour_profile(frame_, setup_, reference, region),
-                            armour_profile(frame_, setup_, last_, region)) /
-                (Dn * Dn);
+        json settled_layer = nullptr; // the layer the waves met, as a profiler measures it
+        if (!region.bodies.empty()) {
+            const ArmourProfile before = armour_profile(frame_, setup_, reference, region);
+            S = eroded_area(before, armour_profile(frame_, setup_, last_, region)) / (Dn * Dn);
+            const LayerFigures f = layer_figures(setup_, region, before, scene_.layers);
+            settled_layer = {{"units_on_slope", f.units},
+                             {"packing_density", f.packing_density},
+                             {"porosity", f.porosity},
+                             {"layer_thickness", f.thickness},
+                             {"layer_coefficient", f.layer_coefficient}};
+        }
 
         const WaveConditions w = wave_conditions(summary, scene_, std::max(0.0, end_ - start_));
         const double rho_s = scene_.units.empty() ? 0.0 : unit_density();
@@ -122,17 +129,19 @@ class DamageAnalysis : public Analysis {
         summary["Ns_van_der_meer"] = nullable(vdm);
         summary["Ns_hudson_breaking"] = hudson_ns(6.5, frame_.cot);
         summary["Ns_hudson_nonbreaking"] = hudson_ns(7.5, frame_.cot);
-        summary["damage"] = {{"Hs", nullable(w.Hs)},
-                             {"wave_source", w.source},
-                             {"delta", rho_s / rho_w - 1.0},
-                             {"Dn", Dn},
-                             {"slope_width", frame_.width},
-                             {"displaced_threshold", scene_.displaced_threshold},
-                             {"rocking_threshold_deg", scene_.rocking_threshold_deg},
-                             {"reference_time", start_},
-                             {"settled", wait_for_settle_ ? json(settled_) : json(nullptr)},
-                             {"files", {"damage.csv", "damage_history.csv", "damage.png"}},
-                             {"si_units", {{"Hs", "m"}, {"Dn", "m"}, {"reference_time", "s"}}}};
+        summary["damage"] = {
+            {"Hs", nullable(w.Hs)},
+            {"wave_source", w.source},
+            {"delta", rho_s / rho_w - 1.0},
+            {"Dn", Dn},
+            {"slope_width", frame_.width},
+            {"displaced_threshold", scene_.displaced_threshold},
+            {"rocking_threshold_deg", scene_.rocking_threshold_deg},
+            {"reference_time", start_},
+            {"settled", wait_for_settle_ ? json(settled_) : json(nullptr)},
+            {"settled_layer", settled_layer},
+            {"files", {"damage.csv", "damage_history.csv", "damage.png"}},
+            {"si_units", {{"Hs", "m"}, {"Dn", "m"}, {"reference_time", "s"}, {"layer_thickness", "m"}}}};
         write_file(path("damage.csv"), rows);
         write_file(path("damage_history.csv"), "# units displaced (>= displaced_threshold Dn) against time\n"
                                                "time_s,units_displaced,N_od,max_displacement_over_Dn\n" +

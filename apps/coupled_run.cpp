@@ -722,6 +722,8 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
         rec.states_at(s, states);
         analysis->sample(rec.time[s], states);
     }
+    if (makes_wave_train(scene)) // first: the damage analysis reads the incident Hm0, s_om and N
+        add_wave_summary(scene, case_dir, folder, summary);
     const std::string result = analysis->write(summary);
     // Cost and limits as run: interFoam's wall time per step, the largest
     // Courant numbers it printed (the step adapts to max_courant from the
@@ -778,8 +780,6 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
                 summary[key] = times.contains(key) ? times[key] : json(nullptr);
         }
     }
-    if (makes_wave_train(scene))
-        add_wave_summary(scene, case_dir, folder, summary);
     add_fluid_models_summary(scene, summary);
     write_text_file(folder.claim("summary.json"), summary.dump(2) + "\n");
     std::printf("%s: %d units, %.4g s coupled in %.1f s wall%s%s -> %s\n", scene.name.c_str(),

@@ -492,7 +492,16 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
     // smaller radius is a contact, not a mistake (at 5 % the softened Hertz
     // contact pushes back with ~10 unit weights: a start that is not wrong).
     // Against the domain's faces the engines' padded domain (above) counts.
-    const auto resting = [](double radius) { return 0.05 * radius; };
+    // A clump's smallest spheres (a cube's corners: 0.01 a) sink deeper than
+    // 5 % of their radius under a settled layer's load (0.05-0.19 mm on
+    // 0.4 mm corners, scenes/stability_cubes.toml): there the contact is the
+    // Hertz overlap under those same ~10 unit weights.
+    const auto resting = [&](double radius, int unit) {
+        const UnitTemplate &u = setup.units[static_cast<std::size_t>(unit)];
+        return std::max(0.05 * radius,
+                        sphere_overlap(radius, s.materials[static_cast<std::size_t>(u.material)],
+                                       10.0 * u.props.mass * scene.gravity.norm()));
+    };
     // Bodies inside the domain, and no two overlapping.
     std::vector<std::string> problems;
     for (std::size_t i = 0; i < setup.bodies.size(); ++i) {
@@ -516,7 +525,7 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
         double smallest = HUGE_VAL;
         for (const auto &sph : setup.units[b.unit].clump)
             smallest = std::min(smallest, sph.radius);
-        if (depth > (c.spheres ? resting(smallest) : resting_exact(b.unit)))
+        if (depth > (c.spheres ? resting(smallest, b.unit) : resting_exact(b.unit)))
             throw InputError(scene.file + ": body " + std::to_string(i) + " (unit '" +
                              setup.units[b.unit].name + "') cuts into wall '" + setup.walls[wall].name +
                              "' by " + num(depth) + " m at its initial pose " +
@@ -536,10 +545,12 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
             if (xa.spheres) {
                 for (const auto &sa : ca)
                     for (const auto &sb : cb)
-                        overlap = overlap || ((a.pose.position + a.pose.orientation * sa.center) -
-                                              (b.pose.position + b.pose.orientation * sb.center))
-                                                     .norm() < sa.radius + sb.radius -
-                                                                   resting(std::min(sa.radius, sb.radius));
+                        overlap = overlap ||
+                                  ((a.pose.position + a.pose.orientation * sa.center) -
+                                   (b.pose.position + b.pose.orientation * sb.center))
+                                          .norm() < sa.radius + sb.radius -
+                                                        (sa.radius < sb.radius ? resting(sa.radius, a.unit)
+                                                                               : resting(sb.radius, b.unit));
             } else {
                 // Exact shapes: a surface point of either inside the other.
                 const double tolerance = std::min(resting_exact(a.unit), resting_exact(b.unit));
