@@ -1,7 +1,8 @@
 // libarmourWaves end to end: foam_cases/solitary_flume (2D interFoam flume,
 // h = 0.3 m, H = 0.09 m, 200 x 45 cells) through foam_cases/run_case.sh,
 // with the surface elevation at two gauges checked against Boussinesq
-// solitary wave theory, and the absorbing outlet against a wall.
+// solitary wave theory, and the absorbing outlet against a wall; the gauges
+// in still water (foam_cases/gauge_tank) on faces and over a cut-out solid.
 // Needs Debian's openfoam (the target exists only then). docs/waves.md.
 #include <gtest/gtest.h>
 
@@ -238,6 +239,44 @@ TEST(SolitaryFlume, WallOutletReflects) {
     EXPECT_GT(mean(g, g.eta1, 6.0), 0.1 * kHeight);
     if (!HasFailure())
         fs::remove_all(wall.dir);
+}
+
+// foam_cases/gauge_tank: still water at 0.40 m (a mesh face, so alpha is
+// exactly 0 or 1) in 12 cells across, whose mid plane y = 0 blockMesh puts
+// at +-1e-18, around a solid box cut out at x 0.1..0.2, z 0.1..0.2. Every
+// gauge must read the still-water level: on the rounded face (read 0.44 m
+// before the fix, layers counted twice), over the box (0.32 and 0.30 m: the
+// box's height was missing), on block faces, off faces, and on the domain's
+// far corner (was "outside the mesh", and the gauges silently dropped).
+TEST(WaveGauges, StillWaterOnFacesAndOverACutOutSolid) {
+    std::string tmpl = (fs::temp_directory_path() / "armour_test_gauges_XXXXXX").string();
+    ASSERT_NE(mkdtemp(tmpl.data()), nullptr);
+    const fs::path dir = tmpl;
+    const fs::path log = dir / "run_case.log";
+    const std::string cmd = std::string("bash '") + ARMOUR_SOURCE_DIR + "/foam_cases/run_case.sh' --waves '" +
+                            ARMOUR_WAVES_LIB + "' '" + ARMOUR_SOURCE_DIR + "/foam_cases/gauge_tank' '" +
+                            (dir / "case").string() + "' > '" + log.string() + "' 2>&1";
+    const int rc = std::system(cmd.c_str());
+    ASSERT_TRUE(WIFEXITED(rc) && WEXITSTATUS(rc) == 0) << slurp(log);
+
+    std::ifstream in(dir / "case/postProcessing/gauges/0/surfaceElevation.dat");
+    std::string line;
+    std::vector<double> first;
+    while (first.empty() && std::getline(in, line)) {
+        if (line.empty() || line[0] == '#')
+            continue;
+        std::istringstream s(line);
+        double v;
+        s >> v; // time
+        while (s >> v)
+            first.push_back(v);
+    }
+    constexpr double kLevel = 0.40; // m
+    ASSERT_EQ(first.size(), 6U) << "gauge record missing (" << dir << ")";
+    for (std::size_t i = 0; i < first.size(); ++i)
+        EXPECT_NEAR(first[i], kLevel, 1e-6) << "gauge " << i + 1;
+    if (!HasFailure())
+        fs::remove_all(dir);
 }
 
 } // namespace

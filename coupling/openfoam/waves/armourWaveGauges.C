@@ -7,6 +7,8 @@
 #include "gravityMeshObject.H"
 #include "volFields.H"
 #include "OSspecific.H"
+#include "FixedList.H"
+#include "vector2D.H"
 
 namespace Foam
 {
@@ -29,17 +31,41 @@ void Foam::functionObjects::armourWaveGauges::findColumns()
     e1 /= mag(e1);
     const vector e2 = ez_ ^ e1;
 
+    // blockMesh puts the points of one internal face at coordinates that
+    // differ by rounding (y = +-1e-18 on the mid plane of 12 cells across
+    // -0.124..0.124), so a gauge exactly on a face fell in the bounding boxes
+    // of the cells on both sides in some layers, whose water then counted
+    // twice (0.52 and 0.78 m read for 0.40 m). The gauge is therefore tested
+    // a hair off the face, on the +e1, +e2 side (the - side at the domain's
+    // far edges): one rule, the same in every layer and on every rank, far
+    // above rounding and far below any cell.
     const pointField& pts = mesh_.points();
+    scalar aMax = -GREAT, bMax = -GREAT;
+    for (const point& pt : pts)
+    {
+        aMax = max(aMax, pt & e1);
+        bMax = max(bMax, pt & e2);
+    }
+    reduce(aMax, maxOp<scalar>());
+    reduce(bMax, maxOp<scalar>());
+    tol_ = 1e-9*mag(mesh_.bounds().span());  // bounds(): global
+
     const labelListList& cellPts = mesh_.cellPoints();
 
-    columns_.setSize(gauges_.size());
-    dz_.setSize(gauges_.size());
-    zBottom_.setSize(gauges_.size());
+    // Per gauge and rank: (z0, z1, cell) of the cells whose horizontal
+    // extent contains the shifted point.
+    List<List<List<vector>>> found(gauges_.size());
+    scalarList ga(gauges_.size()), gb(gauges_.size());
+    forAll(gauges_, gi)
+    {
+        found[gi].setSize(Pstream::nProcs());
+        const scalar a = gauges_[gi] & e1;
+        const scalar b = gauges_[gi] & e2;
+        ga[gi] = (a + tol_ < aMax) ? a + tol_ : a - tol_;
+        gb[gi] = (b + tol_ < bMax) ? b + tol_ : b - tol_;
+    }
 
-    List<DynamicList<label>> cols(gauges_.size());
-    List<DynamicList<scalar>> dzs(gauges_.size());
-    scalarList zLow(gauges_.size(), GREAT);
-
+    List<DynamicList<vector>> local(gauges_.size());
     forAll(cellPts, celli)
     {
         scalar a0 = GREAT, a1 = -GREAT;
@@ -56,28 +82,65 @@ void Foam::functionObjects::armourWaveGauges::findColumns()
         }
         forAll(gauges_, gi)
         {
-            const scalar a = gauges_[gi] & e1;
-            const scalar b = gauges_[gi] & e2;
-            if (a >= a0 && a < a1 && b >= b0 && b < b1)
+            if (ga[gi] >= a0 && ga[gi] < a1 && gb[gi] >= b0 && gb[gi] < b1)
             {
-                cols[gi].append(celli);
-                dzs[gi].append(z1 - z0);
-                zLow[gi] = min(zLow[gi], z0);
+                local[gi].append(vector(z0, z1, celli));
             }
         }
     }
 
+    columnZ_.setSize(gauges_.size());
+    localCells_.setSize(gauges_.size());
+    localSlots_.setSize(gauges_.size());
     forAll(gauges_, gi)
     {
-        columns_[gi].transfer(cols[gi]);
-        dz_[gi].transfer(dzs[gi]);
-        zBottom_[gi] = returnReduce(zLow[gi], minOp<scalar>());
-        if (returnReduce(columns_[gi].size(), sumOp<label>()) == 0)
+        List<List<vector>>& all = found[gi];
+        all[Pstream::myProcNo()].transfer(local[gi]);
+        Pstream::gatherList(all);
+        Pstream::scatterList(all);
+
+        // The whole column, bottom up, identical on every rank.
+        DynamicList<FixedList<scalar, 4>> column;
+        forAll(all, proci)
+        {
+            for (const vector& c : all[proci])
+            {
+                column.append
+                (
+                    FixedList<scalar, 4>({c.x(), c.y(), scalar(proci), c.z()})
+                );
+            }
+        }
+        Foam::sort(column);
+
+        // One cell per layer: a cell overlapping the one below it (a
+        // non-layered mesh) would count its height twice, so it is left out.
+        DynamicList<vector2D> kept;
+        DynamicList<label> cells, slots;
+        scalar top = -GREAT;
+        for (const FixedList<scalar, 4>& c : column)
+        {
+            if (c[0] < top - tol_)
+            {
+                continue;
+            }
+            if (label(c[2]) == Pstream::myProcNo())
+            {
+                cells.append(label(c[3]));
+                slots.append(kept.size());
+            }
+            kept.append(vector2D(c[0], c[1]));
+            top = c[1];
+        }
+        if (kept.empty())
         {
             FatalErrorInFunction
                 << "gauge " << gauges_[gi] << " of " << name()
                 << " lies outside the mesh" << exit(FatalError);
         }
+        columnZ_[gi].transfer(kept);
+        localCells_[gi].transfer(cells);
+        localSlots_[gi].transfer(slots);
     }
 }
 
@@ -92,9 +155,10 @@ Foam::functionObjects::armourWaveGauges::armourWaveGauges
     fvMeshFunctionObject(name, runTime, dict),
     alphaName_("alpha.water"),
     gauges_(),
-    columns_(),
-    dz_(),
-    zBottom_(),
+    columnZ_(),
+    localCells_(),
+    localSlots_(),
+    tol_(0),
     ez_(0, 0, 1),
     file_()
 {
@@ -147,13 +211,31 @@ bool Foam::functionObjects::armourWaveGauges::write()
     scalarList level(gauges_.size(), Zero);
     forAll(gauges_, gi)
     {
-        scalar depth = 0;
-        forAll(columns_[gi], i)
+        const List<vector2D>& column = columnZ_[gi];
+        scalarField a(column.size(), Zero);
+        forAll(localCells_[gi], i)
         {
-            const scalar a = alpha[columns_[gi][i]];
-            depth += min(max(a, scalar(0)), scalar(1))*dz_[gi][i];
+            a[localSlots_[gi][i]] =
+                min(max(alpha[localCells_[gi][i]], scalar(0)), scalar(1));
         }
-        level[gi] = zBottom_[gi] + returnReduce(depth, sumOp<scalar>());
+        Pstream::listCombineGather(a, plusEqOp<scalar>());
+        Pstream::listCombineScatter(a);
+
+        // Water fills the column from its lowest cell up. A gap between two
+        // cells is a solid cut out of the mesh: it counts as under water when
+        // the cell above it is at least half water (the solid is submerged),
+        // else as above the surface.
+        level[gi] = column[0].x();
+        scalar top = column[0].x();
+        forAll(column, i)
+        {
+            if (column[i].x() - top > tol_ && a[i] >= 0.5)
+            {
+                level[gi] += column[i].x() - top;
+            }
+            level[gi] += a[i]*(column[i].y() - column[i].x());
+            top = column[i].y();
+        }
     }
 
     if (Pstream::master() && file_.valid())
