@@ -2,7 +2,7 @@
 // h = 0.3 m, H = 0.09 m, 200 x 45 cells) through foam_cases/run_case.sh,
 // with the surface elevation at two gauges checked against Boussinesq
 // solitary wave theory, and the absorbing outlet against a wall; the gauges
-// in still water (foam_cases/gauge_tank) on faces and over a cut-out solid.
+// in still water (tests/foam_cases/gauge_tank) on faces and over a cut-out solid.
 // Needs Debian's openfoam (the target exists only then). docs/waves.md.
 #include <gtest/gtest.h>
 
@@ -200,7 +200,8 @@ TEST(SolitaryFlume, MatchesTheoryAndOutletAbsorbs) {
     EXPECT_NEAR(c1.t, kCrestTime + kX1 / kC, 0.1);
     const double width = half_height_duration(g.t, g.eta1, c1.eta);
     const double width_theory = 2 * std::acosh(std::sqrt(2.0)) / (kK * kC);
-    EXPECT_NEAR(width / width_theory, 1.0, 0.10) << "measured " << width << " s, theory " << width_theory << " s";
+    EXPECT_NEAR(width / width_theory, 1.0, 0.10)
+        << "measured " << width << " s, theory " << width_theory << " s";
 
     // The outlet absorbs. After the incident wave has passed gauge 1 (its
     // crest + 3/(k c), where eta < 1 % H) and until the end (before anything
@@ -241,7 +242,7 @@ TEST(SolitaryFlume, WallOutletReflects) {
         fs::remove_all(wall.dir);
 }
 
-// foam_cases/gauge_tank: still water at 0.40 m (a mesh face, so alpha is
+// tests/foam_cases/gauge_tank: still water at 0.40 m (a mesh face, so alpha is
 // exactly 0 or 1) in 12 cells across, whose mid plane y = 0 blockMesh puts
 // at +-1e-18, around a solid box cut out at x 0.1..0.2, z 0.1..0.2. Every
 // gauge must read the still-water level: on the rounded face (read 0.44 m
@@ -254,7 +255,7 @@ TEST(WaveGauges, StillWaterOnFacesAndOverACutOutSolid) {
     const fs::path dir = tmpl;
     const fs::path log = dir / "run_case.log";
     const std::string cmd = std::string("bash '") + ARMOUR_SOURCE_DIR + "/foam_cases/run_case.sh' --waves '" +
-                            ARMOUR_WAVES_LIB + "' '" + ARMOUR_SOURCE_DIR + "/foam_cases/gauge_tank' '" +
+                            ARMOUR_WAVES_LIB + "' '" + ARMOUR_SOURCE_DIR + "/tests/foam_cases/gauge_tank' '" +
                             (dir / "case").string() + "' > '" + log.string() + "' 2>&1";
     const int rc = std::system(cmd.c_str());
     ASSERT_TRUE(WIFEXITED(rc) && WEXITSTATUS(rc) == 0) << slurp(log);
