@@ -5,6 +5,8 @@
 // incident-wave analysis and the damage analysis all run as in the full scene.
 // Needs Debian's openfoam (built only with armourWaves and armourFoamCoupling).
 // Each test is one run, ~2-3 min on the shared 2-core machine.
+#include "scene_run.h"
+
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -33,34 +35,11 @@ constexpr double kDelta = 1.3; // 2300 / 1000 - 1
 // the ~1 the coupling tolerates with LIGGGHTS' soft contacts).
 const std::string kSmall = "--set pattern.0.rows=5 --set 'fluid.cells=[50,6,16]' --set fluid.penalty=200 ";
 
-struct StabilityRun {
-    int status = -1;
-    std::string output;
-    fs::path out;
-    json summary;
-};
+using armour_test::SceneRun;
 
-StabilityRun run_stability(const std::string &name, const std::string &sets) {
-    StabilityRun r;
-    std::string tmpl = (fs::temp_directory_path() / ("armour_test_stability_" + name + "_XXXXXX")).string();
-    if (!mkdtemp(tmpl.data()))
-        return r;
-    const fs::path dir = tmpl;
-    r.out = dir / "out";
-    const fs::path log = dir / "run.log";
-    const std::string cmd = std::string("'") + ARMOUR_EXE + "' run '" + ARMOUR_SOURCE_DIR +
-                            "/scenes/stability_cubes.toml' --out '" + r.out.string() + "' " + kSmall + sets +
-                            " > '" + log.string() + "' 2>&1";
-    const int rc = std::system(cmd.c_str());
-    r.status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
-    std::ifstream in(log);
-    std::stringstream s;
-    s << in.rdbuf();
-    r.output = s.str();
-    std::ifstream summary(r.out / "summary.json");
-    if (summary)
-        r.summary = json::parse(summary, nullptr, false);
-    return r;
+SceneRun run_stability(const std::string &name, const std::string &sets) {
+    return armour_test::run_scene(ARMOUR_EXE, std::string(ARMOUR_SOURCE_DIR) + "/scenes/stability_cubes.toml",
+                                  "stability_" + name, kSmall + sets);
 }
 
 // damage.csv: one row per unit, the columns by their header names.
@@ -104,7 +83,7 @@ double column_max(const std::vector<std::vector<double>> &rows, const std::vecto
 // settled layer for 10 s: long enough for the incident-wave analysis (the
 // front passes the gauges at ~2.5 s; the analysis needs 4 Tp after it).
 TEST(StabilityCubes, ShortIrregularRunWritesEveryDamageFileAndKey) {
-    const StabilityRun run = run_stability("waves", "--set waves.ramp_time=1.8 --set run.duration=10");
+    const SceneRun run = run_stability("waves", "--set waves.ramp_time=1.8 --set run.duration=10");
     ASSERT_EQ(run.status, 0) << run.output;
     const json &s = run.summary;
     for (const char *file : {"damage.csv", "damage_history.csv", "damage.png", "waves_spectrum.csv",
@@ -144,13 +123,13 @@ TEST(StabilityCubes, ShortIrregularRunWritesEveryDamageFileAndKey) {
     EXPECT_NEAR(s["N_od"].get<double>(), s["units_displaced"].get<double>() / (0.248 / kDn), 1e-9);
     EXPECT_TRUE(s["Ns_van_der_meer"].is_number());
     if (!HasFailure())
-        fs::remove_all(run.out.parent_path());
+        fs::remove_all(run.dir);
 }
 
 // The same layer in still water (a wave of 1 mm): the settled double layer
 // packs as the Rock Manual's random cubes and stays where it settled.
 TEST(StabilityCubes, StillWaterLeavesTheSettledLayerInPlace) {
-    const StabilityRun run = run_stability("still", "--set waves.Hs=0.001 --set run.duration=2");
+    const SceneRun run = run_stability("still", "--set waves.Hs=0.001 --set run.duration=2");
     ASSERT_EQ(run.status, 0) << run.output;
     const json &s = run.summary;
     EXPECT_EQ(s["units_displaced"].get<int>(), 0);
@@ -177,7 +156,7 @@ TEST(StabilityCubes, StillWaterLeavesTheSettledLayerInPlace) {
     EXPECT_LT(layer["porosity"].get<double>(), 0.55);
     EXPECT_EQ(layer["units_on_slope"].get<int>(), 45);
     if (!HasFailure())
-        fs::remove_all(run.out.parent_path());
+        fs::remove_all(run.dir);
 }
 
 } // namespace

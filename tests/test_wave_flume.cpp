@@ -3,6 +3,8 @@
 // incident/reflected analysis in summary.json's `waves` object
 // (docs/waves.md). Needs Debian's openfoam (built only with armourWaves).
 // Each test is one flume run, ~1-2 min on an idle 2-core machine.
+#include "scene_run.h"
+
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -21,39 +23,17 @@ using nlohmann::json;
 
 namespace {
 
-struct FlumeRun {
-    int status = -1;
-    std::string output;
-    fs::path dir;
-    json summary;
-};
+using armour_test::SceneRun;
 
-FlumeRun run_flume(const std::string &name, const std::string &sets) {
-    FlumeRun r;
-    std::string tmpl = (fs::temp_directory_path() / ("armour_test_wave_flume_" + name + "_XXXXXX")).string();
-    if (!mkdtemp(tmpl.data()))
-        return r;
-    r.dir = tmpl;
-    const fs::path log = r.dir / "run.log";
-    const std::string cmd = std::string("'") + ARMOUR_EXE + "' run '" + ARMOUR_SOURCE_DIR +
-                            "/scenes/wave_flume.toml' --out '" + (r.dir / "out").string() + "' " + sets +
-                            " > '" + log.string() + "' 2>&1";
-    const int rc = std::system(cmd.c_str());
-    r.status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
-    std::ifstream in(log);
-    std::stringstream s;
-    s << in.rdbuf();
-    r.output = s.str();
-    std::ifstream summary(r.dir / "out" / "summary.json");
-    if (summary)
-        r.summary = json::parse(summary, nullptr, false);
-    return r;
+SceneRun run_flume(const std::string &name, const std::string &sets) {
+    return armour_test::run_scene(ARMOUR_EXE, std::string(ARMOUR_SOURCE_DIR) + "/scenes/wave_flume.toml",
+                                  "wave_flume_" + name, sets);
 }
 
 // Regular: H = 0.06 m, T = 1.6 s, h = 0.4 m (StokesII), 10 periods after the
 // ramp and after the outlet's reflection is back at the gauges.
 TEST(WaveFlume, RegularWaveHeightPeriodAndReflection) {
-    const FlumeRun run = run_flume("regular", "");
+    const SceneRun run = run_flume("regular", "");
     ASSERT_EQ(run.status, 0) << run.output;
     ASSERT_TRUE(run.summary.contains("waves")) << run.output;
     const json &w = run.summary["waves"];
@@ -77,8 +57,8 @@ TEST(WaveFlume, RegularWaveHeightPeriodAndReflection) {
     // a = sqrt(g h)/c = 1.12 at kh = 0.89; docs/waves.md). 10 % is the brief's bound.
     EXPECT_LT(w["reflection_coefficient"].get<double>(), 0.10);
     EXPECT_GT(w["waves"].get<int>(), 10);
-    EXPECT_TRUE(fs::is_regular_file(run.dir / "out" / "waves_spectrum.csv"));
-    EXPECT_TRUE(fs::is_regular_file(run.dir / "out" / "waves_spectrum.png"));
+    EXPECT_TRUE(fs::is_regular_file(run.out / "waves_spectrum.csv"));
+    EXPECT_TRUE(fs::is_regular_file(run.out / "waves_spectrum.png"));
     if (!HasFailure())
         fs::remove_all(run.dir);
 }
@@ -97,7 +77,7 @@ TEST(WaveFlume, RegularWaveHeightPeriodAndReflection) {
 // 0.0492 m (-1.5 %), Tp 1.600 s, Kr 6.8 % (docs/waves.md; with Euler in
 // time it was -11.4 %). 5 % on Hm0 and Tp is the brief's bound.
 TEST(WaveFlume, IrregularHm0AndTp) {
-    const FlumeRun run = run_flume("irregular", "--set waves.type='\"irregular\"' --set run.duration=35");
+    const SceneRun run = run_flume("irregular", "--set waves.type='\"irregular\"' --set run.duration=35");
     ASSERT_EQ(run.status, 0) << run.output;
     ASSERT_TRUE(run.summary.contains("waves")) << run.output;
     const json &w = run.summary["waves"];
