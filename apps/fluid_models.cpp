@@ -13,11 +13,6 @@ using nlohmann::json;
 
 namespace {
 
-// Shortest text that reads back as the same double: the case holds the scene's values.
-std::string num(double v) {
-    return number_text(v);
-}
-
 std::string header(const std::string &cls, const std::string &object) {
     return "FoamFile\n{\n    version     2.0;\n    format      ascii;\n    class       " + cls +
            ";\n    object      " + object +
@@ -28,7 +23,7 @@ std::string header(const std::string &cls, const std::string &object) {
 // group "wall" takes precedence over the wildcard), `open_type` elsewhere.
 std::string turbulence_field(const std::string &name, const std::string &dimensions, double value,
                              const std::string &wall_type, const std::string &open_type) {
-    const std::string v = "uniform " + num(value);
+    const std::string v = "uniform " + number_text(value);
     return header("volScalarField", name) + "dimensions      " + dimensions + ";\ninternalField   " + v +
            ";\n\nboundaryField\n{\n    #includeEtc \"caseDicts/setConstraintTypes\"\n\n    \".*\"\n    {\n"
            "        type            " +
@@ -67,7 +62,7 @@ void write_turbulence(const Scene &scene, const fs::path &case_dir) {
 }
 
 std::string foam_point(double x, double y, double z) {
-    return "(" + num(x) + " " + num(y) + " " + num(z) + ")";
+    return "(" + number_text(x) + " " + number_text(y) + " " + number_text(z) + ")";
 }
 
 // One topoSet action on the cellSet `set`.
@@ -124,7 +119,7 @@ void write_porosity(const Scene &scene, const fs::path &case_dir) {
     for (const ScenePorous &p : scene.porous) {
         const std::string zone = "porous_" + p.name;
         const DarcyForchheimer c = darcy_forchheimer(p, f.viscosity, scene.gravity.norm());
-        const std::string d = num(c.d), fc = num(c.f);
+        const std::string d = number_text(c.d), fc = number_text(c.f);
         if (p.type == "slope_layer") {
             for (const SceneWall &w : scene.walls)
                 if (w.name == p.wall)
@@ -138,20 +133,20 @@ void write_porosity(const Scene &scene, const fs::path &case_dir) {
                    zone + "; }\n";
         if (cuts_cells)
             actions += set_action("fluid", "add", "source cellToCell; set " + zone + ";");
-        options += "// van Gent (1995): Dn50 " + num(p.stone_size) + " m, n " + num(p.porosity) + ", alpha " +
-                   num(p.alpha) + ", beta " + num(p.beta) + ": a = " + num(c.a) + " s/m, b = " + num(c.b) +
-                   " s^2/m^2\n" + zone +
-                   "\n{\n    type            explicitPorositySource;\n    active          yes;\n\n"
-                   "    explicitPorositySourceCoeffs\n    {\n        selectionMode   cellZone;\n"
-                   "        cellZone        " +
-                   zone +
-                   ";\n        type            DarcyForchheimer;\n\n        DarcyForchheimerCoeffs\n"
-                   "        {\n            d   [0 -2 0 0 0 0 0] (" +
-                   d + " " + d + " " + d + ");\n            f   [0 -1 0 0 0 0 0] (" + fc + " " + fc + " " +
-                   fc +
-                   ");\n            coordinateSystem\n            {\n                type    cartesian;\n"
-                   "                origin  (0 0 0);\n                e1      (1 0 0);\n"
-                   "                e2      (0 1 0);\n            }\n        }\n    }\n}\n\n";
+        options +=
+            "// van Gent (1995): Dn50 " + number_text(p.stone_size) + " m, n " + number_text(p.porosity) +
+            ", alpha " + number_text(p.alpha) + ", beta " + number_text(p.beta) +
+            ": a = " + number_text(c.a) + " s/m, b = " + number_text(c.b) + " s^2/m^2\n" + zone +
+            "\n{\n    type            explicitPorositySource;\n    active          yes;\n\n"
+            "    explicitPorositySourceCoeffs\n    {\n        selectionMode   cellZone;\n"
+            "        cellZone        " +
+            zone +
+            ";\n        type            DarcyForchheimer;\n\n        DarcyForchheimerCoeffs\n"
+            "        {\n            d   [0 -2 0 0 0 0 0] (" +
+            d + " " + d + " " + d + ");\n            f   [0 -1 0 0 0 0 0] (" + fc + " " + fc + " " + fc +
+            ");\n            coordinateSystem\n            {\n                type    cartesian;\n"
+            "                origin  (0 0 0);\n                e1      (1 0 0);\n"
+            "                e2      (0 1 0);\n            }\n        }\n    }\n}\n\n";
     }
     write_text_file(case_dir / "system" / "topoSetDict.porous",
                     header("dictionary", "topoSetDict") + "actions\n(\n" + actions + ");\n");
