@@ -216,6 +216,13 @@ void add_wave_summary(const Scene &scene, const fs::path &case_dir, OutputFolder
     } else {
         comps = components_of(w);
         const double repeat = 1.0 / comps.frequency_step;
+        out["repeat_period"] = repeat;
+        if (end > 2.0 * repeat)
+            warn("waves: the irregular train repeats every " + num(repeat) +
+                 " s (waves.components x Tp / 2): this " + num(end) + " s run met the same waves " +
+                 num(std::floor(end / repeat)) +
+                 " times, so its wave count N counts repeats; more waves.components (up to 200) lengthen the "
+                 "train");
         span = end - steady >= repeat ? repeat : end - std::max(front, std::min(steady, end - repeat));
         if (span < 4.0 * period) {
             warn("waves: the run leaves " + num(end - front) +
