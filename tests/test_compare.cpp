@@ -13,16 +13,26 @@
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// A 0.2 m cube of 8 spheres dropped 0.4 m onto a floor (analysis "bounce");
+// duration and output_interval in s, as TOML numbers.
+void write_tiny_scene(const fs::path &file, const std::string &duration, const std::string &output_interval) {
+    std::ofstream(file)
+        << "name = \"tiny\"\n[run]\nduration = " << duration << "\noutput_interval = " << output_interval
+        << "\ndomain_min = [-1, -1, -0.5]\ndomain_max = [1, 1, 1.5]\n[analysis]\nkind = \"bounce\"\n"
+           "[[material]]\nname = \"concrete\"\n[[unit]]\nname = \"cube\"\nshape = \"cube\"\nsize = 0.2\n"
+           "spheres = 8\n[[wall]]\nname = \"floor\"\ntype = \"plane\"\npoint = [0, 0, 0]\n"
+           "normal = [0, 0, 1]\nsize = 2\n[[body]]\nunit = \"cube\"\nposition = [0, 0, 0.4]\n";
+}
+
+} // namespace
+
 TEST(Compare, TinySceneProducesAllFilesWithConsistentEntries) {
     const fs::path dir = fs::temp_directory_path() / ("armour_compare_test_" + std::to_string(::getpid()));
     fs::remove_all(dir);
     fs::create_directories(dir);
-    std::ofstream(dir / "scene.toml")
-        << "name = \"tiny\"\n[run]\nduration = 0.8\noutput_interval = 0.005\ndomain_min = [-1, -1, -0.5]\n"
-           "domain_max = [1, 1, 1.5]\n[analysis]\nkind = \"bounce\"\n[[material]]\nname = \"concrete\"\n"
-           "[[unit]]\nname = \"cube\"\nshape = \"cube\"\nsize = 0.2\nspheres = 8\n"
-           "[[wall]]\nname = \"floor\"\ntype = \"plane\"\npoint = [0, 0, 0]\nnormal = [0, 0, 1]\nsize = 2\n"
-           "[[body]]\nunit = \"cube\"\nposition = [0, 0, 0.4]\n";
+    write_tiny_scene(dir / "scene.toml", "0.8", "0.005");
     const std::string scene = (dir / "scene.toml").string(), out = (dir / "out").string(),
                       cache = (dir / "cache").string();
     const std::vector<const char *> argv = {"armour",    "compare",      scene.c_str(), "--spheres",
@@ -329,12 +339,7 @@ TEST(Compare, RefusesAToleranceForAFigureTheAnalysisHasNot) {
         fs::temp_directory_path() / ("armour_compare_tolerance_" + std::to_string(::getpid()));
     fs::remove_all(dir);
     fs::create_directories(dir);
-    std::ofstream(dir / "scene.toml")
-        << "name = \"tiny\"\n[run]\nduration = 0.05\noutput_interval = 0.01\ndomain_min = [-1, -1, -0.5]\n"
-           "domain_max = [1, 1, 1.5]\n[analysis]\nkind = \"bounce\"\n[[material]]\nname = \"concrete\"\n"
-           "[[unit]]\nname = \"cube\"\nshape = \"cube\"\nsize = 0.2\nspheres = 8\n"
-           "[[wall]]\nname = \"floor\"\ntype = \"plane\"\npoint = [0, 0, 0]\nnormal = [0, 0, 1]\nsize = 2\n"
-           "[[body]]\nunit = \"cube\"\nposition = [0, 0, 0.4]\n";
+    write_tiny_scene(dir / "scene.toml", "0.05", "0.01");
     const std::string scene = (dir / "scene.toml").string(), out = (dir / "out").string();
     const std::vector<const char *> argv = {"armour",       "compare", scene.c_str(), "--tolerance",
                                             "porosity=0.1", "--out",   out.c_str()};
@@ -354,12 +359,7 @@ TEST(Compare, CountsABlowUpAsAFailureOutOfTheStatistics) {
     const fs::path dir = fs::temp_directory_path() / ("armour_compare_blow_up_" + std::to_string(::getpid()));
     fs::remove_all(dir);
     fs::create_directories(dir);
-    std::ofstream(dir / "scene.toml")
-        << "name = \"tiny\"\n[run]\nduration = 0.3\noutput_interval = 0.005\ndomain_min = [-1, -1, -0.5]\n"
-           "domain_max = [1, 1, 1.5]\n[analysis]\nkind = \"bounce\"\n[[material]]\nname = \"concrete\"\n"
-           "[[unit]]\nname = \"cube\"\nshape = \"cube\"\nsize = 0.2\nspheres = 8\n"
-           "[[wall]]\nname = \"floor\"\ntype = \"plane\"\npoint = [0, 0, 0]\nnormal = [0, 0, 1]\nsize = 2\n"
-           "[[body]]\nunit = \"cube\"\nposition = [0, 0, 0.4]\n";
+    write_tiny_scene(dir / "scene.toml", "0.3", "0.005");
     const std::string scene = (dir / "scene.toml").string(), out = (dir / "out").string(),
                       cache = (dir / "cache").string();
     const std::vector<const char *> argv = {"armour",      "compare",      scene.c_str(), "--spheres",
