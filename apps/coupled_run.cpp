@@ -6,6 +6,7 @@
 #include "clump_io.h"
 #include "engine_registry.h"
 #include "fluid_models.h"
+#include "flume_mesh.h"
 #include "foam_restart.h"
 #include "openfoam_environment.h"
 #include "output_folder.h"
@@ -169,7 +170,7 @@ void run_tool(const std::string &name, const std::vector<std::string> &args, con
     }
     const bool terminal = ::isatty(STDERR_FILENO) != 0;
     const auto start = std::chrono::steady_clock::now();
-    double next_report = 0.1;
+    double next_report = 0.1, solver_time = 0.0;
     int status = 0;
     long naps = 0;
     for (;;) {
@@ -183,7 +184,9 @@ void run_tool(const std::string &name, const std::vector<std::string> &args, con
         std::this_thread::sleep_for(std::chrono::milliseconds(10));
         if (!show_progress || ++naps % 25 != 0)
             continue;
-        const double t = last_solver_time(read_text_file(log));
+        // The tail: reading all of a long run's log (100 MB) took a sixth of a core.
+        const double t = solver_time =
+            std::max(solver_time, last_solver_time(read_text_file_tail(log, 1 << 16)));
         const double fraction = std::min(1.0, t / end_time);
         const double elapsed =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -378,6 +381,8 @@ std::vector<std::string> check_coupled_scene(const Scene &scene, const SceneSetu
             tokens; // [waves] and the template agree, before anything is written
         wave_tokens(scene, template_text(tmpl), tokens);
     }
+    check_flume_grading(scene, setup, template_text(tmpl));
+    const FlumeMesh mesh = flume_mesh(scene);
     for (const char *tool : {"blockMesh", "setFields", "interFoam"})
         if (!on_path(tool))
             throw InputError(std::string(tool) +
@@ -388,10 +393,10 @@ std::vector<std::string> check_coupled_scene(const Scene &scene, const SceneSetu
             if (!on_path(tool))
                 throw InputError(std::string(tool) + " not found on PATH: needed for --np " +
                                  std::to_string(np));
-        if (f.cells[0] < 2 * np)
+        if (mesh.axes[0].cells < 2 * np)
             throw InputError(file + ": key 'fluid.np': " + std::to_string(np) +
                              " ranks split the mesh along x, " + "which has only " +
-                             std::to_string(f.cells[0]) + " cells (need >= 2 per rank)");
+                             std::to_string(mesh.axes[0].cells) + " cells (need >= 2 per rank)");
     }
 
     const Eigen::Vector3d h = cell_size(scene);
@@ -554,6 +559,7 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
     // The case: template copy with its tokens filled from the scene.
     const fs::path case_dir = folder.claim("case");
     const Eigen::Vector3d h = cell_size(scene);
+    const FlumeMesh mesh = flume_mesh(scene);
     if (scene.checkpoint_interval > 0.0)
         folder.claim("checkpoints"); // the plugin writes them
     // Debian's OpenFOAM finds its etc/ files only through this.
@@ -585,9 +591,10 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
             {"@X1@", num(hi.x())},
             {"@Y1@", num(hi.y())},
             {"@Z1@", num(hi.z())},
-            {"@NX@", std::to_string(f.cells[0])},
-            {"@NY@", std::to_string(f.cells[1])},
-            {"@NZ@", std::to_string(f.cells[2])},
+            {"@NX@", std::to_string(mesh.axes[0].cells)},
+            {"@NY@", std::to_string(mesh.axes[1].cells)},
+            {"@NZ@", std::to_string(mesh.axes[2].cells)},
+            {"@GRADING@", mesh.axes[0].grading + " " + mesh.axes[1].grading + " " + mesh.axes[2].grading},
             {"@BOX_MIN@", foam_vector(lo - pad)},
             {"@WATER_MAX@", foam_vector(Eigen::Vector3d(hi.x() + pad.x(), hi.y() + pad.y(), f.water_level))},
             {"@WATER_LEVEL@", num(f.water_level)},
@@ -624,8 +631,9 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
         fill_tokens(case_dir, tokens);
         write_fluid_models(scene, case_dir);
 
-        std::fprintf(stderr, "run: %s: %d x %d x %d cells, %d rank%s, engine %s -> %s\n", scene.name.c_str(),
-                     f.cells[0], f.cells[1], f.cells[2], f.np, f.np > 1 ? "s" : "", scene.engine.c_str(),
+        std::fprintf(stderr, "run: %s: %d x %d x %d cells%s, %d rank%s, engine %s -> %s\n",
+                     scene.name.c_str(), mesh.axes[0].cells, mesh.axes[1].cells, mesh.axes[2].cells,
+                     mesh.graded ? " (graded)" : "", f.np, f.np > 1 ? "s" : "", scene.engine.c_str(),
                      case_dir.c_str());
         run_tool("blockMesh", {"blockMesh"}, case_dir, scene.duration, false);
         // system/topoSetDict: the cellSet "fluid" (porous zones join it) that the mesh keeps (slope_waves).
@@ -689,10 +697,11 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
         {"warnings", warnings},
         {"fluid",
          {{"case", f.case_name},
-          {"cells", {f.cells[0], f.cells[1], f.cells[2]}},
-          {"cells_total", mesh_cells(case_dir) > 0 ? mesh_cells(case_dir)
-                                                   : static_cast<long>(f.cells[0]) * f.cells[1] * f.cells[2]},
+          {"cells", {mesh.axes[0].cells, mesh.axes[1].cells, mesh.axes[2].cells}},
+          {"cells_total", mesh_cells(case_dir) > 0 ? mesh_cells(case_dir) : mesh.cells()},
           {"cell_size", {h.x(), h.y(), h.z()}},
+          {"largest_cell_size",
+           {mesh.axes[0].largest_cell(), mesh.axes[1].largest_cell(), mesh.axes[2].largest_cell()}},
           {"cells_across_unit", across},
           {"np", f.np},
           // A resumed run's coupling steps go on from its checkpoint; its log starts there.

@@ -101,4 +101,8 @@ void write_text_file(const std::filesystem::path &path, const std::string &text)
 // The whole file, byte for byte ("" when it cannot be read).
 std::string read_text_file(const std::filesystem::path &path);
 
+// The file's last max_bytes bytes (all of a shorter file; "" when it cannot
+// be read): a growing log's progress without reading all of it.
+std::string read_text_file_tail(const std::filesystem::path &path, std::size_t max_bytes);
+
 } // namespace armour

@@ -1,5 +1,6 @@
 #include "wave_case.h"
 
+#include "flume_mesh.h"
 #include "jonswap.h"
 #include "scene_keys.h"
 #include "wave_separation.h"
@@ -40,19 +41,15 @@ double group_velocity(double period, double depth, double g) {
     return 0.5 * (2.0 * M_PI / period / k) * (1.0 + kh2 / std::sinh(kh2));
 }
 
-double cell_dx(const Scene &scene) {
-    return (scene.domain_max.x() - scene.domain_min.x()) / scene.fluid->cells[0];
-}
-
 // The Mansard-Funke array (x, x + L/10, x + L/4), each moved to the centre
 // of its column of cells (a point on a face would sit in two columns).
 std::vector<double> gauge_positions(const Scene &scene) {
     const SceneWaves &w = *scene.waves;
     const double L = wavelength(period_of(w), depth_of(scene), scene.gravity.norm());
-    const double x0 = scene.domain_min.x(), dx = cell_dx(scene);
+    const MeshAxis along = flume_mesh(scene).axes[0];
     std::vector<double> x;
     for (const double at : {*w.gauge_x, *w.gauge_x + 0.1 * L, *w.gauge_x + 0.25 * L})
-        x.push_back(x0 + (std::floor((at - x0) / dx) + 0.5) * dx);
+        x.push_back(along.column_centre(at));
     return x;
 }
 

@@ -112,12 +112,17 @@ struct ScenePattern {
 // A coupled fluid run (interFoam through the armourCoupling plugin): the
 // mesh box is run.domain_min/max, water below water_level at the start.
 struct SceneFluid {
-    std::string case_name = "tank";            // template folder in foam_cases/ (key `case`)
-    double water_level = 0.0;                  // m, z of the still-water surface
-    std::array<int, 3> cells{{0, 0, 0}};       // blockMesh cells along x, y, z (from cell_size when given)
-    double cell_size = 0.0;                    // m; 0 = `cells` was given
-    double penalty = 1e5;                      // K [1/s] of -rho K chi (U - U_body)
-    std::string mask = "exact";                // exact | spheres
+    std::string case_name = "tank";      // template folder in foam_cases/ (key `case`)
+    double water_level = 0.0;            // m, z of the still-water surface
+    std::array<int, 3> cells{{0, 0, 0}}; // blockMesh cells along x, y, z (from cell_size when given)
+    double cell_size = 0.0;              // m; 0 = `cells` was given
+    // A graded mesh (the wave_flume template, apps/flume_mesh.h): along each
+    // axis cells keep the size `cells` gives inside refine_min..refine_max
+    // and grow outside it, by at most 10 % per cell, to coarse_cell_size.
+    std::optional<Eigen::Vector3d> refine_min, refine_max;      // m; absent = uniform
+    Eigen::Vector3d coarse_cell_size = Eigen::Vector3d::Zero(); // m along x, y, z; <= fine: not graded
+    double penalty = 1e5;                                       // K [1/s] of -rho K chi (U - U_body)
+    std::string mask = "exact";                                 // exact | spheres
     std::string solid_fraction = "exact";      // exact | ramp (the former sampled cosine ramp)
     double smoothing_cells = 1.0;              // width of the chi ramp [cells] (solid_fraction = "ramp")
     double added_mass = 0.0;                   // C_a [-]

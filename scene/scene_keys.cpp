@@ -143,6 +143,19 @@ const std::vector<Key<SceneFluid>> &fluid_keys() {
             .in(Range::above(0))
             .custom("–")
             .written_if([](const F &f) { return f.cell_size > 0; }),
+        key("refine_min", &F::refine_min, "m",
+            "graded mesh (fluid.case \"wave_flume\"; docs/openfoam.md): along each axis, cells keep the size "
+            "`cells` gives between refine_min and refine_max and grow outside (coarse_cell_size); both or "
+            "neither, "
+            "inside the run domain; every unit must start inside")
+            .custom("none: uniform"),
+        key("refine_max", &F::refine_max, "m", "the refined box's opposite corner; > refine_min")
+            .custom("none"),
+        key("coarse_cell_size", &F::coarse_cell_size, "m",
+            "graded mesh: the size cells grow to outside refine_min..refine_max, by at most 10 % per cell, "
+            "along x, y, z; one must exceed the fine cell; a size <= the fine cell keeps that axis uniform")
+            .custom("none")
+            .written_if([](const F &f) { return f.refine_min.has_value(); }),
         key("penalty", &F::penalty, "1/s",
             "K of the penalisation -rho K chi (U - U_body); implicit, any K is stable")
             .in(Range::above(0)),

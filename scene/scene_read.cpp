@@ -264,6 +264,36 @@ void read_fluid(const Table &root, Scene &s) {
         for (int i = 0; i < 3; ++i)
             f.cells[i] = std::max(1, static_cast<int>(std::lround(extent[i] / f.cell_size)));
     }
+    if (t.has("refine_min") != t.has("refine_max"))
+        t.fail(t.has("refine_min") ? "refine_max" : "refine_min",
+               "missing: give both refine_min and refine_max (m), or neither (a uniform mesh)");
+    if (t.has("coarse_cell_size") != t.has("refine_min"))
+        t.fail(t.has("refine_min") ? "coarse_cell_size" : "refine_min",
+               t.has("refine_min")
+                   ? "missing: a graded mesh needs the size its cells grow to (m)"
+                   : "missing: coarse_cell_size grades the mesh outside refine_min .. refine_max");
+    if (t.has("refine_min")) {
+        read_value(t, key_named(keys, "refine_min"), f);
+        read_value(t, key_named(keys, "refine_max"), f);
+        read_value(t, key_named(keys, "coarse_cell_size"), f);
+        const Eigen::Vector3d &lo = *f.refine_min, &hi = *f.refine_max;
+        if (!(hi.array() > lo.array()).all())
+            t.fail("refine_max", "must exceed fluid.refine_min " + vec_text(lo) +
+                                     " m in every component (got " + vec_text(hi) + ")");
+        if ((lo.array() < s.domain_min.array()).any() || (hi.array() > s.domain_max.array()).any())
+            t.fail((lo.array() < s.domain_min.array()).any() ? "refine_min" : "refine_max",
+                   "the refined box " + vec_text(lo) + " .. " + vec_text(hi) +
+                       " m must lie inside run.domain_min .. run.domain_max " + vec_text(s.domain_min) +
+                       " .. " + vec_text(s.domain_max) + " m");
+        const Eigen::Vector3d fine =
+            extent.cwiseQuotient(Eigen::Vector3d(f.cells[0], f.cells[1], f.cells[2]));
+        const Eigen::Vector3d &coarse = f.coarse_cell_size;
+        if (!coarse.allFinite() || (coarse.array() < 0.0).any() || (coarse.array() > extent.array()).any() ||
+            (coarse.array() <= fine.array()).all())
+            t.fail("coarse_cell_size", "must be in [0, the run domain's extent] m along each axis and exceed "
+                                       "the fine cell " +
+                                           vec_text(fine) + " m along one (got " + vec_text(coarse) + ")");
+    }
     t.check(f.air_density < f.fluid_density, "air_density",
             "must be in (0, fluid_density = " + number_text(f.fluid_density) + ") kg/m^3", f.air_density);
     t.check(f.max_time_step <= s.output_interval, "max_time_step",

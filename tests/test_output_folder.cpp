@@ -290,3 +290,19 @@ TEST_F(OutputLock, AKilledCompareIsCleanedUpByTheNext) {
     for (const std::string &name : output_rule::names(dir_))
         EXPECT_EQ(name.find("out.partial-"), std::string::npos) << name;
 }
+
+// The progress line reads a solver log's tail only (a long run's log.interFoam
+// grows by ~100 MB in 20 min): the tail must be the file's last bytes exactly,
+// and a file shorter than the tail must come back whole.
+TEST(ReadTextFileTail, GivesTheLastBytesOfALogAndAllOfAShortOne) {
+    const fs::path path = fs::temp_directory_path() / ("armour_tail_" + std::to_string(::getpid()) + ".log");
+    std::string log;
+    for (int step = 1; step <= 5000; ++step)
+        log += "Courant Number mean: 0.01 max: 0.4\nTime = " + std::to_string(step) + "e-3\n\nsolving...\n";
+    std::ofstream(path, std::ios::binary) << log;
+    EXPECT_EQ(armour::read_text_file_tail(path, 4096), log.substr(log.size() - 4096));
+    EXPECT_EQ(armour::read_text_file_tail(path, log.size() + 100), log);
+    EXPECT_EQ(armour::read_text_file_tail(path, 0), "");
+    EXPECT_EQ(armour::read_text_file_tail(path.string() + ".missing", 4096), "");
+    fs::remove(path);
+}

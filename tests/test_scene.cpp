@@ -868,8 +868,10 @@ TEST(SceneKeyTable, DocsReferenceIsTheTable) {
 // each a value of the wrong type (a table) and expect it refused under its name.
 TEST_F(SceneFile, EveryTableKeyIsRead) {
     const std::vector<std::string> bases = {
-        write(std::string(kFull) + "\n[fluid]\nwater_level = 0.5\ncells = [4, 4, 4]\n"
-                                   "water_box_min = [-1, -1, -1]\nwater_box_max = [0, 0, 0]\n",
+        write(std::string(kFull) +
+                  "\n[fluid]\nwater_level = 0.5\ncells = [4, 4, 4]\n"
+                  "water_box_min = [-1, -1, -1]\nwater_box_max = [0, 0, 0]\n"
+                  "refine_min = [0, -3, -1]\nrefine_max = [4, 3, 5]\ncoarse_cell_size = [2, 0, 0]\n",
               "cells.toml"),
         write(std::string(kFull) + "\n[fluid]\nwater_level = 0.5\ncell_size = 0.5\n", "cell_size.toml"),
         write(std::string(kFull) +
