@@ -6,22 +6,22 @@
 # with --np 2, and the shares of the solver's time spent in the DEM (the
 # engine's sub-steps), the mask (solid fractions) and the loads, as the
 # coupling plugin times them (summary.json: dem_seconds, mask_seconds,
-# load_seconds; the rest is interFoam's own). The first run settles the
+# load_seconds; the rest is interFoam's own). The graded run settles the
 # layer (fluid.settle_time, timed apart); the others start from its settled
-# layer (OUT/uniform/settle/scene.settled.toml), so every row couples the
+# layer (OUT/graded/settle/scene.settled.toml), so every row couples the
 # same units from the same poses. The waves ramp up over Tp / 2 so the timed
 # span is mostly full waves. All rows run one after another in one call:
 # compare their ratios (the machine is shared), and the load average before
 # and after is printed. Writes OUT/summary.json.
 # Usage: bash bench/run_stability_speed.sh [--build DIR] [--out DIR] [--duration S] [--cells NX,NY,NZ]
-#   --duration  simulated seconds per run (default 2.7 = 1.5 Tp; 0.3 still gives the costs per step)
+#   --duration  simulated seconds per run (default 5.4 = 3 Tp: full waves reach the armour after ~2 s)
 #   --cells     fluid.cells, the fine cells (default the scene's 200,25,62: Dn / 4)
 #   --build     default the repo's build/ (bash scripts/build.sh armour armourFoamCoupling armourWaves)
 #   --out       default ${TMPDIR:-/tmp}/armour-bench/stability_speed
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 bench_name=stability_speed bench_targets="armour armourFoamCoupling armourWaves" bench_options="duration cells"
-opt_duration=2.7 opt_cells=""
+opt_duration=5.4 opt_cells=""
 source "$root/bench/common.sh"
 bench_args "$@"
 armour="$build/apps/armour"
@@ -31,15 +31,17 @@ sets=(--set "run.duration=$opt_duration" --set waves.ramp_time=0.9)
 # The refined box as the whole flume: the uniform mesh of the same fine cells.
 uniform=(--set "fluid.refine_min=[0.0, -0.124, 0.0]" --set "fluid.refine_max=[2.0, 0.124, 0.62]")
 cut -d' ' -f1-3 /proc/loadavg >"$out/loadavg_before"
-for row in uniform graded graded_np2; do
+# The graded run settles; the others start from its settled scene, which
+# carries the scene's refined box (the uniform row overrides it).
+settled="$out/graded/settle/scene.settled.toml"
+for row in graded uniform graded_np2; do
   run="$out/$row"
   [ -f "$run/summary.json" ] && continue
   rm -rf "$run"
   case "$row" in
-    uniform) "$armour" run "$scene" --out "$run" "${sets[@]}" "${uniform[@]}" >"$run.log" 2>&1 ;;
-    graded) "$armour" run "$out/uniform/settle/scene.settled.toml" --out "$run" "${sets[@]}" >"$run.log" 2>&1 ;;
-    graded_np2) "$armour" run "$out/uniform/settle/scene.settled.toml" --out "$run" --np 2 "${sets[@]}" \
-      >"$run.log" 2>&1 ;;
+    graded) "$armour" run "$scene" --out "$run" "${sets[@]}" >"$run.log" 2>&1 ;;
+    uniform) "$armour" run "$settled" --out "$run" "${sets[@]}" "${uniform[@]}" >"$run.log" 2>&1 ;;
+    graded_np2) "$armour" run "$settled" --out "$run" --np 2 "${sets[@]}" >"$run.log" 2>&1 ;;
   esac
 done
 cut -d' ' -f1-3 /proc/loadavg >"$out/loadavg_after"
@@ -82,7 +84,7 @@ for name, np in (("uniform", 1), ("graded", 1), ("graded_np2", 2)):
           f"{row['steps']:5d} {row['wall_seconds_per_step']:11.3f} {row['cpu_seconds_per_step']:10.3f} "
           f"{steps_per_wave:8.0f} {row['wall_seconds_per_wave']:9.0f} {row['cpu_seconds_per_wave']:8.0f} "
           + " ".join(f"{100 * row[k + '_share']:5.1f}%" for k in ("dem", "mask", "load", "fluid")))
-settle = json.load(open(f"{out}/uniform/settle/summary.json"))
+settle = json.load(open(f"{out}/graded/settle/summary.json"))
 graded_ratio = rows[0]["wall_seconds_per_wave"] / rows[1]["wall_seconds_per_wave"]
 np2_ratio = rows[1]["wall_seconds_per_wave"] / rows[2]["wall_seconds_per_wave"]
 print(f"graded: {graded_ratio:.2f} x the uniform mesh's speed ({rows[1]['cells'] / rows[0]['cells']:.2f} x the "

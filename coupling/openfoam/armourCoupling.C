@@ -34,6 +34,13 @@ namespace fv
 }
 
 
+namespace
+{
+    //- Bodies whose loads the log lists each step
+    const std::size_t maxLoggedBodies = 10;
+}
+
+
 // * * * * * * * * * * * * * * * * armour side  * * * * * * * * * * * * * * //
 
 struct Foam::fv::armourCoupling::armourSide
@@ -224,6 +231,11 @@ Foam::fv::armourCoupling::armourCoupling
         << armour_->bodies->names().size() << " bodies, engine "
         << engineName << ", K = " << penalty_ << " 1/s"
         << (armour_->times.frozen ? ", frozen (mask only)" : "") << endl;
+    if (log && std::size_t(armour_->bodies->names().size()) > maxLoggedBodies)
+    {
+        Info<< "    armourCoupling: the log lists each step's loads for up to "
+            << maxLoggedBodies << " bodies (all are in bodies.h5)" << endl;
+    }
 }
 
 
@@ -364,7 +376,9 @@ void Foam::fv::armourCoupling::couple
         FatalErrorInFunction << "armour: " << err.what() << exit(FatalError);
     }
 
-    if (log)
+    // A layer of 100 units would write ~18 kB of log a step: 16 GB in a
+    // 1000-wave run. bodies.h5 holds every body's loads.
+    if (log && std::size_t(bodies.names().size()) <= maxLoggedBodies)
     {
         forAll(bodies.names(), k)
         {
