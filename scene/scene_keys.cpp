@@ -362,6 +362,13 @@ const std::vector<Key<ScenePattern>> &pattern_keys() {
             "layers stacked on the slope; every other one half a spacing up it, with columns - 1 units in "
             "the gaps across")
             .in(Range::at_least(1)),
+        key("placement", &P::placement, "",
+            "grid: every unit faces the slope; random: each is turned uniformly at random and moved up "
+            "to half the free space between grid neighbours (spacing - its size) along and across the "
+            "slope, then lifted clear of the slope and the layer below by gap (docs/stability.md)")
+            .one_of({"grid", "random"}),
+        key("seed", &P::seed, "", "placement \"random\": the same seed gives the same poses")
+            .in(Range::at_least(0)),
     };
     return keys;
 }
