@@ -1,7 +1,8 @@
 // A [[pattern]] with placement = "random": the grid's slots, each unit turned
-// uniformly at random and moved a little within its slot, then set on the
-// slope or on the layer below (docs/scenes.md, docs/stability.md). Internal
-// to the scene library (scene_setup.cpp).
+// uniformly at random and moved a little within its slot, then set at the
+// lowest height where it clears the slope and the units placed before it
+// (docs/scenes.md, docs/stability.md). Internal to the scene library
+// (scene_setup.cpp).
 #pragma once
 
 #include "collider.h"

@@ -180,9 +180,9 @@ TEST(StabilityCubes, RandomPlacementSettlesNearTheRockManualLayer) {
     ASSERT_TRUE(layer.is_object()) << run.summary.dump(2);
     std::printf("random placement, seed 2: settled layer %s\n", layer.dump().c_str());
     // Rock Manual, double-layer random cubes: 1.17 units per Dn^2, porosity
-    // 0.47. Measured over seeds 1-3: 1.07-1.15 and 0.50-0.54 (the grid:
+    // 0.47. Measured over seeds 1-5: 1.07-1.15 and 0.50-0.57 (the grid:
     // 1.20, 0.41). Bands: +-15 % on packing, 0.47 +- 0.1 on porosity; at
-    // most 3 of the 45 units off the layer (1-2 roll over the toe step).
+    // most 3 of the 45 units off the layer (1-4 roll over the toe step).
     EXPECT_NEAR(layer["packing_density"].get<double>(), 1.17, 0.15 * 1.17);
     EXPECT_GT(layer["porosity"].get<double>(), 0.37);
     EXPECT_LT(layer["porosity"].get<double>(), 0.57);
