@@ -167,12 +167,18 @@ std::vector<BodyInit> random_pattern(const ScenePattern &p, const PatternGrid &g
                     break;
                 s += short_of / grid.along.x() + 0.001 * Dn;
             }
+            // Inside the domain as the engine collides it, and as build_scene
+            // checks it: by the clump, which may protrude beyond the exact shape.
             bool inside = true;
-            for (const auto &[c, radius] : parts) {
+            const auto in_domain = [&](const Eigen::Vector3d &c, double radius) {
                 const Eigen::Vector3d w = b.pose.position + b.pose.orientation * c;
                 inside = inside && ((w.array() - radius) >= grid.domain_min.array()).all() &&
                          ((w.array() + radius) <= grid.domain_max.array()).all();
-            }
+            };
+            for (const auto &[c, radius] : parts)
+                in_domain(c, radius);
+            for (const auto &sphere : unit_template.clump)
+                in_domain(sphere.center, sphere.radius);
             if (!inside || body_wall_penetration(b, unit_template, collider, walls).first > 0.0)
                 continue;
             ++choices;

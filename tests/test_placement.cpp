@@ -178,3 +178,18 @@ TEST(RandomPlacement, ASlotNoTurnedUnitFitsIsRefusedNamingTheKey) {
         EXPECT_NE(what.find("fewer rows, columns"), std::string::npos) << what;
     }
 }
+
+// An exact-shape engine (Bullet) collides the exact cube: placed against
+// it, 2 rows (18 cubes), they pass build_scene's own check (no surface point
+// of one deeper than 0.01 Dn inside another) and every corner of every cube
+// lies at least the gap above the slope's face.
+TEST(RandomPlacement, ExactShapesAreKeptApartToo) {
+    const armour::SceneSetup setup = random_setup(6, {"run.engine=\"bullet\"", "pattern.0.rows=2"});
+    ASSERT_EQ(setup.bodies.size(), 18u);
+    const armour::SlopeFrame frame = *armour::slope_frame(stability_scene({}));
+    double lowest = HUGE_VAL;
+    for (const auto &b : setup.bodies)
+        for (const Eigen::Vector3d &v : setup.units[b.unit].mesh.vertices)
+            lowest = std::min(lowest, frame.local(b.pose.position + b.pose.orientation * v).z());
+    EXPECT_GE(lowest, kGap - 1e-9);
+}
