@@ -97,8 +97,9 @@ struct SceneDrop {
     std::uint64_t seed = 1;
 };
 
-// Regular pattern on a slope wall: rows along the slope, columns along y,
-// each unit resting `gap` (m) above the slope surface.
+// Pattern on a slope wall: rows along the slope, columns along y, each unit
+// `gap` (m) above the slope surface; "grid" units face the slope, "random"
+// ones are turned and moved at random in their grid slots (scene_setup.cpp).
 struct ScenePattern {
     std::string unit;
     std::string wall; // name of a "slope" wall
@@ -107,6 +108,8 @@ struct ScenePattern {
     double gap = 0.01;            // m
     double packing_density = 0.0; // units per Dn^2 of slope, all layers (> 0: sets spacing)
     int layers = 1;               // stacked; every other one shifted half a spacing (scene_keys.cpp)
+    std::string placement = "grid"; // grid | random
+    std::uint64_t seed = 1;         // random placement: the same seed gives the same poses
 };
 
 // A coupled fluid run (interFoam through the armourCoupling plugin): the

@@ -375,6 +375,15 @@ const std::vector<Key<ScenePattern>> &pattern_keys() {
             "layers stacked on the slope; every other one half a spacing up it, with columns - 1 units in "
             "the gaps across")
             .in(Range::at_least(1)),
+        key("placement", &P::placement, "",
+            "grid: every unit faces the slope; random: layer by layer, in a random order, each unit is "
+            "turned uniformly at random, moved up to half the free space between grid neighbours "
+            "(spacing - its size) along and across the slope, and set where it clears by gap the slope, "
+            "its walls and every unit placed before it (the least lifted of 8 such poses); the pile is "
+            "loose until a settle (docs/stability.md)")
+            .one_of({"grid", "random"}),
+        key("seed", &P::seed, "", "placement \"random\": the same seed gives the same poses")
+            .in(Range::at_least(0)),
     };
     return keys;
 }

@@ -1,8 +1,10 @@
 #include "scene_setup.h"
 
 #include "clump_evaluator.h"
+#include "collider.h"
 #include "engine_registry.h"
 #include "materials.h"
+#include "random_pattern.h"
 #include "shapes.h"
 #include "stl_io.h"
 
@@ -123,118 +125,6 @@ Eigen::Quaterniond random_orientation(std::mt19937_64 &rng) {
     Eigen::Quaterniond q(gauss(rng), gauss(rng), gauss(rng), gauss(rng));
     q.normalize();
     return q;
-}
-
-// Deepest cut of a posed clump into any wall (m, <= 0 when clear) and the wall's index.
-std::pair<double, int> wall_penetration(const BodyInit &b, const Clump &clump,
-                                        const std::vector<Wall> &walls) {
-    double deepest = -HUGE_VAL;
-    int which = -1;
-    for (std::size_t w = 0; w < walls.size(); ++w)
-        for (const auto &sph : clump) {
-            const Eigen::Vector3d c = b.pose.position + b.pose.orientation * sph.center;
-            for (const auto &t : walls[w].surface.triangles) {
-                const auto &v = walls[w].surface.vertices;
-                const double depth =
-                    sph.radius - (c - closest_point_on_triangle(c, v[t[0]], v[t[1]], v[t[2]])).norm();
-                if (depth > deepest) {
-                    deepest = depth;
-                    which = static_cast<int>(w);
-                }
-            }
-        }
-    return {deepest, which};
-}
-
-// The shape an engine collides (engine_registry.h, ShapeModel): a DEM
-// engine its clump's spheres, an exact-shape engine the unit's convex parts
-// (the exact mesh where the shape has none: an STL unit). Placement is
-// checked against this shape, not another engine's.
-struct HalfSpace {
-    Eigen::Vector3d n; // outward unit normal
-    double d;          // m: inside where n.x <= d
-};
-struct Collider {
-    bool spheres = true;                       // the clump (else the exact convex parts)
-    std::vector<Eigen::Vector3d> points;       // m, unit frame: the parts' surface, <= 0.05 Dn apart
-    std::vector<std::vector<HalfSpace>> parts; // the convex parts as half-spaces
-};
-
-Collider make_collider(const UnitTemplate &unit, ShapeModel model, double Dn) {
-    Collider c;
-    c.spheres = model == ShapeModel::sphere_clumps;
-    if (c.spheres)
-        return c;
-    const std::vector<TriangleMesh> parts =
-        unit.convex_parts.empty() ? std::vector<TriangleMesh>{unit.mesh} : unit.convex_parts;
-    const double spacing = 0.05 * Dn;
-    for (const TriangleMesh &part : parts) {
-        std::vector<HalfSpace> planes;
-        for (const auto &t : part.triangles) {
-            const Eigen::Vector3d &a = part.vertices[t[0]], &b = part.vertices[t[1]],
-                                  &d = part.vertices[t[2]];
-            const Eigen::Vector3d n = (b - a).cross(d - a);
-            if (n.norm() <= 0.0)
-                continue;
-            planes.push_back({n.normalized(), n.normalized().dot(a)});
-            const double longest = std::max({(b - a).norm(), (d - b).norm(), (a - d).norm()});
-            const int k = std::max(1, static_cast<int>(std::ceil(longest / spacing)));
-            for (int i = 0; i <= k; ++i)
-                for (int j = 0; i + j <= k; ++j)
-                    c.points.push_back(a + (b - a) * (double(i) / k) + (d - a) * (double(j) / k));
-        }
-        c.parts.push_back(std::move(planes));
-    }
-    return c;
-}
-
-// m: how deep point p (unit frame) lies inside the collider's parts (<= 0: outside).
-double depth_inside(const Collider &c, const Eigen::Vector3d &p) {
-    double deepest = -HUGE_VAL;
-    for (const auto &part : c.parts) {
-        double depth = HUGE_VAL;
-        for (const HalfSpace &h : part)
-            depth = std::min(depth, h.d - h.n.dot(p));
-        deepest = std::max(deepest, depth);
-    }
-    return deepest;
-}
-
-// Deepest cut of a posed exact shape into any wall (m) and the wall's index:
-// each surface point against its nearest wall triangle, behind it when on
-// the other side of that triangle than the body's centre.
-std::pair<double, int> exact_wall_penetration(const BodyInit &b, const Collider &c,
-                                              const std::vector<Wall> &walls) {
-    double deepest = -HUGE_VAL;
-    int which = -1;
-    for (std::size_t w = 0; w < walls.size(); ++w) {
-        const auto &v = walls[w].surface.vertices;
-        for (const Eigen::Vector3d &local : c.points) {
-            const Eigen::Vector3d p = b.pose.position + b.pose.orientation * local;
-            double nearest = HUGE_VAL, depth = 0.0;
-            for (const auto &t : walls[w].surface.triangles) {
-                const Eigen::Vector3d q = closest_point_on_triangle(p, v[t[0]], v[t[1]], v[t[2]]);
-                if ((p - q).norm() >= nearest)
-                    continue;
-                nearest = (p - q).norm();
-                Eigen::Vector3d n = (v[t[1]] - v[t[0]]).cross(v[t[2]] - v[t[0]]).normalized();
-                if ((b.pose.position - q).dot(n) < 0.0)
-                    n = -n; // the body's side
-                depth = -(p - q).dot(n);
-            }
-            if (depth > deepest) {
-                deepest = depth;
-                which = static_cast<int>(w);
-            }
-        }
-    }
-    return {deepest, which};
-}
-
-// The deepest cut of posed body b into any wall, as its engine collides it.
-std::pair<double, int> body_wall_penetration(const BodyInit &b, const UnitTemplate &unit, const Collider &c,
-                                             const std::vector<Wall> &walls) {
-    return c.spheres ? wall_penetration(b, unit.clump, walls) : exact_wall_penetration(b, c, walls);
 }
 
 } // namespace
@@ -462,6 +352,24 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
                                       setup.walls)
                     .first <= 0.0)
                 break;
+        if (p.placement == "random") {
+            PatternGrid grid;
+            grid.slope = slope;
+            grid.origin = Eigen::Vector3d(slope->toe_x, 0.0, slope->floor_z);
+            grid.along = along;
+            grid.normal = normal;
+            grid.turn = turn;
+            grid.first = first;
+            grid.spacing = spacing;
+            grid.size = 2.0 * half;
+            grid.domain_min = scene.domain_min;
+            grid.domain_max = scene.domain_max;
+            for (const BodyInit &b :
+                 random_pattern(p, grid, unit, setup.units[unit], colliders[unit], reach[unit], Dn,
+                                setup.walls, scene.file + ": key '" + key))
+                setup.bodies.push_back(b);
+            continue;
+        }
         // Every other layer sits half a spacing up the slope, its columns in
         // the gaps of the one below (one column fewer: within the same width).
         for (int layer = 0; layer < p.layers; ++layer) {

@@ -145,6 +145,8 @@ rows = 3
 columns = 4
 spacing = 0.25
 gap = 0.002
+placement = "random"
+seed = 9
 )";
 
 // Only what is required; everything else defaults.
@@ -391,6 +393,8 @@ TEST_F(SceneFile, FullSceneReadsEveryKey) {
     EXPECT_EQ(s.patterns[0].columns, 4);
     EXPECT_DOUBLE_EQ(s.patterns[0].spacing, 0.25);
     EXPECT_DOUBLE_EQ(s.patterns[0].gap, 0.002);
+    EXPECT_EQ(s.patterns[0].placement, "random");
+    EXPECT_EQ(s.patterns[0].seed, 9u);
 }
 
 TEST_F(SceneFile, DefaultsFillWhatIsAbsent) {
@@ -584,6 +588,18 @@ TEST_F(SceneFile, UnknownReferences) {
     const std::string p3 = write(full + "\n[[pattern]]\nunit = \"cube\"\nwall = \"floor\"\n");
     expect_error(p3, last_line + 4, "pattern.1.wall",
                  "is of type \"plane\"; a pattern needs a \"slope\" wall");
+    // A placement the pattern does not know, from the file and from --set;
+    // a negative seed.
+    const std::string::size_type at = full.find("placement = \"random\"");
+    ASSERT_NE(at, std::string::npos);
+    const std::string p5 = write(std::string(full).replace(at, 20, "placement = \"hexagonal\""));
+    expect_error(p5, static_cast<int>(std::count(full.begin(), full.begin() + at, '\n')) + 1,
+                 "pattern.0.placement", "must be one of \"grid\", \"random\" (got \"hexagonal\")");
+    const std::string path = write(full);
+    const std::string typo = error_of(path, {"pattern.0.placement=\"randon\""});
+    EXPECT_EQ(typo.rfind("--set: key 'pattern.0.placement': must be one of", 0), 0u) << typo;
+    const std::string seed = error_of(path, {"pattern.0.seed=-1"});
+    EXPECT_EQ(seed.rfind("--set: key 'pattern.0.seed': ", 0), 0u) << seed;
     const std::string p4 =
         write(full + "\n[[drop]]\nunit = \"tetrapod\"\ncount = 1\nmin = [0, 0, 0]\nmax = [1, 1, 1]\n");
     expect_error(p4, last_line + 3, "drop.1.unit", "no [[unit]] named \"tetrapod\"");

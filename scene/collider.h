@@ -1,0 +1,45 @@
+// The shape an engine collides, for placing and checking initial poses:
+// a DEM engine's clump spheres or an exact-shape engine's convex parts.
+// Internal to the scene library (scene_setup.cpp).
+#pragma once
+
+#include "engine_registry.h"
+#include "rigid_body_engine.h"
+
+#include <Eigen/Geometry>
+#include <utility>
+#include <vector>
+
+namespace armour {
+
+// The shape an engine collides (engine_registry.h, ShapeModel): a DEM
+// engine its clump's spheres, an exact-shape engine the unit's convex parts
+// (the exact mesh where the shape has none: an STL unit). Placement is
+// checked against this shape, not another engine's.
+struct HalfSpace {
+    Eigen::Vector3d n; // outward unit normal
+    double d;          // m: inside where n.x <= d
+};
+struct Collider {
+    bool spheres = true;                       // the clump (else the exact convex parts)
+    std::vector<Eigen::Vector3d> points;       // m, unit frame: the parts' surface, <= 0.05 Dn apart
+    std::vector<std::vector<HalfSpace>> parts; // the convex parts as half-spaces
+};
+
+Collider make_collider(const UnitTemplate &unit, ShapeModel model, double Dn);
+
+// m: how deep point p (unit frame) lies inside the collider's parts (<= 0: outside).
+double depth_inside(const Collider &c, const Eigen::Vector3d &p);
+
+// The deepest cut of posed body b into any wall, as its engine collides it
+// (m, <= 0 when clear), and the wall's index.
+std::pair<double, int> body_wall_penetration(const BodyInit &b, const UnitTemplate &unit, const Collider &c,
+                                             const std::vector<Wall> &walls);
+
+// Whether posed bodies a and b, of one unit, come closer than `clearance`
+// (m) as the engine collides them: clump spheres, or exact surface points
+// (<= 0.05 Dn apart) within the clearance of the other's parts.
+bool closer_than(const BodyInit &a, const BodyInit &b, const UnitTemplate &unit, const Collider &c,
+                 double clearance);
+
+} // namespace armour
