@@ -152,7 +152,11 @@ void check_flume_grading(const Scene &scene, const SceneSetup &setup, const std:
     if (template_text.find("@GRADING@") == std::string::npos)
         throw InputError(scene.file + ": key 'fluid.refine_min': fluid.case \"" + f.case_name +
                          "\" has a fixed block structure; a graded mesh needs fluid.case \"wave_flume\"");
-    const Eigen::Vector3d &lo = *f.refine_min, &hi = *f.refine_max;
+    // A unit resting on a side wall or the slope reaches into it by its contact
+    // overlap: up to half a fine cell, as the mesh box's own check allows.
+    const Eigen::Vector3d fine = (scene.domain_max - scene.domain_min)
+                                     .cwiseQuotient(Eigen::Vector3d(f.cells[0], f.cells[1], f.cells[2]));
+    const Eigen::Vector3d lo = *f.refine_min - 0.5 * fine, hi = *f.refine_max + 0.5 * fine;
     for (std::size_t i = 0; i < setup.bodies.size(); ++i) {
         const BodyInit &b = setup.bodies[i];
         for (const auto &v : setup.units[b.unit].mesh.vertices) {
@@ -160,8 +164,8 @@ void check_flume_grading(const Scene &scene, const SceneSetup &setup, const std:
             if ((p.array() < lo.array()).any() || (p.array() > hi.array()).any())
                 throw InputError(scene.file + ": key 'fluid.refine_min': body " + std::to_string(i) +
                                  " (unit '" + setup.units[b.unit].name +
-                                 "') starts outside the refined box " + vec_text(lo) + " .. " + vec_text(hi) +
-                                 " m (vertex " + vec_text(p) +
+                                 "') starts outside the refined box " + vec_text(*f.refine_min) + " .. " +
+                                 vec_text(*f.refine_max) + " m (vertex " + vec_text(p) +
                                  " m): the loads need the fine cells; widen the box");
         }
     }

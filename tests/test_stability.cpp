@@ -163,6 +163,24 @@ TEST(StabilityCubes, StillWaterLeavesTheSettledLayerInPlace) {
 
 namespace {
 
+// The graded mesh (fluid.refine_min/max) must hold every unit: a box that
+// starts above the lowest rows (the toe at x = 1.40 m) is refused before
+// anything runs or is written, naming the key.
+TEST(StabilityCubes, ARefinedBoxThatLeavesUnitsInCoarseCellsIsRefused) {
+    const SceneRun run = run_stability("coarse_units", "--set 'fluid.refine_min=[1.6,-0.124,0.18]'");
+    EXPECT_EQ(run.status, 2) << run.output;
+    EXPECT_NE(run.output.find("key 'fluid.refine_min': body 0 (unit 'cube') starts outside the refined box"),
+              std::string::npos)
+        << run.output;
+    EXPECT_FALSE(fs::exists(run.out));
+    if (!HasFailure())
+        fs::remove_all(run.dir);
+}
+
+} // namespace
+
+namespace {
+
 // placement = "random" (docs/stability.md, "Measured: the settled layer"):
 // the same 45 cubes turned at random in their slots, seed 2, settled in the
 // DEM under still water as the coupled run does. The flume is widened to
@@ -174,6 +192,7 @@ TEST(StabilityCubes, RandomPlacementSettlesNearTheRockManualLayer) {
     const SceneRun run = run_stability(
         "random", "--set 'pattern.0.placement=\"random\"' --set pattern.0.seed=2 "
                   "--set 'run.domain_min=[0.0,-0.14,0.0]' --set 'run.domain_max=[2.0,0.14,0.62]' "
+                  "--set 'fluid.refine_min=[1.15,-0.14,0.18]' --set 'fluid.refine_max=[2.0,0.14,0.62]' "
                   "--set waves.Hs=0.001 --set run.duration=0.2 --set run.output_interval=0.05");
     ASSERT_EQ(run.status, 0) << run.output;
     const json &layer = run.summary["damage"]["settled_layer"];
