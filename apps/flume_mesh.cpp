@@ -27,18 +27,21 @@ double outward_length(int n, double r, double h, double coarsen) {
     return length;
 }
 
-// The sections from the box's edge outward over `length`: the cells grow
-// from h at a rate r <= kMaxCellGrowth to coarsen x h, then stay there; n
-// is the fewest cells that can fill the length that way, r fills it exactly.
-std::vector<Section> outward(double length, double h, double coarsen) {
-    if (length <= 0.0)
-        return {};
-    if (coarsen <= 1.0)
-        return {{length, std::max(1, static_cast<int>(std::lround(length / h))), 1.0}};
+// The fewest cells that fill `length` growing outward from h at a rate r in
+// [1, kMaxCellGrowth], capped at coarsen x h; 0 when the stretch is too short
+// for that (filling it would need cells smaller than h: the box takes it).
+int outward_cells(double length, double h, double coarsen) {
     int n = 1;
     while (outward_length(n, kMaxCellGrowth, h, coarsen) < length)
         ++n;
-    double slow = 0.5, fast = kMaxCellGrowth; // outward_length grows with r
+    return outward_length(n, 1.0, h, coarsen) <= length ? n : 0;
+}
+
+// The sections from the box's edge outward over `length`, in n cells: the
+// cells grow from h at the rate r that fills it exactly, to coarsen x h,
+// then stay there.
+std::vector<Section> outward(double length, double h, double coarsen, int n) {
+    double slow = 1.0, fast = kMaxCellGrowth; // outward_length grows with r
     for (int it = 0; it < 200; ++it) {
         const double mid = 0.5 * (slow + fast);
         (outward_length(n, mid, h, coarsen) < length ? slow : fast) = mid;
@@ -72,17 +75,24 @@ std::string vec_text(const Eigen::Vector3d &v) {
 
 MeshAxis axis_of(double lo, double hi, int fine_cells, double a, double b, double coarsen) {
     const double h = (hi - lo) / fine_cells;
-    // Less than a cell outside the box: the box takes it (no sliver cells).
-    if (a - lo < h)
+    // An axis not coarsened is uniform, exactly `fine_cells`; a stretch too
+    // short to grow in (or under a cell) goes to the box: no cells below h.
+    const int below = coarsen > 1.0 && a - lo >= h ? outward_cells(a - lo, h, coarsen) : 0;
+    const int above = coarsen > 1.0 && hi - b >= h ? outward_cells(hi - b, h, coarsen) : 0;
+    if (below == 0)
         a = lo;
-    if (hi - b < h)
+    if (above == 0)
         b = hi;
     std::vector<Section> sections;
-    for (const Section &s : outward(a - lo, h, coarsen)) // toward lo: reversed, shrinking to the box
-        sections.insert(sections.begin(), {s.length, s.cells, 1.0 / s.ratio});
-    sections.push_back({b - a, std::max(1, static_cast<int>(std::lround((b - a) / h))), 1.0});
-    for (const Section &s : outward(hi - b, h, coarsen))
-        sections.push_back(s);
+    if (below > 0)
+        for (const Section &s :
+             outward(a - lo, h, coarsen, below)) // toward lo: reversed, shrinking to the box
+            sections.insert(sections.begin(), {s.length, s.cells, 1.0 / s.ratio});
+    // Whole cells no larger than h (a box of exactly `fine_cells` x h: those).
+    sections.push_back({b - a, std::max(1, static_cast<int>(std::ceil((b - a) / h * (1.0 - 1e-12)))), 1.0});
+    if (above > 0)
+        for (const Section &s : outward(hi - b, h, coarsen, above))
+            sections.push_back(s);
 
     MeshAxis axis;
     for (const Section &s : sections)
@@ -134,13 +144,14 @@ double MeshAxis::column_centre(double at) const {
 FlumeMesh flume_mesh(const Scene &scene) {
     const SceneFluid &f = *scene.fluid;
     FlumeMesh mesh;
-    mesh.graded = f.refine_min.has_value();
+    const bool box = f.refine_min.has_value();
     for (int i = 0; i < 3; ++i) {
         const double lo = scene.domain_min[i], hi = scene.domain_max[i];
-        const double a = mesh.graded ? (*f.refine_min)[i] : lo, b = mesh.graded ? (*f.refine_max)[i] : hi;
+        const double a = box ? (*f.refine_min)[i] : lo, b = box ? (*f.refine_max)[i] : hi;
         const double h = (hi - lo) / f.cells[i];
         mesh.axes[i] =
-            axis_of(lo, hi, f.cells[i], a, b, mesh.graded ? std::max(1.0, f.coarse_cell_size[i] / h) : 1.0);
+            axis_of(lo, hi, f.cells[i], a, b, box ? std::max(1.0, f.coarse_cell_size[i] / h) : 1.0);
+        mesh.graded = mesh.graded || mesh.axes[i].grading != "1";
     }
     return mesh;
 }
@@ -157,13 +168,30 @@ void check_flume_grading(const Scene &scene, const SceneSetup &setup, const std:
     const Eigen::Vector3d fine = (scene.domain_max - scene.domain_min)
                                      .cwiseQuotient(Eigen::Vector3d(f.cells[0], f.cells[1], f.cells[2]));
     const Eigen::Vector3d lo = *f.refine_min - 0.5 * fine, hi = *f.refine_max + 0.5 * fine;
+    // The z grading holds all along the flume: the box's z range is the free
+    // surface's band everywhere, so it must hold the waves' crests and troughs.
+    double height = f.wave_height;
+    if (scene.waves && scene.waves->type == "regular")
+        height = scene.waves->height;
+    if (scene.waves && scene.waves->type == "irregular")
+        height = 1.8 * scene.waves->hs; // the largest of ~1000 waves
+    if (f.coarse_cell_size.z() > fine.z() &&
+        (f.refine_min->z() > f.water_level - height || f.refine_max->z() < f.water_level + height))
+        throw InputError(
+            scene.file + ": key '" +
+            (f.refine_min->z() > f.water_level - height ? "fluid.refine_min" : "fluid.refine_max") +
+            "': the refined box's z range " + number_text(f.refine_min->z()) + " .. " +
+            number_text(f.refine_max->z()) + " m must hold the free surface " + number_text(f.water_level) +
+            " m +- the wave height " + number_text(height) +
+            " m: the z grading holds all along the flume, and coarse cells there damp the waves");
     for (std::size_t i = 0; i < setup.bodies.size(); ++i) {
         const BodyInit &b = setup.bodies[i];
         for (const auto &v : setup.units[b.unit].mesh.vertices) {
             const Eigen::Vector3d p = b.pose.position + b.pose.orientation * v;
             if ((p.array() < lo.array()).any() || (p.array() > hi.array()).any())
-                throw InputError(scene.file + ": key 'fluid.refine_min': body " + std::to_string(i) +
-                                 " (unit '" + setup.units[b.unit].name +
+                throw InputError(scene.file + ": key '" +
+                                 ((p.array() < lo.array()).any() ? "fluid.refine_min" : "fluid.refine_max") +
+                                 "': body " + std::to_string(i) + " (unit '" + setup.units[b.unit].name +
                                  "') starts outside the refined box " + vec_text(*f.refine_min) + " .. " +
                                  vec_text(*f.refine_max) + " m (vertex " + vec_text(p) +
                                  " m): the loads need the fine cells; widen the box");

@@ -387,6 +387,8 @@ std::string read_text_file_tail(const fs::path &path, std::size_t max_bytes) {
     if (!in)
         return "";
     const std::streamoff size = in.tellg();
+    if (size < 0) // not seekable
+        return "";
     const std::streamoff start = std::max<std::streamoff>(0, size - static_cast<std::streamoff>(max_bytes));
     in.seekg(start);
     std::string text(static_cast<std::size_t>(size - start), '\0');

@@ -146,14 +146,16 @@ const std::vector<Key<SceneFluid>> &fluid_keys() {
         key("refine_min", &F::refine_min, "m",
             "graded mesh (fluid.case \"wave_flume\"; docs/openfoam.md): along each axis, cells keep the size "
             "`cells` gives between refine_min and refine_max and grow outside (coarse_cell_size); both or "
-            "neither, "
-            "inside the run domain; every unit must start inside")
+            "neither, inside the run domain, >= one fine cell across; every unit starts inside (to half a "
+            "fine "
+            "cell), and a graded z range holds water_level +- the wave height")
             .custom("none: uniform"),
         key("refine_max", &F::refine_max, "m", "the refined box's opposite corner; > refine_min")
             .custom("none"),
         key("coarse_cell_size", &F::coarse_cell_size, "m",
             "graded mesh: the size cells grow to outside refine_min..refine_max, by at most 10 % per cell, "
-            "along x, y, z; one must exceed the fine cell; a size <= the fine cell keeps that axis uniform")
+            "along x, y, z; each in [0, the domain's extent], one above the fine cell; a size <= the fine "
+            "cell keeps that axis uniform")
             .custom("none")
             .written_if([](const F &f) { return f.refine_min.has_value(); }),
         key("penalty", &F::penalty, "1/s",

@@ -287,6 +287,10 @@ void read_fluid(const Table &root, Scene &s) {
                        " .. " + vec_text(s.domain_max) + " m");
         const Eigen::Vector3d fine =
             extent.cwiseQuotient(Eigen::Vector3d(f.cells[0], f.cells[1], f.cells[2]));
+        if (((hi - lo).array() < fine.array() * (1.0 - 1e-9)).any())
+            t.fail("refine_max", "the refined box " + vec_text(lo) + " .. " + vec_text(hi) +
+                                     " m must be at least one fine cell " + vec_text(fine) +
+                                     " m across along each axis");
         const Eigen::Vector3d &coarse = f.coarse_cell_size;
         if (!coarse.allFinite() || (coarse.array() < 0.0).any() || (coarse.array() > extent.array()).any() ||
             (coarse.array() <= fine.array()).all())

@@ -14,29 +14,30 @@
 
 namespace {
 
-std::string scene_path(const char *name) {
+std::string scene_path(const std::string &name) {
     return std::string(ARMOUR_SOURCE_DIR) + "/scenes/" + name;
 }
 
 void expect_graded(const armour::MeshAxis &axis, double lo, double hi, double h, double a, double b,
-                   double coarsen, const char *name) {
+                   double coarsen, const std::string &name) {
     ASSERT_EQ(axis.nodes.size(), static_cast<std::size_t>(axis.cells) + 1) << name;
     EXPECT_DOUBLE_EQ(axis.nodes.front(), lo) << name;
     EXPECT_DOUBLE_EQ(axis.nodes.back(), hi) << name;
+    // The box holds whole cells no larger than h: at least h (1 - h / box).
+    const double shrink = 1.0 - h / (b - a);
     for (std::size_t i = 1; i < axis.nodes.size(); ++i) {
         const double size = axis.nodes[i] - axis.nodes[i - 1],
                      centre = 0.5 * (axis.nodes[i] + axis.nodes[i - 1]);
-        ASSERT_GT(size, 0.0) << name << " cell " << i;
-        // Inside the box: the fine cell, to the rounding of the box's
-        // length to whole cells (at most half a cell over the box).
         if (centre > a && centre < b) {
-            EXPECT_NEAR(size / h, 1.0, 0.5 * h / (b - a) + 1e-9) << name << " cell " << i << " at " << centre;
+            EXPECT_LE(size, h * (1.0 + 1e-9)) << name << " cell " << i << " at " << centre;
         }
-        EXPECT_LE(size, coarsen * h * (1.0 + 1e-9) + 0.5 * h) << name << " cell " << i;
+        // Never below the fine cell (a short stretch joins the box), never above the coarse one.
+        EXPECT_GE(size, h * shrink * (1.0 - 1e-9)) << name << " cell " << i << " at " << centre;
+        EXPECT_LE(size, coarsen * h * (1.0 + 1e-9)) << name << " cell " << i << " at " << centre;
         if (i > 1) {
             const double previous = axis.nodes[i - 1] - axis.nodes[i - 2];
             const double growth = std::max(size / previous, previous / size);
-            EXPECT_LE(growth, armour::kMaxCellGrowth * (1.0 + 0.5 * h / (b - a)) + 1e-9)
+            EXPECT_LE(growth, armour::kMaxCellGrowth / shrink * (1.0 + 1e-9))
                 << name << " cells " << i - 1 << ", " << i;
         }
     }
@@ -113,6 +114,11 @@ TEST(FlumeMesh, BadGradingKeysAreRefusedNamingTheKey) {
         error_of({"fluid.refine_min=[5.0, 0.0, 0.7]", box_max, "fluid.coarse_cell_size=[0.1, 0.0, 0.03]"})
             .find("fluid.refine_max"),
         std::string::npos);
+    // Thinner than one fine cell (0.01 m in z).
+    EXPECT_NE(error_of({"fluid.refine_min=[5.0, 0.0, 0.3]", "fluid.refine_max=[10.0, 0.05, 0.305]",
+                        "fluid.coarse_cell_size=[0.1, 0.0, 0.03]"})
+                  .find("fluid.refine_max"),
+              std::string::npos);
     // The fine cells themselves: nothing to grade.
     EXPECT_NE(error_of({box_min, box_max, "fluid.coarse_cell_size=[0.05, 0.05, 0.01]"})
                   .find("fluid.coarse_cell_size"),
@@ -120,4 +126,37 @@ TEST(FlumeMesh, BadGradingKeysAreRefusedNamingTheKey) {
     EXPECT_NE(error_of({box_min, box_max, "fluid.coarse_cell_size=[-0.1, 0.0, 0.03]"})
                   .find("fluid.coarse_cell_size"),
               std::string::npos);
+}
+
+// Box edges 1.1 to 10 fine cells from the flume's ends: too short a stretch
+// to grow in joins the box (no cells below h, no jumps above 10 %); longer
+// ones grow. The wave_flume scene: 10 x 0.05 x 0.6 m, h = 0.05, 0.05, 0.01 m.
+TEST(FlumeMesh, ShortStretchesOutsideTheBoxNeverMakeSmallCellsOrJumps) {
+    for (const double edge : {1.1, 1.5, 2.5, 4.0, 7.0, 10.0, 25.0}) {
+        const double x0 = edge * 0.05, z0 = edge * 0.01;
+        const std::string at = std::to_string(edge) + " cells";
+        const armour::Scene scene = armour::load_scene(
+            scene_path("wave_flume.toml"),
+            {"fluid.refine_min=[" + std::to_string(x0) + ", 0.0, " + std::to_string(z0) + "]",
+             "fluid.refine_max=[" + std::to_string(10.0 - x0) + ", 0.05, 0.6]",
+             "fluid.coarse_cell_size=[0.1, 0.0, 0.03]"});
+        const armour::FlumeMesh mesh = armour::flume_mesh(scene);
+        expect_graded(mesh.axes[0], 0.0, 10.0, 0.05, x0, 10.0 - x0, 2.0, "x, edge " + at);
+        expect_graded(mesh.axes[2], 0.0, 0.6, 0.01, z0, 0.6, 3.0, "z, edge " + at);
+        EXPECT_EQ(mesh.axes[1].cells, 1);
+    }
+}
+
+// An axis whose coarse size is not above its fine cell stays exactly the
+// uniform fluid.cells, wherever the box's faces fall on it.
+TEST(FlumeMesh, AnAxisNotCoarsenedKeepsItsUniformCells) {
+    const armour::Scene scene =
+        armour::load_scene(scene_path("stability_cubes.toml"),
+                           {"fluid.refine_min=[1.153, -0.1, 0.18]", "fluid.refine_max=[2.0, 0.1, 0.62]",
+                            "fluid.coarse_cell_size=[0.05, 0.0, 0.03]"});
+    const armour::MeshAxis y = armour::flume_mesh(scene).axes[1];
+    ASSERT_EQ(y.cells, 25);
+    EXPECT_EQ(y.grading, "1");
+    for (int k = 0; k <= 25; ++k)
+        EXPECT_NEAR(y.nodes[k], -0.124 + k * 0.248 / 25, 1e-12);
 }

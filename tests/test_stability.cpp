@@ -163,9 +163,10 @@ TEST(StabilityCubes, StillWaterLeavesTheSettledLayerInPlace) {
 
 namespace {
 
-// The graded mesh (fluid.refine_min/max) must hold every unit: a box that
-// starts above the lowest rows (the toe at x = 1.40 m) is refused before
-// anything runs or is written, naming the key.
+// The graded mesh (fluid.refine_min/max) must hold every unit and the free
+// surface's band: a box that starts above the lowest rows (the toe at x =
+// 1.40 m), or below the troughs, is refused before anything runs or is
+// written, naming the key.
 TEST(StabilityCubes, ARefinedBoxThatLeavesUnitsInCoarseCellsIsRefused) {
     const SceneRun run = run_stability("coarse_units", "--set 'fluid.refine_min=[1.6,-0.124,0.18]'");
     EXPECT_EQ(run.status, 2) << run.output;
@@ -173,8 +174,23 @@ TEST(StabilityCubes, ARefinedBoxThatLeavesUnitsInCoarseCellsIsRefused) {
               std::string::npos)
         << run.output;
     EXPECT_FALSE(fs::exists(run.out));
-    if (!HasFailure())
+    // A graded z range that misses the troughs of the largest waves (0.40 -
+    // 1.8 Hs = 0.184 m) would put coarse cells at the surface all along the
+    // flume (z graded from the test's 4 cm cells to 8 cm below 0.19 m).
+    const SceneRun surface =
+        run_stability("coarse_surface", "--set 'fluid.refine_min=[1.15,-0.124,0.19]' "
+                                        "--set 'fluid.coarse_cell_size=[0.05,0.0,0.08]'");
+    EXPECT_EQ(surface.status, 2) << surface.output;
+    EXPECT_NE(
+        surface.output.find("key 'fluid.refine_min': the refined box's z range 0.19 .. 0.62 m must hold the "
+                            "free surface"),
+        std::string::npos)
+        << surface.output;
+    EXPECT_FALSE(fs::exists(surface.out));
+    if (!HasFailure()) {
         fs::remove_all(run.dir);
+        fs::remove_all(surface.dir);
+    }
 }
 
 } // namespace

@@ -233,8 +233,9 @@ Foam::fv::armourCoupling::armourCoupling
         << (armour_->times.frozen ? ", frozen (mask only)" : "") << endl;
     if (log && std::size_t(armour_->bodies->names().size()) > maxLoggedBodies)
     {
-        Info<< "    armourCoupling: the log lists each step's loads for up to "
-            << maxLoggedBodies << " bodies (all are in bodies.h5)" << endl;
+        Info<< "    armourCoupling: more than " << maxLoggedBodies
+            << " bodies: no per-step load lines in this log (bodies.h5 holds"
+            << " every body's loads)" << endl;
     }
 }
 
@@ -377,7 +378,8 @@ void Foam::fv::armourCoupling::couple
     }
 
     // A layer of 100 units would write ~18 kB of log a step: 16 GB in a
-    // 1000-wave run. bodies.h5 holds every body's loads.
+    // 1000-wave run at the stability scene's 1.5 ms step. bodies.h5 holds
+    // every body's loads.
     if (log && std::size_t(bodies.names().size()) <= maxLoggedBodies)
     {
         forAll(bodies.names(), k)
