@@ -69,10 +69,6 @@ std::string fraction_text(double v) {
     return buf;
 }
 
-std::string vec_text(const Eigen::Vector3d &v) {
-    return "[" + number_text(v.x()) + ", " + number_text(v.y()) + ", " + number_text(v.z()) + "]";
-}
-
 MeshAxis axis_of(double lo, double hi, int fine_cells, double a, double b, double coarsen) {
     const double h = (hi - lo) / fine_cells;
     // An axis not coarsened is uniform, exactly `fine_cells`; a stretch too
@@ -192,8 +188,8 @@ void check_flume_grading(const Scene &scene, const SceneSetup &setup, const std:
                 throw InputError(scene.file + ": key '" +
                                  ((p.array() < lo.array()).any() ? "fluid.refine_min" : "fluid.refine_max") +
                                  "': body " + std::to_string(i) + " (unit '" + setup.units[b.unit].name +
-                                 "') starts outside the refined box " + vec_text(*f.refine_min) + " .. " +
-                                 vec_text(*f.refine_max) + " m (vertex " + vec_text(p) +
+                                 "') starts outside the refined box " + vector_text(*f.refine_min) + " .. " +
+                                 vector_text(*f.refine_max) + " m (vertex " + vector_text(p) +
                                  " m): the loads need the fine cells; widen the box");
         }
     }

@@ -496,6 +496,21 @@ std::string number_text(double v) {
     return std::string(buf, result.ptr);
 }
 
+// "1" would read back as an integer and "-0" would lose its sign.
+std::string toml_float(double v) {
+    std::string s = number_text(v);
+    if (s.find_first_of(".eEn") == std::string::npos)
+        s += ".0";
+    return s;
+}
+
+std::string vector_text(const Eigen::Ref<const Eigen::VectorXd> &v) {
+    std::string out = "[";
+    for (Eigen::Index i = 0; i < v.size(); ++i)
+        out += (i ? ", " : "") + toml_float(v[i]);
+    return out + "]";
+}
+
 std::string toml_string(const std::string &s) {
     std::string out = "\"";
     for (const char c : s) {

@@ -65,13 +65,6 @@ bool inside(const Eigen::Vector3d &p, const Eigen::Vector3d &lo, const Eigen::Ve
     return (p.array() >= lo.array()).all() && (p.array() <= hi.array()).all();
 }
 
-std::string vec_text(const Eigen::Ref<const Eigen::VectorXd> &v) {
-    std::vector<std::string> parts;
-    for (Eigen::Index i = 0; i < v.size(); ++i)
-        parts.push_back(toml_float(v[i]));
-    return "[" + join(parts, ", ") + "]";
-}
-
 // A single table ([run]) read into the scene itself.
 void read_table(const Table &root, const char *name, const std::vector<Key<Scene>> &keys, Scene &s) {
     const Table t = root.section(name);
@@ -87,8 +80,8 @@ void read_run(const Table &root, Scene &s) {
     run.check(s.time_step <= s.output_interval, "time_step",
               "must be <= run.output_interval = " + number_text(s.output_interval) + " s", s.time_step);
     if (!(s.domain_max.array() > s.domain_min.array()).all())
-        run.fail("domain_max", "must exceed run.domain_min " + vec_text(s.domain_min) +
-                                   " m in every component (got " + vec_text(s.domain_max) + ")");
+        run.fail("domain_max", "must exceed run.domain_min " + vector_text(s.domain_min) +
+                                   " m in every component (got " + vector_text(s.domain_max) + ")");
 }
 
 void read_contact_and_analysis(const Table &root, Scene &s) {
@@ -186,15 +179,15 @@ void read_walls(const Table &root, Scene &s) {
                 t.fail("name", "duplicate wall name " + toml_string(w.name));
         if (w.type == "plane") {
             if (w.normal.norm() < 1e-12)
-                t.fail("normal", "must be a non-zero vector (got " + vec_text(w.normal) + ")");
+                t.fail("normal", "must be a non-zero vector (got " + vector_text(w.normal) + ")");
             w.normal = normalised(w.normal);
         } else if (w.type == "slope") {
             t.check(w.toe_height < w.height, "toe_height",
                     "must be in [0, height) = [0, " + number_text(w.height) + ") m", w.toe_height);
         } else if (w.type == "box") {
             if (!(w.max.array() > w.min.array()).all())
-                t.fail("max", "must exceed min " + vec_text(w.min) + " m in every component (got " +
-                                  vec_text(w.max) + ")");
+                t.fail("max", "must exceed min " + vector_text(w.min) + " m in every component (got " +
+                                  vector_text(w.max) + ")");
         }
         w.material = material_of(t, s.materials);
         s.walls.push_back(w);
@@ -234,8 +227,8 @@ void read_fluid(const Table &root, Scene &s) {
         read_value(t, key_named(keys, "water_box_min"), f);
         read_value(t, key_named(keys, "water_box_max"), f);
         if (!(f.water_box_max.array() > f.water_box_min.array()).all())
-            t.fail("water_box_max", "must exceed fluid.water_box_min " + vec_text(f.water_box_min) +
-                                        " m in every component (got " + vec_text(f.water_box_max) + ")");
+            t.fail("water_box_max", "must exceed fluid.water_box_min " + vector_text(f.water_box_min) +
+                                        " m in every component (got " + vector_text(f.water_box_max) + ")");
     } else {
         t.require("water_level", " (z of the still-water surface, m)");
     }
@@ -278,25 +271,26 @@ void read_fluid(const Table &root, Scene &s) {
         read_value(t, key_named(keys, "coarse_cell_size"), f);
         const Eigen::Vector3d &lo = *f.refine_min, &hi = *f.refine_max;
         if (!(hi.array() > lo.array()).all())
-            t.fail("refine_max", "must exceed fluid.refine_min " + vec_text(lo) +
-                                     " m in every component (got " + vec_text(hi) + ")");
+            t.fail("refine_max", "must exceed fluid.refine_min " + vector_text(lo) +
+                                     " m in every component (got " + vector_text(hi) + ")");
         if ((lo.array() < s.domain_min.array()).any() || (hi.array() > s.domain_max.array()).any())
             t.fail((lo.array() < s.domain_min.array()).any() ? "refine_min" : "refine_max",
-                   "the refined box " + vec_text(lo) + " .. " + vec_text(hi) +
-                       " m must lie inside run.domain_min .. run.domain_max " + vec_text(s.domain_min) +
-                       " .. " + vec_text(s.domain_max) + " m");
+                   "the refined box " + vector_text(lo) + " .. " + vector_text(hi) +
+                       " m must lie inside run.domain_min .. run.domain_max " + vector_text(s.domain_min) +
+                       " .. " + vector_text(s.domain_max) + " m");
         const Eigen::Vector3d fine =
             extent.cwiseQuotient(Eigen::Vector3d(f.cells[0], f.cells[1], f.cells[2]));
         if (((hi - lo).array() < fine.array() * (1.0 - 1e-9)).any())
-            t.fail("refine_max", "the refined box " + vec_text(lo) + " .. " + vec_text(hi) +
-                                     " m must be at least one fine cell " + vec_text(fine) +
+            t.fail("refine_max", "the refined box " + vector_text(lo) + " .. " + vector_text(hi) +
+                                     " m must be at least one fine cell " + vector_text(fine) +
                                      " m across along each axis");
         const Eigen::Vector3d &coarse = f.coarse_cell_size;
         if (!coarse.allFinite() || (coarse.array() < 0.0).any() || (coarse.array() > extent.array()).any() ||
             (coarse.array() <= fine.array()).all())
             t.fail("coarse_cell_size", "must be in [0, the run domain's extent] m along each axis and exceed "
                                        "the fine cell " +
-                                           vec_text(fine) + " m along one (got " + vec_text(coarse) + ")");
+                                           vector_text(fine) + " m along one (got " + vector_text(coarse) +
+                                           ")");
     }
     t.check(f.air_density < f.fluid_density, "air_density",
             "must be in (0, fluid_density = " + number_text(f.fluid_density) + ") kg/m^3", f.air_density);
@@ -397,15 +391,15 @@ std::string unit_of(const Table &t, const Scene &s, const std::string &u) {
 
 // The keys min and max of table t: a box inside the run's domain.
 void check_box(const Table &t, const Eigen::Vector3d &min, const Eigen::Vector3d &max, const Scene &s) {
-    const std::string domain =
-        "run.domain_min " + vec_text(s.domain_min) + " .. run.domain_max " + vec_text(s.domain_max) + " m";
+    const std::string domain = "run.domain_min " + vector_text(s.domain_min) + " .. run.domain_max " +
+                               vector_text(s.domain_max) + " m";
     if (!(max.array() > min.array()).all())
-        t.fail("max",
-               "must exceed min " + vec_text(min) + " m in every component (got " + vec_text(max) + ")");
+        t.fail("max", "must exceed min " + vector_text(min) + " m in every component (got " +
+                          vector_text(max) + ")");
     if (!inside(min, s.domain_min, s.domain_max))
-        t.fail("min", "must lie inside " + domain + " (got " + vec_text(min) + ")");
+        t.fail("min", "must lie inside " + domain + " (got " + vector_text(min) + ")");
     if (!inside(max, s.domain_min, s.domain_max))
-        t.fail("max", "must lie inside " + domain + " (got " + vec_text(max) + ")");
+        t.fail("max", "must lie inside " + domain + " (got " + vector_text(max) + ")");
 }
 
 // [[porous]] after [fluid] and the walls: boxes inside the fluid mesh, or
@@ -470,18 +464,18 @@ void read_porous(const Table &root, Scene &s) {
 }
 
 void read_placements(const Table &root, Scene &s) {
-    const std::string domain =
-        "run.domain_min " + vec_text(s.domain_min) + " .. run.domain_max " + vec_text(s.domain_max) + " m";
+    const std::string domain = "run.domain_min " + vector_text(s.domain_min) + " .. run.domain_max " +
+                               vector_text(s.domain_max) + " m";
     for (const Table &t : root.entries("body")) {
         t.only(names_of(body_keys()));
         SceneBody b;
         read_keys(t, body_keys(), b);
         unit_of(t, s, b.unit);
         if (!inside(b.position, s.domain_min, s.domain_max))
-            t.fail("position", "must lie inside " + domain + " (got " + vec_text(b.position) + ")");
+            t.fail("position", "must lie inside " + domain + " (got " + vector_text(b.position) + ")");
         if (b.orientation.norm() < 1e-12)
             t.fail("orientation",
-                   "must be a non-zero quaternion [w, x, y, z] (got " + vec_text(b.orientation) + ")");
+                   "must be a non-zero quaternion [w, x, y, z] (got " + vector_text(b.orientation) + ")");
         b.orientation = normalised(b.orientation);
         if (b.pivot) {
             if (!engine_style(s.engine).capabilities.pivot) {

@@ -14,13 +14,6 @@ using namespace scene_detail;
 
 namespace {
 
-std::string vector_text(const Eigen::Ref<const Eigen::VectorXd> &v) {
-    std::vector<std::string> parts;
-    for (Eigen::Index i = 0; i < v.size(); ++i)
-        parts.push_back(toml_float(v[i]));
-    return "[" + join(parts, ", ") + "]";
-}
-
 // The TOML text of a key's value; none for an optional left unset.
 template <class S> std::optional<std::string> value_text(const Key<S> &k, const S &obj) {
     const auto flag = [](bool b) { return std::string(b ? "true" : "false"); };

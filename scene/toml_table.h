@@ -22,14 +22,6 @@ namespace armour::scene_detail {
 // in overridden values point at the option rather than a file line.
 inline constexpr std::string_view kSetSource = "--set";
 
-// A TOML float literal: "1" would read back as an integer and "-0" would lose its sign.
-inline std::string toml_float(double v) {
-    std::string s = number_text(v);
-    if (s.find_first_of(".eEn") == std::string::npos)
-        s += ".0";
-    return s;
-}
-
 inline std::string join(const std::vector<std::string> &items, const std::string &sep) {
     std::string out;
     for (std::size_t i = 0; i < items.size(); ++i)
