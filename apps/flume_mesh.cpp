@@ -80,9 +80,8 @@ MeshAxis axis_of(double lo, double hi, int fine_cells, double a, double b, doubl
     if (above == 0)
         b = hi;
     std::vector<Section> sections;
-    if (below > 0)
-        for (const Section &s :
-             outward(a - lo, h, coarsen, below)) // toward lo: reversed, shrinking to the box
+    if (below > 0) // toward lo: reversed, the cells shrinking to the box
+        for (const Section &s : outward(a - lo, h, coarsen, below))
             sections.insert(sections.begin(), {s.length, s.cells, 1.0 / s.ratio});
     // Whole cells no larger than h (a box of exactly `fine_cells` x h: those).
     sections.push_back({b - a, std::max(1, static_cast<int>(std::ceil((b - a) / h * (1.0 - 1e-12)))), 1.0});
