@@ -116,12 +116,6 @@ std::vector<Eigen::Vector3d> posed_vertices(const SceneSetup &setup, const BodyI
     return out;
 }
 
-Eigen::Vector3d cell_size(const Scene &scene) {
-    const SceneFluid &f = *scene.fluid;
-    return (scene.domain_max - scene.domain_min)
-        .cwiseQuotient(Eigen::Vector3d(f.cells[0], f.cells[1], f.cells[2]));
-}
-
 // The first FOAM FATAL message of a log, as one line.
 std::string fatal_line(const std::string &log) {
     const auto at = log.find("FOAM FATAL");
@@ -292,7 +286,7 @@ int cells_along(double length, double h) {
 void geometry_tokens(const Scene &scene, const SceneSetup &setup, const std::string &used,
                      std::map<std::string, std::string> &tokens) {
     const Eigen::Vector3d &lo = scene.domain_min, &hi = scene.domain_max;
-    const Eigen::Vector3d h = cell_size(scene);
+    const Eigen::Vector3d h = fine_cell_size(scene);
     const std::string where = scene.file + ": ";
     for (const auto &w : scene.walls) {
         if (w.type != "slope")
@@ -399,7 +393,7 @@ std::vector<std::string> check_coupled_scene(const Scene &scene, const SceneSetu
                              std::to_string(mesh.axes[0].cells) + " cells (need >= 2 per rank)");
     }
 
-    const Eigen::Vector3d h = cell_size(scene);
+    const Eigen::Vector3d h = fine_cell_size(scene);
     if (!setup.bodies.empty() && h.maxCoeff() > 2.0 * h.minCoeff())
         warnings.push_back("fluid cells are stretched (" + num(h.x()) + " x " + num(h.y()) + " x " +
                            num(h.z()) + " m): the mask ramp follows the largest side");
@@ -558,7 +552,7 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
 
     // The case: template copy with its tokens filled from the scene.
     const fs::path case_dir = folder.claim("case");
-    const Eigen::Vector3d h = cell_size(scene);
+    const Eigen::Vector3d h = fine_cell_size(scene);
     const FlumeMesh mesh = flume_mesh(scene);
     if (scene.checkpoint_interval > 0.0)
         folder.claim("checkpoints"); // the plugin writes them

@@ -136,6 +136,12 @@ double MeshAxis::column_centre(double at) const {
     return 0.5 * (*(upper - 1) + *upper);
 }
 
+Eigen::Vector3d fine_cell_size(const Scene &scene) {
+    const SceneFluid &f = *scene.fluid;
+    return (scene.domain_max - scene.domain_min)
+        .cwiseQuotient(Eigen::Vector3d(f.cells[0], f.cells[1], f.cells[2]));
+}
+
 FlumeMesh flume_mesh(const Scene &scene) {
     const SceneFluid &f = *scene.fluid;
     FlumeMesh mesh;
@@ -143,9 +149,8 @@ FlumeMesh flume_mesh(const Scene &scene) {
     for (int i = 0; i < 3; ++i) {
         const double lo = scene.domain_min[i], hi = scene.domain_max[i];
         const double a = box ? (*f.refine_min)[i] : lo, b = box ? (*f.refine_max)[i] : hi;
-        const double h = (hi - lo) / f.cells[i];
-        mesh.axes[i] =
-            axis_of(lo, hi, f.cells[i], a, b, box ? std::max(1.0, f.coarse_cell_size[i] / h) : 1.0);
+        const double coarsen = box ? std::max(1.0, f.coarse_cell_size[i] / fine_cell_size(scene)[i]) : 1.0;
+        mesh.axes[i] = axis_of(lo, hi, f.cells[i], a, b, coarsen);
         mesh.graded = mesh.graded || mesh.axes[i].grading != "1";
     }
     return mesh;
@@ -160,8 +165,7 @@ void check_flume_grading(const Scene &scene, const SceneSetup &setup, const std:
                          "\" has a fixed block structure; a graded mesh needs fluid.case \"wave_flume\"");
     // A unit resting on a side wall or the slope reaches into it by its contact
     // overlap: up to half a fine cell, as the mesh box's own check allows.
-    const Eigen::Vector3d fine = (scene.domain_max - scene.domain_min)
-                                     .cwiseQuotient(Eigen::Vector3d(f.cells[0], f.cells[1], f.cells[2]));
+    const Eigen::Vector3d fine = fine_cell_size(scene);
     const Eigen::Vector3d lo = *f.refine_min - 0.5 * fine, hi = *f.refine_max + 0.5 * fine;
     // The z grading holds all along the flume: the box's z range is the free
     // surface's band everywhere, so it must hold the waves' crests and troughs.

@@ -54,6 +54,10 @@ struct FlumeMesh {
     long cells() const { return static_cast<long>(axes[0].cells) * axes[1].cells * axes[2].cells; }
 };
 
+// The fine cell along x, y, z (m): run.domain's extent / fluid.cells, the
+// size of every cell of a uniform mesh and of those in a graded one's box.
+Eigen::Vector3d fine_cell_size(const Scene &scene);
+
 // The mesh of a scene's [fluid] (uniform when it has no refine box).
 FlumeMesh flume_mesh(const Scene &scene);
 
