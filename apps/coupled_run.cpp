@@ -10,6 +10,7 @@
 #include "foam_restart.h"
 #include "openfoam_environment.h"
 #include "output_folder.h"
+#include "scene_keys.h"
 #include "stl_io.h"
 #include "wave_case.h"
 
@@ -395,8 +396,8 @@ std::vector<std::string> check_coupled_scene(const Scene &scene, const SceneSetu
 
     const Eigen::Vector3d h = fine_cell_size(scene);
     if (!setup.bodies.empty() && h.maxCoeff() > 2.0 * h.minCoeff())
-        warnings.push_back("fluid cells are stretched (" + num(h.x()) + " x " + num(h.y()) + " x " +
-                           num(h.z()) + " m): the mask ramp follows the largest side");
+        warnings.push_back("fluid cells are stretched (" + figure_text(h.x()) + " x " + figure_text(h.y()) +
+                           " x " + figure_text(h.z()) + " m): the mask ramp follows the largest side");
     // A unit resting on a wall (or on the mesh's bottom face) reaches into it
     // by its contact overlap, or where its exact shape sticks out of its
     // clump (a settled layer): under half a cell the mask cannot tell, so
@@ -422,7 +423,7 @@ std::vector<std::string> check_coupled_scene(const Scene &scene, const SceneSetu
             const double into = exact_wall_penetration(vertices, b.pose.position, w);
             if (into > resolvable)
                 throw InputError(
-                    file + ": " + who + " cuts into wall '" + w.name + "' by " + num(into) +
+                    file + ": " + who + " cuts into wall '" + w.name + "' by " + figure_text(into) +
                     " m at its initial pose (more than half a fluid cell); move it clear of the wall");
             depth = std::max(depth, into);
         }
@@ -432,7 +433,8 @@ std::vector<std::string> check_coupled_scene(const Scene &scene, const SceneSetu
         }
     }
     if (resting_units > 0)
-        warnings.push_back(std::to_string(resting_units) + " unit(s) reach up to " + num(resting_depth) +
+        warnings.push_back(std::to_string(resting_units) + " unit(s) reach up to " +
+                           figure_text(resting_depth) +
                            " m into a wall or through the mesh box (resting contacts; below half a fluid "
                            "cell, the mask does not resolve it)");
     for (std::size_t k = 0; k < setup.units.size(); ++k) {
@@ -487,9 +489,10 @@ std::vector<std::string> check_coupled_scene(const Scene &scene, const SceneSetu
         const double speed = b.velocity.norm() + b.angular_velocity.norm() * reach;
         const double co = speed * f.max_time_step / h.minCoeff();
         if (co > f.max_courant)
-            warnings.push_back(
-                "body " + std::to_string(i) + ": initial speed " + num(speed) + " m/s gives Courant " +
-                num(co) + " > fluid.max_courant at fluid.max_time_step; " + "the first step starts smaller");
+            warnings.push_back("body " + std::to_string(i) + ": initial speed " + figure_text(speed) +
+                               " m/s gives Courant " + figure_text(co) +
+                               " > fluid.max_courant at fluid.max_time_step; " +
+                               "the first step starts smaller");
     }
     // The engine's own step against its contact stability limit: refused here,
     // before any tool runs, as a DEM run refuses it (run.force_time_step lets
@@ -508,10 +511,11 @@ std::vector<std::string> check_coupled_scene(const Scene &scene, const SceneSetu
             throw InputError(file + ": " + e.what());
         }
         if (dt.forced)
-            warnings.push_back("run.time_step " + num(dt.used) + " s exceeds the engine's stability limit " +
-                               num(dt.limit) + " s (run.force_time_step = true): contacts may blow up");
+            warnings.push_back("run.time_step " + figure_text(dt.used) +
+                               " s exceeds the engine's stability limit " + figure_text(dt.limit) +
+                               " s (run.force_time_step = true): contacts may blow up");
         if (dt.used > f.max_time_step)
-            warnings.push_back("engine step " + num(dt.used) + " s exceeds fluid.max_time_step " +
+            warnings.push_back("engine step " + figure_text(dt.used) + " s exceeds fluid.max_time_step " +
                                num(f.max_time_step) + " s: fluid steps shorter than it run no engine step");
     }
     if (const std::string why = analysis_refusal(scene, setup); !why.empty())
@@ -763,7 +767,7 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
         summary["fluid"]["courant_max_seen"] = co;
         summary["fluid"]["interface_courant_max_seen"] = interface_co;
         if (std::max(co, interface_co) > 1.1 * f.max_courant) {
-            const std::string w = "fluid Courant number reached " + num(std::max(co, interface_co)) +
+            const std::string w = "fluid Courant number reached " + figure_text(std::max(co, interface_co)) +
                                   " > fluid.max_courant " + num(f.max_courant) +
                                   " (+10 %): the adjustable step lagged a sudden flow; lower max_time_step";
             summary["warnings"].push_back(w);

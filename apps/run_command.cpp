@@ -10,10 +10,12 @@
 #include "engine_registry.h"
 #include "mesh.h"
 #include "output_folder.h"
+#include "scene_keys.h"
 #include "scene_setup.h"
 #include "stl_io.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -276,6 +278,29 @@ int run_dem(OutputFolder &folder, const Scene &scene, SceneSetup &setup, std::ve
     return 0;
 }
 
+// The settle's friction between the units (fluid.settle_friction): every
+// pair of materials that units are made of gets it as a pair override;
+// a wall of such a material meets the units with it too.
+void set_friction_between_units(EngineSettings &settings, const SceneSetup &setup, double friction) {
+    std::vector<std::string> names;
+    for (const UnitTemplate &u : setup.units) {
+        const std::string &name = settings.materials[static_cast<std::size_t>(u.material)].name;
+        if (std::find(names.begin(), names.end(), name) == names.end())
+            names.push_back(name);
+    }
+    for (std::size_t i = 0; i < names.size(); ++i)
+        for (std::size_t j = i; j < names.size(); ++j) {
+            const auto same = [&](const MaterialPair &p) {
+                return (p.a == names[i] && p.b == names[j]) || (p.a == names[j] && p.b == names[i]);
+            };
+            const auto found = std::find_if(settings.pairs.begin(), settings.pairs.end(), same);
+            if (found != settings.pairs.end())
+                found->friction = friction;
+            else
+                settings.pairs.push_back({names[i], names[j], -1.0, friction, -1.0});
+        }
+}
+
 // Settles a coupled scene's units in the DEM for fluid.settle_time, under
 // the buoyancy of the scene's still water (without it the contacts, loaded
 // by the dry weight, would relax in the first coupled steps as if the water
@@ -292,8 +317,12 @@ Scene settle_before_coupling(const RunRequest &r, OutputFolder &folder, const Sc
     const fs::path settled_file = dir / "scene.settled.toml";
     std::fprintf(stderr,
                  "run: settling %zu units in the DEM under still water (level %g m) for %g s "
-                 "(fluid.settle_time) -> %s\n",
-                 setup.bodies.size(), fluid.water_level, fluid.settle_time, dir.c_str());
+                 "(fluid.settle_time)%s -> %s\n",
+                 setup.bodies.size(), fluid.water_level, fluid.settle_time,
+                 fluid.settle_friction
+                     ? (", friction " + number_text(*fluid.settle_friction) + " between units").c_str()
+                     : "",
+                 dir.c_str());
     std::fflush(nullptr);
     const pid_t pid = ::fork();
     if (pid < 0)
@@ -313,10 +342,13 @@ Scene settle_before_coupling(const RunRequest &r, OutputFolder &folder, const Sc
             water.level = fluid.water_level;
             water.density = fluid.fluid_density;
             water.update_interval = std::min(fluid.max_time_step, dry.output_interval);
+            if (fluid.settle_friction)
+                set_friction_between_units(setup.settings, setup, *fluid.settle_friction);
             run_dem(settle_folder, dry, setup, &states, &water);
 
             Scene settled = scene;
             settled.fluid->settle_time = 0.0;
+            settled.fluid->settle_friction.reset();
             settled.drops.clear();
             settled.patterns.clear();
             settled.bodies.clear();
@@ -340,13 +372,15 @@ Scene settle_before_coupling(const RunRequest &r, OutputFolder &folder, const Sc
                             resolved_scene_toml(settled));
             write_text_file(
                 settle_folder.claim("settled.json"),
-                json{{"settle_time", fluid.settle_time},
-                     {"water_level", water.level},
-                     {"water_density", water.density},
-                     {"max_speed_at_end", speed},
-                     {"max_displacement", displacement},
-                     {"units", states.size()},
-                     {"si_units", {{"speed", "m/s"}, {"lengths", "m"}, {"water_density", "kg/m^3"}}}}
+                json{
+                    {"settle_time", fluid.settle_time},
+                    {"settle_friction", fluid.settle_friction ? json(*fluid.settle_friction) : json(nullptr)},
+                    {"water_level", water.level},
+                    {"water_density", water.density},
+                    {"max_speed_at_end", speed},
+                    {"max_displacement", displacement},
+                    {"units", states.size()},
+                    {"si_units", {{"speed", "m/s"}, {"lengths", "m"}, {"water_density", "kg/m^3"}}}}
                         .dump(2) +
                     "\n");
             status = 0;

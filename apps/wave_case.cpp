@@ -24,13 +24,6 @@ std::string num(double v) {
     return number_text(v);
 }
 
-// A figure in a message: four significant digits.
-std::string shown(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.4g", v);
-    return buf;
-}
-
 double depth_of(const Scene &scene) {
     return scene.fluid->water_level - scene.domain_min.z();
 }
@@ -211,8 +204,8 @@ void add_wave_summary(const Scene &scene, const fs::path &case_dir, OutputFolder
         const double from = end - steady >= 3.0 * period ? steady : front;
         span = std::floor((end - from) / period) * period;
         if (span < 3.0 * period) {
-            warn("waves: the run leaves " + shown(end - front) +
-                 " s after the wave front reaches the gauges (" + shown(front) +
+            warn("waves: the run leaves " + figure_text(end - front) +
+                 " s after the wave front reaches the gauges (" + figure_text(front) +
                  " s): fewer than 3 periods, no analysis");
             summary["waves"] = out;
             return;
@@ -222,15 +215,15 @@ void add_wave_summary(const Scene &scene, const fs::path &case_dir, OutputFolder
         const double repeat = 1.0 / comps.frequency_step;
         out["repeat_period"] = repeat;
         if (end > 2.0 * repeat)
-            warn("waves: the irregular train repeats every " + shown(repeat) +
-                 " s (waves.components x Tp / 2): this " + shown(end) + " s run met the same waves " +
-                 shown(std::floor(end / repeat)) +
+            warn("waves: the irregular train repeats every " + figure_text(repeat) +
+                 " s (waves.components x Tp / 2): this " + figure_text(end) + " s run met the same waves " +
+                 figure_text(std::floor(end / repeat)) +
                  " times, so its wave count N counts repeats; more waves.components (up to 200) lengthen the "
                  "train");
         span = end - steady >= repeat ? repeat : end - std::max(front, std::min(steady, end - repeat));
         if (span < 4.0 * period) {
-            warn("waves: the run leaves " + shown(end - front) +
-                 " s after the wave front reaches the gauges (" + shown(front) +
+            warn("waves: the run leaves " + figure_text(end - front) +
+                 " s after the wave front reaches the gauges (" + figure_text(front) +
                  " s): shorter than 4 Tp, no analysis");
             summary["waves"] = out;
             return;

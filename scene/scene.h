@@ -153,6 +153,10 @@ struct SceneFluid {
     // coupled run starts from the settled poses, written to
     // OUT/settle/scene.settled.toml.
     double settle_time = 0.0;
+    // Coulomb friction between units during the settle only (unset: the
+    // materials' own). A placer seats each unit by hand or crane; a pile
+    // dropped at once locks loose at concrete's 0.6 (docs/stability.md).
+    std::optional<double> settle_friction;
     // Turbulence closure (docs/turbulence.md): laminar, or OpenFOAM's RAS
     // kOmegaSST with k and omega at the start from an intensity of the
     // shallow-water celerity sqrt(g depth) and a length scale.

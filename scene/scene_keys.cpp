@@ -195,6 +195,11 @@ const std::vector<Key<SceneFluid>> &fluid_keys() {
         key("settle_time", &F::settle_time, "s",
             "settle the units in the DEM under the still water this long before coupling (below)")
             .in(Range::at_least(0)),
+        key("settle_friction", &F::settle_friction, "",
+            "Coulomb friction between units during the settle only (unit-wall contacts keep theirs); "
+            "lower packs a random layer denser (below)")
+            .in(Range::at_least(0))
+            .defaults("the materials' own"),
         key("turbulence", &F::turbulence, "",
             "laminar, or OpenFOAM's RAS kOmegaSST with wall functions (over-damps waves in propagation: "
             "turbulence.md)")
@@ -494,6 +499,12 @@ std::string number_text(double v) {
     char buf[64];
     const auto result = std::to_chars(buf, buf + sizeof buf, v);
     return std::string(buf, result.ptr);
+}
+
+std::string figure_text(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.4g", v);
+    return buf;
 }
 
 // "1" would read back as an integer and "-0" would lose its sign.

@@ -172,6 +172,7 @@ template <class... F> overloaded(F...) -> overloaded<F...>;
 
 // Text helpers shared by the reader and the writer.
 std::string number_text(double v); // shortest text reading back as exactly v
+std::string figure_text(double v); // a computed figure in a message: 4 significant digits
 std::string toml_float(double v);  // a TOML float literal: "1.0", never "1" (an integer)
 std::string vector_text(const Eigen::Ref<const Eigen::VectorXd> &v); // "[1.0, -0.5, 2.0]"
 std::string toml_string(const std::string &s);
