@@ -4,6 +4,7 @@
 #include "bodies_file.h"
 #include "body_recorder.h"
 #include "clump_io.h"
+#include "collider.h"
 #include "engine_registry.h"
 #include "fluid_models.h"
 #include "flume_mesh.h"
@@ -81,33 +82,6 @@ bool on_path(const std::string &tool) {
         if (!dir.empty() && ::access((fs::path(dir) / tool).c_str(), X_OK) == 0)
             return true;
     return false;
-}
-
-// Deepest point of a posed exact shape behind a wall (m, > 0 = inside the
-// wall): each vertex against its nearest wall triangle, and behind it when
-// it lies on the other side of that triangle's plane than the body's centre
-// (so a wall read from an STL of either winding works). build_scene checks
-// the clump; the fluid sees the exact shape, which a clump may not cover.
-double exact_wall_penetration(const std::vector<Eigen::Vector3d> &vertices, const Eigen::Vector3d &centre,
-                              const Wall &wall) {
-    double deepest = -HUGE_VAL;
-    const auto &v = wall.surface.vertices;
-    for (const auto &p : vertices) {
-        double best = HUGE_VAL, signed_distance = 0.0;
-        for (const auto &t : wall.surface.triangles) {
-            const Eigen::Vector3d q = closest_point_on_triangle(p, v[t[0]], v[t[1]], v[t[2]]);
-            const double d = (p - q).norm();
-            if (d < best) {
-                best = d;
-                Eigen::Vector3d n = (v[t[1]] - v[t[0]]).cross(v[t[2]] - v[t[0]]).normalized();
-                if ((centre - q).dot(n) < 0.0)
-                    n = -n; // the body's side
-                signed_distance = (p - q).dot(n);
-            }
-        }
-        deepest = std::max(deepest, -signed_distance);
-    }
-    return deepest;
 }
 
 std::vector<Eigen::Vector3d> posed_vertices(const SceneSetup &setup, const BodyInit &b) {
@@ -403,6 +377,8 @@ std::vector<std::string> check_coupled_scene(const Scene &scene, const SceneSetu
     // clump (a settled layer): under half a cell the mask cannot tell, so
     // that is one warning for all such units; deeper is a placement error.
     const double resolvable = 0.5 * h.minCoeff();
+    // Units placed for a settle may stand above the mesh (scene_setup.h).
+    const Eigen::Vector3d top_room(0.0, 0.0, f.settle_time > 0.0 ? kSettleHeadroom * largest_Dn(setup) : 0.0);
     double resting_depth = 0.0;
     int resting_units = 0;
     for (std::size_t i = 0; i < setup.bodies.size(); ++i) {
@@ -412,7 +388,7 @@ std::vector<std::string> check_coupled_scene(const Scene &scene, const SceneSetu
         double depth = 0.0;
         for (const auto &v : vertices) {
             const double beyond =
-                std::max((scene.domain_min - v).maxCoeff(), (v - scene.domain_max).maxCoeff());
+                std::max((scene.domain_min - v).maxCoeff(), (v - scene.domain_max - top_room).maxCoeff());
             if (beyond > resolvable)
                 throw InputError(file + ": " + who +
                                  " reaches outside the fluid mesh box run.domain_min .. " +
@@ -420,7 +396,10 @@ std::vector<std::string> check_coupled_scene(const Scene &scene, const SceneSetu
             depth = std::max(depth, beyond);
         }
         for (const auto &w : setup.walls) {
-            const double into = exact_wall_penetration(vertices, b.pose.position, w);
+            // The exact shape, which the fluid sees (build_scene checked the clump).
+            double into = -HUGE_VAL;
+            for (const auto &v : vertices)
+                into = std::max(into, depth_behind_wall(v, w, b.pose.position));
             if (into > resolvable)
                 throw InputError(
                     file + ": " + who + " cuts into wall '" + w.name + "' by " + figure_text(into) +

@@ -24,6 +24,15 @@ std::string num(double v) {
     return number_text(v);
 }
 
+// How much of the run the gauges saw waves in (a short run ends before the front comes).
+std::string after_front(double end, double front) {
+    if (end <= front)
+        return "waves: the run ends at " + figure_text(end) +
+               " s, before the wave front reaches the gauges (" + figure_text(front) + " s)";
+    return "waves: the run leaves " + figure_text(end - front) +
+           " s after the wave front reaches the gauges (" + figure_text(front) + " s)";
+}
+
 double depth_of(const Scene &scene) {
     return scene.fluid->water_level - scene.domain_min.z();
 }
@@ -204,9 +213,7 @@ void add_wave_summary(const Scene &scene, const fs::path &case_dir, OutputFolder
         const double from = end - steady >= 3.0 * period ? steady : front;
         span = std::floor((end - from) / period) * period;
         if (span < 3.0 * period) {
-            warn("waves: the run leaves " + figure_text(end - front) +
-                 " s after the wave front reaches the gauges (" + figure_text(front) +
-                 " s): fewer than 3 periods, no analysis");
+            warn(after_front(end, front) + ": fewer than 3 periods, no analysis");
             summary["waves"] = out;
             return;
         }
@@ -222,9 +229,7 @@ void add_wave_summary(const Scene &scene, const fs::path &case_dir, OutputFolder
                  "train");
         span = end - steady >= repeat ? repeat : end - std::max(front, std::min(steady, end - repeat));
         if (span < 4.0 * period) {
-            warn("waves: the run leaves " + figure_text(end - front) +
-                 " s after the wave front reaches the gauges (" + figure_text(front) +
-                 " s): shorter than 4 Tp, no analysis");
+            warn(after_front(end, front) + ": shorter than 4 Tp, no analysis");
             summary["waves"] = out;
             return;
         }

@@ -99,6 +99,7 @@ struct Wall {
     std::string name;
     TriangleMesh surface; // m, world frame; normals towards the bodies' side
     int material = 0;
+    bool oriented = true; // false: the normals may face either way (an STL file's)
 };
 
 struct EngineSettings {

@@ -30,38 +30,48 @@ std::pair<double, int> wall_penetration(const BodyInit &b, const Clump &clump,
     return {deepest, which};
 }
 
-// Deepest cut of a posed exact shape into any wall (m) and the wall's index:
-// each surface point against its nearest wall triangle, behind it when on
-// the other side of that triangle than the body's centre.
+// Deepest cut of a posed exact shape into any wall (m) and the wall's index.
 std::pair<double, int> exact_wall_penetration(const BodyInit &b, const Collider &c,
                                               const std::vector<Wall> &walls) {
     double deepest = -HUGE_VAL;
     int which = -1;
-    for (std::size_t w = 0; w < walls.size(); ++w) {
-        const auto &v = walls[w].surface.vertices;
+    for (std::size_t w = 0; w < walls.size(); ++w)
         for (const Eigen::Vector3d &local : c.points) {
-            const Eigen::Vector3d p = b.pose.position + b.pose.orientation * local;
-            double nearest = HUGE_VAL, depth = 0.0;
-            for (const auto &t : walls[w].surface.triangles) {
-                const Eigen::Vector3d q = closest_point_on_triangle(p, v[t[0]], v[t[1]], v[t[2]]);
-                if ((p - q).norm() >= nearest)
-                    continue;
-                nearest = (p - q).norm();
-                Eigen::Vector3d n = (v[t[1]] - v[t[0]]).cross(v[t[2]] - v[t[0]]).normalized();
-                if ((b.pose.position - q).dot(n) < 0.0)
-                    n = -n; // the body's side
-                depth = -(p - q).dot(n);
-            }
+            const double depth =
+                depth_behind_wall(b.pose.position + b.pose.orientation * local, walls[w], b.pose.position);
             if (depth > deepest) {
                 deepest = depth;
                 which = static_cast<int>(w);
             }
         }
-    }
     return {deepest, which};
 }
 
 } // namespace
+
+double depth_behind_wall(const Eigen::Vector3d &p, const Wall &w, const Eigen::Vector3d &centre) {
+    const auto &v = w.surface.vertices;
+    double nearest = HUGE_VAL;
+    Eigen::Vector3d q = p, normal = Eigen::Vector3d::Zero();
+    for (const auto &t : w.surface.triangles) {
+        const Eigen::Vector3d on = closest_point_on_triangle(p, v[t[0]], v[t[1]], v[t[2]]);
+        const double d = (p - on).norm();
+        if (d > nearest + 1e-12)
+            continue;
+        Eigen::Vector3d n = (v[t[1]] - v[t[0]]).cross(v[t[2]] - v[t[0]]).normalized();
+        if (!w.oriented && (centre - on).dot(n) < 0.0)
+            n = -n;
+        if (d < nearest - 1e-12)
+            normal.setZero(); // a nearer triangle: the earlier ties do not count
+        nearest = std::min(nearest, d);
+        q = on;
+        normal += n;
+    }
+    if (nearest == HUGE_VAL)
+        return -HUGE_VAL;
+    // The distance, signed by the summed normals (a pseudo-normal at an edge).
+    return (p - q).dot(normal) < 0.0 ? nearest : -nearest;
+}
 
 Collider make_collider(const UnitTemplate &unit, ShapeModel model, double Dn) {
     Collider c;

@@ -31,6 +31,14 @@ Collider make_collider(const UnitTemplate &unit, ShapeModel model, double Dn);
 // m: how deep point p (unit frame) lies inside the collider's parts (<= 0: outside).
 double depth_inside(const Collider &c, const Eigen::Vector3d &p);
 
+// m: how far world point p lies behind wall w's surface (<= 0: on the
+// bodies' side). The nearest triangles decide, their normals summed where
+// several are nearest (the wall's edges and corners: a point above a step's
+// edge lies behind the step face's plane, and outside the step). Walls the
+// scene builds face the bodies (Wall); an STL wall's triangles may face
+// either way, so each is turned towards `centre` (the body's centre).
+double depth_behind_wall(const Eigen::Vector3d &p, const Wall &w, const Eigen::Vector3d &centre);
+
 // The deepest cut of posed body b into any wall, as its engine collides it
 // (m, <= 0 when clear), and the wall's index.
 std::pair<double, int> body_wall_penetration(const BodyInit &b, const UnitTemplate &unit, const Collider &c,

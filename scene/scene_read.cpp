@@ -240,8 +240,6 @@ void read_fluid(const Table &root, Scene &s) {
             "must lie inside run.domain_min.z .. run.domain_max.z = (" + number_text(s.domain_min.z()) +
                 ", " + number_text(s.domain_max.z()) + ") m",
             f.water_level);
-    if (f.settle_friction && f.settle_time <= 0.0)
-        t.fail("settle_friction", "applies to the settle only: set fluid.settle_time > 0 too");
     t.check(f.wave_height == 0 || f.wave_height < f.water_level - s.domain_min.z(), "wave_height",
             "must be in [0, the still-water depth water_level - run.domain_min.z) m", f.wave_height);
     if (t.has("cells") == t.has("cell_size"))

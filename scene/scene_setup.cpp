@@ -183,6 +183,13 @@ TriangleMesh box_wall(const Eigen::Vector3d &a, const Eigen::Vector3d &b) {
     return m;
 }
 
+double largest_Dn(const SceneSetup &setup) {
+    double largest = 0.0;
+    for (const double Dn : setup.unit_Dn)
+        largest = std::max(largest, Dn);
+    return largest;
+}
+
 SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool progress) {
     SceneSetup setup;
     EngineSettings &s = setup.settings;
@@ -230,6 +237,14 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
     auto unit_index = [&](const std::string &name) {
         return static_cast<int>(std::find(unit_names.begin(), unit_names.end(), name) - unit_names.begin());
     };
+    const double largest = largest_Dn(setup);
+    // Units placed for a settle (fluid.settle_time) may stand up to
+    // kSettleHeadroom Dn above the domain's top: a loose pile (random
+    // placement) stands higher than the layer it settles into, and the
+    // settle is DEM alone. The settled scene is held to the domain itself.
+    const bool settling = scene.fluid && scene.fluid->settle_time > 0.0;
+    const Eigen::Vector3d placement_max =
+        scene.domain_max + Eigen::Vector3d(0.0, 0.0, settling ? kSettleHeadroom * largest : 0.0);
 
     for (std::size_t k = 0; k < scene.walls.size(); ++k) {
         const SceneWall &w = scene.walls[k];
@@ -239,11 +254,13 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
         if (w.type == "plane")
             wall.surface = plane_wall(w.point, w.normal, w.size);
         else if (w.type == "slope")
-            wall.surface = slope_wall(w, scene.domain_min, scene.domain_max);
+            wall.surface = slope_wall(w, scene.domain_min, placement_max);
         else if (w.type == "box")
             wall.surface = box_wall(w.min, w.max);
-        else
+        else {
             wall.surface = read_stl(w.file);
+            wall.oriented = false;
+        }
         setup.walls.push_back(std::move(wall));
     }
 
@@ -277,7 +294,7 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
                 (d.max - d.min).cwiseProduct(Eigen::Vector3d(uniform(rng), uniform(rng), uniform(rng)));
             init.pose.orientation = random_orientation(rng);
             bool free = ((init.pose.position.array() - R) > scene.domain_min.array()).all() &&
-                        ((init.pose.position.array() + R) < scene.domain_max.array()).all();
+                        ((init.pose.position.array() + R) < placement_max.array()).all();
             for (const auto &other : setup.bodies)
                 free = free &&
                        (other.pose.position - init.pose.position).norm() > R + collided_radius(other.unit);
@@ -363,7 +380,7 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
             grid.spacing = spacing;
             grid.size = 2.0 * half;
             grid.domain_min = scene.domain_min;
-            grid.domain_max = scene.domain_max;
+            grid.domain_max = placement_max;
             for (const BodyInit &b :
                  random_pattern(p, grid, unit, setup.units[unit], colliders[unit], reach[unit], Dn,
                                 setup.walls, scene.file + ": key '" + key))
@@ -383,15 +400,20 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
         }
     }
 
-    // The engines' own domain is a little larger than the scene's: a unit
-    // resting on a wall laid on the domain's face (a floor at domain_min.z)
-    // reaches through that face by its contact overlap, which the engines
-    // would otherwise refuse (poses from a settled run, fluid.settle_time).
-    double largest = 0.0;
-    for (const double Dn : setup.unit_Dn)
-        largest = std::max(largest, Dn);
-    s.domain_min = scene.domain_min - Eigen::Vector3d::Constant(0.02 * largest);
-    s.domain_max = scene.domain_max + Eigen::Vector3d::Constant(0.02 * largest);
+    // A unit resting on a wall laid on the domain's face (a side wall at
+    // domain_min.y) reaches through that face: by its contact overlap, and
+    // under a layer's load a clump's smallest spheres pass the soft wall.
+    // Cubes placed at random in scenes/stability_cubes.toml put their exact
+    // corners 1.8-3.2 mm through its side walls (as deep as into the slope)
+    // and their clumps' 0.4 mm corner spheres, which stand 1.5 mm out of the
+    // cube on each axis, 4.5-4.7 mm (0.12 Dn). Units may start up to 0.25 Dn
+    // beyond the faces (poses from a settled run, fluid.settle_time); the
+    // engines' own domain reaches 0.5 Dn beyond them, as LIGGGHTS drops a
+    // sphere outside its box with its whole unit.
+    const Eigen::Vector3d start_min = scene.domain_min - Eigen::Vector3d::Constant(0.25 * largest),
+                          start_max = placement_max + Eigen::Vector3d::Constant(0.25 * largest);
+    s.domain_min = scene.domain_min - Eigen::Vector3d::Constant(0.5 * largest);
+    s.domain_max = placement_max + Eigen::Vector3d::Constant(0.5 * largest);
 
     // A resting contact overlaps a little: a Hertz contact under a unit's own
     // weight by ~0.2 % of the sphere radius (E = 5e7 Pa, 0.06 m concrete
@@ -399,7 +421,7 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
     // a settled run (fluid.settle_time) carry such overlaps; up to 5 % of the
     // smaller radius is a contact, not a mistake (at 5 % the softened Hertz
     // contact pushes back with ~10 unit weights: a start that is not wrong).
-    // Against the domain's faces the engines' padded domain (above) counts.
+    // Against the domain's faces the 0.25 Dn above counts.
     // A clump's smallest spheres (a cube's corners: 0.01 a) sink deeper than
     // 5 % of their radius under a settled layer's load (0.05-0.19 mm on
     // 0.4 mm corners, scenes/stability_cubes.toml): there the contact is the
@@ -416,8 +438,8 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
         const BodyInit &b = setup.bodies[i];
         for (const auto &sph : setup.units[b.unit].clump) {
             const Eigen::Vector3d c = b.pose.position + b.pose.orientation * sph.center;
-            if (((c.array() - sph.radius) < s.domain_min.array()).any() ||
-                ((c.array() + sph.radius) > s.domain_max.array()).any()) {
+            if (((c.array() - sph.radius) < start_min.array()).any() ||
+                ((c.array() + sph.radius) > start_max.array()).any()) {
                 throw InputError(scene.file + ": body " + std::to_string(i) + " (unit '" +
                                  setup.units[b.unit].name + "') reaches outside run.domain_min/domain_max");
             }

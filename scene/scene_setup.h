@@ -19,6 +19,13 @@ struct SceneSetup {
     std::vector<int> unit_spheres;
 };
 
+// Dn: before a settle (fluid.settle_time > 0) placed units may stand this far
+// above run.domain_max.z (the settle's DEM domain and side walls reach up to
+// hold them); the settled scene is held to run.domain itself.
+constexpr double kSettleHeadroom = 5.0;
+
+double largest_Dn(const SceneSetup &setup); // m, over the unit templates (0 without units)
+
 // Builds (or reads from `cache_dir`) every clump, makes the walls and places
 // the bodies. Throws InputError naming the scene key for anything that cannot
 // run: overlapping bodies (named in pairs), bodies outside the domain, a drop

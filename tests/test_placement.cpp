@@ -4,6 +4,7 @@
 // Each pose is reproducible from its seed, clear of every other unit and of
 // every wall as the engine collides it, and turned at random. The settled
 // layer's packing and porosity are tested in test_stability.cpp.
+#include "collider.h"
 #include "mesh.h"
 #include "scene.h"
 #include "scene_setup.h"
@@ -25,8 +26,8 @@ constexpr double kDn = 0.04;   // m, the scene's cube
 constexpr double kGap = 0.002; // m, the scene's pattern.0.gap
 constexpr int kUnits = 5 * 9;  // 5 rows of 5 + 4: the CI-sized scene of test_stability
 
-// The shipped scene with 5 rows instead of 11 (the 11 rows' random pile
-// does not fit under the crest: docs/stability.md).
+// The shipped scene (placed at random) with 5 rows instead of 11: the
+// CI-sized layer of test_stability.
 armour::Scene stability_scene(std::vector<std::string> overrides) {
     overrides.insert(overrides.begin(), "pattern.0.rows=5");
     return armour::load_scene(std::string(ARMOUR_SOURCE_DIR) + "/scenes/stability_cubes.toml", overrides);
@@ -157,7 +158,8 @@ TEST(RandomPlacement, OrientationsSpreadAsUniformRotations) {
         EXPECT_GT(sd, 0.6 * uniform_sd) << seed;
         EXPECT_LT(sd, 1.4 * uniform_sd) << seed;
     }
-    const armour::SceneSetup grid = armour::build_scene(stability_scene({}), ARMOUR_TEST_CACHE, false);
+    const armour::SceneSetup grid =
+        armour::build_scene(stability_scene({"pattern.0.placement=\"grid\""}), ARMOUR_TEST_CACHE, false);
     for (const auto &b : grid.bodies)
         EXPECT_LT(tilt(b.pose.orientation, frame.normal), 1e-9);
 }
@@ -167,7 +169,9 @@ TEST(RandomPlacement, OrientationsSpreadAsUniformRotations) {
 // across in any orientation): refused naming the key, with the remedy.
 TEST(RandomPlacement, ASlotNoTurnedUnitFitsIsRefusedNamingTheKey) {
     const std::vector<std::string> narrow = {"wall.0.width=0.0425", "pattern.0.columns=1"};
-    EXPECT_NO_THROW(armour::build_scene(stability_scene(narrow), ARMOUR_TEST_CACHE, false));
+    std::vector<std::string> grid = narrow;
+    grid.push_back("pattern.0.placement=\"grid\"");
+    EXPECT_NO_THROW(armour::build_scene(stability_scene(grid), ARMOUR_TEST_CACHE, false));
     try {
         random_setup(1, narrow);
         FAIL() << "a turned cube was placed in a slope 1.06 Dn wide";
@@ -193,3 +197,93 @@ TEST(RandomPlacement, ExactShapesAreKeptApartToo) {
             lowest = std::min(lowest, frame.local(b.pose.position + b.pose.orientation * v).z());
     EXPECT_GE(lowest, kGap - 1e-9);
 }
+
+namespace {
+
+// depth_behind_wall (collider.h), which checks a unit's exact shape against
+// the walls before a coupled run: the shipped stability scene's slope wall,
+// its 0.04 m toe step at x = 1.40 m (top z = 0.24 m) and its 1:1.5 face.
+// A cube settled at the toe leans over the step's edge with its centre below
+// the step's top: a corner above the edge and seaward of the step's face is
+// outside the wall, though behind the face's plane (the nearest-triangle
+// rule with the normal turned to the centre called it 7 mm inside, and
+// refused the settled layer at the scene's 1 cm cells).
+TEST(WallDepth, AStepsEdgeIsOutsideAboveAndInsideBelow) {
+    armour::SceneWall slope;
+    slope.type = "slope";
+    slope.toe_x = 1.40;
+    slope.floor_z = 0.20;
+    slope.cot = 1.5;
+    slope.height = 0.34;
+    slope.width = 0.248;
+    slope.toe_height = 0.04;
+    armour::Wall wall;
+    wall.surface = armour::slope_wall(slope, {0.0, -0.124, 0.0}, {2.0, 0.124, 0.62});
+    const Eigen::Vector3d centre(1.42, 0.013, 0.222); // below the step's top
+    // 7 mm seaward of the step's face, 10 mm above its top: outside.
+    EXPECT_NEAR(armour::depth_behind_wall({1.393, 0.013, 0.25}, wall, centre), -0.01, 1e-9);
+    // 3 mm landward of the face, 5 mm above the top: nearest to the edge
+    // itself, both faces' nearest point; outside by the distance to it.
+    EXPECT_NEAR(armour::depth_behind_wall({1.403, 0.0, 0.245}, wall, centre), -std::hypot(0.003, 0.005),
+                1e-9);
+    // Inside the step: 3 mm behind its face, 10 mm under its top.
+    EXPECT_NEAR(armour::depth_behind_wall({1.397, 0.0, 0.23}, wall, centre), 0.003, 1e-9);
+    // On the slope: 5 mm in front of the face, and 2 mm into it.
+    const Eigen::Vector3d normal = Eigen::Vector3d(-1.0, 0.0, 1.5).normalized();
+    const Eigen::Vector3d on_face(1.40 + 1.5 * 0.1, 0.05, 0.30);
+    EXPECT_NEAR(armour::depth_behind_wall(on_face + 0.005 * normal, wall, centre), -0.005, 1e-9);
+    EXPECT_NEAR(armour::depth_behind_wall(on_face - 0.002 * normal, wall, centre), 0.002, 1e-9);
+    // A side wall, 1 mm through it.
+    EXPECT_NEAR(armour::depth_behind_wall({1.6, 0.125, 0.45}, wall, centre), 0.001, 1e-9);
+
+    // The same wall wound the other way, as an STL file may be: turned to the
+    // body's centre, triangle by triangle; in front of the face and into it.
+    armour::Wall unoriented = wall;
+    unoriented.oriented = false;
+    for (auto &t : unoriented.surface.triangles)
+        std::swap(t[1], t[2]);
+    const Eigen::Vector3d above_face = on_face + 0.03 * normal;
+    EXPECT_NEAR(armour::depth_behind_wall(on_face + 0.005 * normal, unoriented, above_face), -0.005, 1e-9);
+    EXPECT_NEAR(armour::depth_behind_wall(on_face - 0.002 * normal, unoriented, above_face), 0.002, 1e-9);
+}
+
+} // namespace
+
+namespace {
+
+// The shipped scene's 11 rows placed at random stand as a loose pile higher
+// than the layer they settle into: under the crest above the flume's top
+// (0.62 m). Placed for a settle they may, up to kSettleHeadroom Dn above it,
+// and the settle's engine domain and side walls reach up to hold them; the
+// same pile without a settle is refused naming the key.
+TEST(RandomPlacement, TheFullPileStandsAboveTheFlumeOnlyForASettle) {
+    const armour::Scene scene =
+        armour::load_scene(std::string(ARMOUR_SOURCE_DIR) + "/scenes/stability_cubes.toml", {});
+    const armour::SceneSetup setup = armour::build_scene(scene, ARMOUR_TEST_CACHE, false);
+    ASSERT_EQ(setup.bodies.size(), 99u);
+    double top = -HUGE_VAL; // m, the pile's highest sphere
+    for (const auto &b : setup.bodies)
+        for (const auto &s : setup.units[b.unit].clump)
+            top = std::max(top, (b.pose.position + b.pose.orientation * s.center).z() + s.radius);
+    std::printf("the pile's top: %.4f m (flume top %.2f m)\n", top, scene.domain_max.z());
+    EXPECT_GT(top, scene.domain_max.z());
+    EXPECT_LE(top, scene.domain_max.z() + armour::kSettleHeadroom * kDn);
+    EXPECT_GE(setup.settings.domain_max.z(), top);
+    double walls_top = -HUGE_VAL;
+    for (const auto &v : setup.walls[0].surface.vertices) // the slope, its side walls
+        walls_top = std::max(walls_top, v.z());
+    EXPECT_GE(walls_top, top);
+
+    const armour::Scene unsettled = armour::load_scene(
+        std::string(ARMOUR_SOURCE_DIR) + "/scenes/stability_cubes.toml", {"fluid.settle_time=0"});
+    try {
+        armour::build_scene(unsettled, ARMOUR_TEST_CACHE, false);
+        FAIL() << "a pile above the flume's top was placed without a settle";
+    } catch (const armour::InputError &e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("key 'pattern.0.placement'"), std::string::npos) << what;
+        EXPECT_NE(what.find("leaves run.domain_min/domain_max"), std::string::npos) << what;
+    }
+}
+
+} // namespace

@@ -833,9 +833,6 @@ TEST_F(SceneFile, FluidErrorsNameLineAndKey) {
                  ">= 0 s");
     expect_error(at("water_level = 1\ncells = [4, 4, 4]\nsettle_time = 1\nsettle_friction = -0.1\n"), 18,
                  "fluid.settle_friction", ">= 0");
-    // The settle's friction without a settle would silently do nothing.
-    expect_error(at("water_level = 1\ncells = [4, 4, 4]\nsettle_friction = 0.1\n"), 17,
-                 "fluid.settle_friction", "set fluid.settle_time > 0 too");
     // Fluid analyses need the fluid.
     const std::string p = write(std::string(kMinimal) + "[analysis]\nkind = \"float\"\n");
     expect_error(p, 15, "analysis.kind", "needs a [fluid] table");
