@@ -351,6 +351,11 @@ std::vector<std::string> check_coupled_scene(const Scene &scene, const SceneSetu
         wave_tokens(scene, template_text(tmpl), tokens);
     }
     check_flume_grading(scene, setup, template_text(tmpl));
+    if (template_text(tmpl).find("@ARMOUR_WAVES@") != std::string::npos &&
+        !fs::is_regular_file(waves_library(plugin_path())))
+        throw InputError("fluid.case \"" + f.case_name + "\" needs the wave library " +
+                         waves_library(plugin_path()) +
+                         ": build the target armourWaves (or set ARMOUR_WAVES_LIB)");
     const FlumeMesh mesh = flume_mesh(scene);
     for (const char *tool : {"blockMesh", "setFields", "interFoam"})
         if (!on_path(tool))
@@ -378,7 +383,7 @@ std::vector<std::string> check_coupled_scene(const Scene &scene, const SceneSetu
     // that is one warning for all such units; deeper is a placement error.
     const double resolvable = 0.5 * h.minCoeff();
     // Units placed for a settle may stand above the mesh (scene_setup.h).
-    const Eigen::Vector3d top_room(0.0, 0.0, f.settle_time > 0.0 ? kSettleHeadroom * largest_Dn(setup) : 0.0);
+    const Eigen::Vector3d top_room(0.0, 0.0, settle_headroom(scene, setup));
     double resting_depth = 0.0;
     int resting_units = 0;
     for (std::size_t i = 0; i < setup.bodies.size(); ++i) {
@@ -596,11 +601,7 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
         geometry_tokens(scene, setup, used, tokens);
         wave_tokens(scene, used, tokens);
         if (used.find("@ARMOUR_WAVES@") != std::string::npos) {
-            const std::string waves = waves_library(plugin);
-            if (!fs::is_regular_file(waves))
-                throw InputError("fluid.case \"" + f.case_name + "\" needs the wave library " + waves +
-                                 ": build the target armourWaves (or set ARMOUR_WAVES_LIB)");
-            tokens["@ARMOUR_WAVES@"] = waves;
+            tokens["@ARMOUR_WAVES@"] = waves_library(plugin); // checked by check_coupled_scene
             if (f.wave_height <= 0.0 && !makes_wave_train(scene))
                 throw InputError(scene.file + ": key 'fluid.wave_height': fluid.case \"" + f.case_name +
                                  "\" makes a solitary wave: give its height (> 0 m)");

@@ -169,8 +169,7 @@ void check_flume_grading(const Scene &scene, const SceneSetup &setup, const std:
     // Units placed for a settle may stand above it (scene_setup.h).
     const Eigen::Vector3d lo = *f.refine_min - 0.5 * fine,
                           hi = *f.refine_max + 0.5 * fine +
-                               Eigen::Vector3d(
-                                   0.0, 0.0, f.settle_time > 0.0 ? kSettleHeadroom * largest_Dn(setup) : 0.0);
+                               Eigen::Vector3d(0.0, 0.0, settle_headroom(scene, setup));
     // The z grading holds all along the flume: the box's z range is the free
     // surface's band everywhere, so it must hold the waves' crests and troughs.
     double height = f.wave_height;

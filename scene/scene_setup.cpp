@@ -183,11 +183,13 @@ TriangleMesh box_wall(const Eigen::Vector3d &a, const Eigen::Vector3d &b) {
     return m;
 }
 
-double largest_Dn(const SceneSetup &setup) {
+double settle_headroom(const Scene &scene, const SceneSetup &setup) {
+    if (!scene.fluid || scene.fluid->settle_time <= 0.0)
+        return 0.0;
     double largest = 0.0;
     for (const double Dn : setup.unit_Dn)
         largest = std::max(largest, Dn);
-    return largest;
+    return kSettleHeadroom * largest;
 }
 
 SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool progress) {
@@ -237,14 +239,13 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
     auto unit_index = [&](const std::string &name) {
         return static_cast<int>(std::find(unit_names.begin(), unit_names.end(), name) - unit_names.begin());
     };
-    const double largest = largest_Dn(setup);
-    // Units placed for a settle (fluid.settle_time) may stand up to
-    // kSettleHeadroom Dn above the domain's top: a loose pile (random
-    // placement) stands higher than the layer it settles into, and the
-    // settle is DEM alone. The settled scene is held to the domain itself.
-    const bool settling = scene.fluid && scene.fluid->settle_time > 0.0;
+    double largest = 0.0;
+    for (const double Dn : setup.unit_Dn)
+        largest = std::max(largest, Dn);
+    // A loose pile (random placement) stands higher than the layer it
+    // settles into, and the settle is DEM alone.
     const Eigen::Vector3d placement_max =
-        scene.domain_max + Eigen::Vector3d(0.0, 0.0, settling ? kSettleHeadroom * largest : 0.0);
+        scene.domain_max + Eigen::Vector3d(0.0, 0.0, settle_headroom(scene, setup));
 
     for (std::size_t k = 0; k < scene.walls.size(); ++k) {
         const SceneWall &w = scene.walls[k];

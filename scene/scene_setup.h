@@ -24,7 +24,9 @@ struct SceneSetup {
 // hold them); the settled scene is held to run.domain itself.
 constexpr double kSettleHeadroom = 5.0;
 
-double largest_Dn(const SceneSetup &setup); // m, over the unit templates (0 without units)
+// m: how far above run.domain_max.z the scene's placed units may stand:
+// kSettleHeadroom x the largest Dn before a settle, else 0.
+double settle_headroom(const Scene &scene, const SceneSetup &setup);
 
 // Builds (or reads from `cache_dir`) every clump, makes the walls and places
 // the bodies. Throws InputError naming the scene key for anything that cannot

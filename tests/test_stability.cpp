@@ -169,6 +169,21 @@ TEST(StabilityCubes, StillWaterLeavesTheSettledLayerInPlace) {
 
 namespace {
 
+// A missing wave library is refused before the settle runs (a minute of
+// DEM at the scene's size), naming it, with nothing written.
+TEST(StabilityCubes, AMissingWaveLibraryIsRefusedBeforeTheSettle) {
+    ::setenv("ARMOUR_WAVES_LIB", "/nonexistent/libarmourWaves.so", 1);
+    const SceneRun run = run_stability("no_waves_lib", "");
+    ::unsetenv("ARMOUR_WAVES_LIB");
+    EXPECT_EQ(run.status, 2) << run.output;
+    EXPECT_NE(run.output.find("needs the wave library /nonexistent/libarmourWaves.so"), std::string::npos)
+        << run.output;
+    EXPECT_EQ(run.output.find("settling"), std::string::npos) << run.output;
+    EXPECT_FALSE(fs::exists(run.out));
+    if (!HasFailure())
+        fs::remove_all(run.dir);
+}
+
 // The graded mesh (fluid.refine_min/max) must hold every unit and the free
 // surface's band: a box that starts above the lowest rows (the toe at x =
 // 1.40 m), or below the troughs, is refused before anything runs or is
