@@ -351,6 +351,9 @@ std::vector<std::string> check_coupled_scene(const Scene &scene, const SceneSetu
         wave_tokens(scene, template_text(tmpl), tokens);
     }
     check_flume_grading(scene, setup, template_text(tmpl));
+    if (!fs::is_regular_file(plugin_path()))
+        throw InputError("OpenFOAM plugin " + plugin_path() +
+                         " not found: build the target armourFoamCoupling");
     if (template_text(tmpl).find("@ARMOUR_WAVES@") != std::string::npos &&
         !fs::is_regular_file(waves_library(plugin_path())))
         throw InputError("fluid.case \"" + f.case_name + "\" needs the wave library " +
@@ -515,9 +518,7 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
     if (r.np > 0)
         f.np = r.np; // the resolved scene records what ran
     const std::vector<std::string> warnings = check_coupled_scene(scene, setup, f.np);
-    const std::string plugin = plugin_path();
-    if (!fs::is_regular_file(plugin))
-        throw InputError("OpenFOAM plugin " + plugin + " not found: build the target armourFoamCoupling");
+    const std::string plugin = plugin_path(); // checked by check_coupled_scene
     for (const auto &w : warnings)
         std::fprintf(stderr, "armour: warning: %s\n", w.c_str());
 

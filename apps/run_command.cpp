@@ -281,23 +281,23 @@ int run_dem(OutputFolder &folder, const Scene &scene, SceneSetup &setup, std::ve
 // The settle's friction between the units (fluid.settle_friction): every
 // pair of materials that units are made of gets it as a pair override;
 // a wall of such a material meets the units with it too.
-void set_friction_between_units(EngineSettings &settings, const SceneSetup &setup, double friction) {
+void set_friction_between_units(Scene &scene, double friction) {
     std::vector<std::string> names;
-    for (const UnitTemplate &u : setup.units) {
-        const std::string &name = settings.materials[static_cast<std::size_t>(u.material)].name;
-        if (std::find(names.begin(), names.end(), name) == names.end())
-            names.push_back(name);
-    }
+    for (const SceneUnit &u : scene.units)
+        if (std::find(names.begin(), names.end(), u.material) == names.end())
+            names.push_back(u.material);
     for (std::size_t i = 0; i < names.size(); ++i)
         for (std::size_t j = i; j < names.size(); ++j) {
-            const auto same = [&](const MaterialPair &p) {
+            const auto same = [&](const SceneMaterialPair &p) {
                 return (p.a == names[i] && p.b == names[j]) || (p.a == names[j] && p.b == names[i]);
             };
-            const auto found = std::find_if(settings.pairs.begin(), settings.pairs.end(), same);
-            if (found != settings.pairs.end())
-                found->friction = friction;
-            else
-                settings.pairs.push_back({names[i], names[j], -1.0, friction, -1.0});
+            auto found = std::find_if(scene.material_pairs.begin(), scene.material_pairs.end(), same);
+            if (found == scene.material_pairs.end()) {
+                scene.material_pairs.push_back(
+                    {names[i], names[j], std::nullopt, std::nullopt, std::nullopt});
+                found = std::prev(scene.material_pairs.end());
+            }
+            found->friction = friction;
         }
 }
 
@@ -342,9 +342,17 @@ Scene settle_before_coupling(const RunRequest &r, OutputFolder &folder, const Sc
             water.level = fluid.water_level;
             water.density = fluid.fluid_density;
             water.update_interval = std::min(fluid.max_time_step, dry.output_interval);
+            // The settle is a scene of its own (OUT/settle/scene.resolved.toml
+            // reruns it): the pile's headroom in its domain, its friction as pairs.
+            dry.domain_max.z() += settle_headroom(scene, setup);
             if (fluid.settle_friction)
-                set_friction_between_units(setup.settings, setup, *fluid.settle_friction);
-            run_dem(settle_folder, dry, setup, &states, &water);
+                set_friction_between_units(dry, *fluid.settle_friction);
+            SceneSetup dry_setup = build_scene(dry, r.cache.empty() ? default_cache_dir() : r.cache, false);
+            if (dry_setup.bodies.size() != setup.bodies.size())
+                throw InputError("fluid.settle_time: the settle placed " +
+                                 std::to_string(dry_setup.bodies.size()) + " units, the scene " +
+                                 std::to_string(setup.bodies.size()));
+            run_dem(settle_folder, dry, dry_setup, &states, &water);
 
             Scene settled = scene;
             settled.fluid->settle_time = 0.0;
@@ -484,6 +492,9 @@ int run_scene(const RunRequest &r) {
         }
         return run_dem(folder, scene, setup, nullptr, nullptr, resume ? &*resume : nullptr);
     }
+    if (scene.fluid->settle_friction && scene.fluid->settle_time <= 0.0)
+        std::fprintf(stderr, "armour: warning: fluid.settle_friction is unused: there is no settle "
+                             "(fluid.settle_time = 0)\n");
     if (resume) {
         if (scene.fluid->settle_time > 0.0)
             throw InputError(r.scene +

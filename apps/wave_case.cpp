@@ -235,8 +235,8 @@ void add_wave_summary(const Scene &scene, const fs::path &case_dir, OutputFolder
         }
     }
     if (end - span < steady)
-        warn("waves: the analysis window starts at " + num(end - span) +
-             " s, before the outlet's reflection is back at the gauges (" + num(steady) +
+        warn("waves: the analysis window starts at " + figure_text(end - span) +
+             " s, before the outlet's reflection is back at the gauges (" + figure_text(steady) +
              " s): the reflection coefficient is underestimated; lengthen run.duration");
     // Uniform samples, a whole number per window: 64 per period.
     const auto n = static_cast<std::size_t>(std::lround(span / period * 64.0));

@@ -166,10 +166,18 @@ TriangleMesh slope_wall(const SceneWall &w, const Eigen::Vector3d &lo, const Eig
             continue;
         add_quad(m, {a.x(), y0, a.y()}, {b.x(), y0, b.y()}, {b.x(), y1, b.y()}, {a.x(), y1, a.y()});
     }
-    // Side walls keep the units on the slope's width. Every face's normal
-    // points to the units' side, as Wall requires.
-    add_quad(m, {lo.x(), y0, w.floor_z}, {lo.x(), y0, hi.z()}, {hi.x(), y0, hi.z()}, {hi.x(), y0, w.floor_z});
-    add_quad(m, {lo.x(), y1, w.floor_z}, {hi.x(), y1, w.floor_z}, {hi.x(), y1, hi.z()}, {lo.x(), y1, hi.z()});
+    // Side walls keep the units on the slope's width: above the profile
+    // only, so that inside the slope's solid no side wall is nearer than its
+    // face (a point cut into the face beside a side wall would read as in
+    // front of that wall). Every face's normal points to the units' side, as
+    // Wall requires.
+    for (std::size_t k = 0; k + 1 < profile.size(); ++k) {
+        const Eigen::Vector2d &a = profile[k], &b = profile[k + 1];
+        if (b.x() <= a.x())
+            continue; // the toe step's vertical face: no width
+        add_quad(m, {a.x(), y0, a.y()}, {a.x(), y0, hi.z()}, {b.x(), y0, hi.z()}, {b.x(), y0, b.y()});
+        add_quad(m, {a.x(), y1, a.y()}, {b.x(), y1, b.y()}, {b.x(), y1, hi.z()}, {a.x(), y1, hi.z()});
+    }
     return m;
 }
 

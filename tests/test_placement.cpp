@@ -235,6 +235,11 @@ TEST(WallDepth, AStepsEdgeIsOutsideAboveAndInsideBelow) {
     EXPECT_NEAR(armour::depth_behind_wall(on_face - 0.002 * normal, wall, centre), 0.002, 1e-9);
     // A side wall, 1 mm through it.
     EXPECT_NEAR(armour::depth_behind_wall({1.6, 0.125, 0.45}, wall, centre), 0.001, 1e-9);
+    // 8 mm into the face, 2 mm from a side wall: inside, by the face (the
+    // side walls stand above the profile only; down through the solid they
+    // were nearer, and read the point as 2 mm in front of them).
+    const Eigen::Vector3d by_side(on_face.x(), 0.122, on_face.z());
+    EXPECT_NEAR(armour::depth_behind_wall(by_side - 0.008 * normal, wall, centre), 0.008, 1e-9);
 
     // The same wall wound the other way, as an STL file may be: turned to the
     // body's centre, triangle by triangle; in front of the face and into it.
