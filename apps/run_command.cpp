@@ -332,6 +332,8 @@ Scene settle_before_coupling(const RunRequest &r, OutputFolder &folder, const Sc
         try {
             Scene dry = scene;
             dry.fluid.reset();
+            dry.waves.reset(); // both need [fluid]
+            dry.porous.clear();
             dry.duration = fluid.settle_time;
             dry.output_interval = std::min(scene.output_interval, fluid.settle_time);
             dry.analysis = "none";

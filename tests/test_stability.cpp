@@ -273,9 +273,16 @@ TEST(StabilityCubes, RandomLayerSeatedAtTheSettleFrictionPacksAsTheRockManualLay
     std::stringstream scene_text;
     scene_text << resolved.rdbuf();
     EXPECT_EQ(scene_text.str().find("settle_friction"), std::string::npos);
+    // The settle's own scene (its domain raised for the pile, the friction as
+    // a material pair) reruns as a DEM run.
+    const SceneRun rerun = armour_test::run_scene(ARMOUR_EXE, seated.out / "settle" / "scene.resolved.toml",
+                                                  "stability_settle_rerun",
+                                                  "--set run.duration=0.01 --set run.output_interval=0.01");
+    EXPECT_EQ(rerun.status, 0) << rerun.output;
     if (!HasFailure()) {
         fs::remove_all(loose.dir);
         fs::remove_all(seated.dir);
+        fs::remove_all(rerun.dir);
     }
 }
 
