@@ -196,8 +196,7 @@ const std::vector<Key<SceneFluid>> &fluid_keys() {
             "settle the units in the DEM under the still water this long before coupling (below)")
             .in(Range::at_least(0)),
         key("settle_friction", &F::settle_friction, "",
-            "Coulomb friction between units during the settle only (and with walls of a unit's "
-            "material; other walls keep theirs); lower packs a random layer denser (below)")
+            "Coulomb friction between units (and walls of their material) in the settle only (below)")
             .in(Range::at_least(0))
             .defaults("the materials' own"),
         key("turbulence", &F::turbulence, "",
