@@ -127,6 +127,13 @@ Eigen::Quaterniond random_orientation(std::mt19937_64 &rng) {
     return q;
 }
 
+double largest_Dn(const SceneSetup &setup) {
+    double largest = 0.0;
+    for (const double Dn : setup.unit_Dn)
+        largest = std::max(largest, Dn);
+    return largest;
+}
+
 } // namespace
 
 std::string default_cache_dir() {
@@ -192,12 +199,7 @@ TriangleMesh box_wall(const Eigen::Vector3d &a, const Eigen::Vector3d &b) {
 }
 
 double settle_headroom(const Scene &scene, const SceneSetup &setup) {
-    if (!scene.fluid || scene.fluid->settle_time <= 0.0)
-        return 0.0;
-    double largest = 0.0;
-    for (const double Dn : setup.unit_Dn)
-        largest = std::max(largest, Dn);
-    return kSettleHeadroom * largest;
+    return scene.fluid && scene.fluid->settle_time > 0.0 ? kSettleHeadroom * largest_Dn(setup) : 0.0;
 }
 
 SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool progress) {
@@ -247,9 +249,7 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
     auto unit_index = [&](const std::string &name) {
         return static_cast<int>(std::find(unit_names.begin(), unit_names.end(), name) - unit_names.begin());
     };
-    double largest = 0.0;
-    for (const double Dn : setup.unit_Dn)
-        largest = std::max(largest, Dn);
+    const double largest = largest_Dn(setup);
     // A loose pile (random placement) stands higher than the layer it
     // settles into, and the settle is DEM alone.
     const Eigen::Vector3d placement_max =
