@@ -288,10 +288,9 @@ void set_friction_between_units(Scene &scene, double friction) {
             names.push_back(u.material);
     for (std::size_t i = 0; i < names.size(); ++i)
         for (std::size_t j = i; j < names.size(); ++j) {
-            const auto same = [&](const SceneMaterialPair &p) {
-                return (p.a == names[i] && p.b == names[j]) || (p.a == names[j] && p.b == names[i]);
-            };
-            auto found = std::find_if(scene.material_pairs.begin(), scene.material_pairs.end(), same);
+            auto found =
+                std::find_if(scene.material_pairs.begin(), scene.material_pairs.end(),
+                             [&](const SceneMaterialPair &p) { return p.joins(names[i], names[j]); });
             if (found == scene.material_pairs.end()) {
                 scene.material_pairs.push_back(
                     {names[i], names[j], std::nullopt, std::nullopt, std::nullopt});

@@ -56,6 +56,10 @@ struct SceneMaterial {
 struct SceneMaterialPair {
     std::string a, b;
     std::optional<double> restitution, friction, rolling_friction;
+    // Whether this is the (unordered) pair of materials x and y.
+    bool joins(const std::string &x, const std::string &y) const {
+        return (a == x && b == y) || (a == y && b == x);
+    }
 };
 
 // type "plane": point, normal, size (edge of the square patch, m)

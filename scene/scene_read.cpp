@@ -121,7 +121,7 @@ void read_materials(const Table &root, Scene &s) {
             if (std::find(names.begin(), names.end(), m) == names.end())
                 t.fail(key, "no [[material]] named " + toml_string(m) + " (known: " + choices(names) + ")");
         for (const auto &other : s.material_pairs)
-            if ((other.a == p.a && other.b == p.b) || (other.a == p.b && other.b == p.a))
+            if (other.joins(p.a, p.b))
                 t.fail("b", "duplicate pair " + toml_string(p.a) + " / " + toml_string(p.b));
         s.material_pairs.push_back(p);
     }
