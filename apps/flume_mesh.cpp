@@ -2,6 +2,7 @@
 
 #include "scene_keys.h"
 #include "scene_setup.h"
+#include "wave_theory.h"
 
 #include <algorithm>
 #include <cmath>
@@ -176,7 +177,7 @@ void check_flume_grading(const Scene &scene, const SceneSetup &setup, const std:
     if (scene.waves && scene.waves->type == "regular")
         height = scene.waves->height;
     if (scene.waves && scene.waves->type == "irregular")
-        height = 1.8 * scene.waves->hs; // the largest of ~1000 waves
+        height = kLargestWaveOverHs * scene.waves->hs;
     if (f.coarse_cell_size.z() > fine.z() &&
         (f.refine_min->z() > f.water_level - height || f.refine_max->z() < f.water_level + height))
         throw InputError(

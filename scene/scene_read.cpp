@@ -356,8 +356,7 @@ void read_waves(const Table &root, Scene &s) {
                        " s) has kh = " + number_text(kh) + " < " + number_text(kStockWavelengthMinKh) +
                        ": OpenFOAM v1912's irregularMultiDirectional finds wavelengths by a fixed-point "
                        "iteration that has not converged there (docs/waves.md)");
-        // Rayleigh: the largest of ~1000 waves is ~1.8 Hs.
-        const double largest = 1.8 * w.hs, miche = miche_height(w.tp, depth, g);
+        const double largest = kLargestWaveOverHs * w.hs, miche = miche_height(w.tp, depth, g);
         if (largest > kDepthBreakingRatio * depth || largest > miche)
             t.fail("Hs", "1.8 Hs = " + number_text(largest) +
                              " m (the largest of ~1000 waves) breaks at the inlet: "

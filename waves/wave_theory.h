@@ -33,6 +33,9 @@ constexpr double kStokesIIUrsellLimit = 26.318945069609; // 8 pi^2 / 3
 constexpr double kDepthBreakingRatio = 0.78;             // H / h, McCowan
 constexpr double kMicheSteepness = 0.142;                // H / L in deep water, Miche
 constexpr double kStokesVSteepness = 0.02;               // H / L0 above which auto picks StokesV
+// Rayleigh-distributed heights: the largest of ~1000 waves of an irregular
+// train is ~1.8 Hs (the train the breaking and mesh checks must hold).
+constexpr double kLargestWaveOverHs = 1.8;
 // OpenFOAM v1912's StokesI/II and irregularMultiDirectional find L by 100
 // fixed-point steps L = L0 tanh(2 pi h / L), which converge ever more slowly
 // as kh falls: their L is off by 4e-4 at kh = 0.34, 3e-3 at 0.29, 3 % at
