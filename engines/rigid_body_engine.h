@@ -100,6 +100,9 @@ struct Wall {
     TriangleMesh surface; // m, world frame; normals towards the bodies' side
     int material = 0;
     bool oriented = true; // false: the normals may face either way (an STL file's)
+    // Unoriented but consistently wound (every shared edge run once each
+    // way): the normals all face one of its sides, not known which.
+    bool wound = false;
 };
 
 struct EngineSettings {

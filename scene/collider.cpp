@@ -47,30 +47,58 @@ std::pair<double, int> exact_wall_penetration(const BodyInit &b, const Collider 
     return {deepest, which};
 }
 
-} // namespace
-
-double depth_behind_wall(const Eigen::Vector3d &p, const Wall &w, const Eigen::Vector3d &centre) {
+// The wall's nearest point to p and the summed normals of the triangles tied
+// for it (a pseudo-normal at an edge), each as turn(normal, its nearest point).
+struct WallPoint {
+    double distance = HUGE_VAL;
+    Eigen::Vector3d point = Eigen::Vector3d::Zero(), normal = Eigen::Vector3d::Zero();
+};
+template <class Turn> WallPoint nearest_on_wall(const Eigen::Vector3d &p, const Wall &w, Turn turn) {
     const auto &v = w.surface.vertices;
-    double nearest = HUGE_VAL;
-    Eigen::Vector3d q = p, normal = Eigen::Vector3d::Zero();
+    WallPoint q;
     for (const auto &t : w.surface.triangles) {
         const Eigen::Vector3d on = closest_point_on_triangle(p, v[t[0]], v[t[1]], v[t[2]]);
         const double d = (p - on).norm();
-        if (d > nearest + 1e-12)
+        if (d > q.distance + 1e-12)
             continue;
-        Eigen::Vector3d n = (v[t[1]] - v[t[0]]).cross(v[t[2]] - v[t[0]]).normalized();
-        if (!w.oriented && (centre - on).dot(n) < 0.0)
-            n = -n;
-        if (d < nearest - 1e-12)
-            normal.setZero(); // a nearer triangle: the earlier ties do not count
-        nearest = std::min(nearest, d);
-        q = on;
-        normal += n;
+        if (d < q.distance - 1e-12)
+            q.normal.setZero(); // a nearer triangle: the earlier ties do not count
+        q.distance = std::min(q.distance, d);
+        q.point = on;
+        q.normal += turn((v[t[1]] - v[t[0]]).cross(v[t[2]] - v[t[0]]).normalized(), on);
     }
-    if (nearest == HUGE_VAL)
+    return q;
+}
+
+} // namespace
+
+double depth_behind_wall(const Eigen::Vector3d &p, const Wall &w, const Eigen::Vector3d &centre) {
+    const auto as_wound = [](const Eigen::Vector3d &n, const Eigen::Vector3d &) { return n; };
+    double front = 1.0; // the wound normals' sign that faces the body
+    if (!w.oriented && w.wound) {
+        const WallPoint c = nearest_on_wall(centre, w, as_wound);
+        front = (centre - c.point).dot(c.normal) < 0.0 ? -1.0 : 1.0;
+    }
+    const WallPoint q = nearest_on_wall(p, w, [&](const Eigen::Vector3d &n, const Eigen::Vector3d &on) {
+        if (!w.oriented && !w.wound && (centre - on).dot(n) < 0.0)
+            return Eigen::Vector3d(-n);
+        return Eigen::Vector3d(front * n);
+    });
+    if (q.distance == HUGE_VAL)
         return -HUGE_VAL;
-    // The distance, signed by the summed normals (a pseudo-normal at an edge).
-    return (p - q).dot(normal) < 0.0 ? nearest : -nearest;
+    // The distance, signed by the summed normals.
+    return (p - q.point).dot(q.normal) < 0.0 ? q.distance : -q.distance;
+}
+
+bool consistently_wound(const TriangleMesh &surface) {
+    std::vector<std::pair<int, int>> runs; // each triangle's edges as run, from -> to
+    runs.reserve(3 * surface.triangles.size());
+    for (const auto &t : surface.triangles)
+        for (int k = 0; k < 3; ++k)
+            runs.emplace_back(t[k], t[(k + 1) % 3]);
+    std::sort(runs.begin(), runs.end());
+    // Two triangles running an edge the same way face opposite sides.
+    return std::adjacent_find(runs.begin(), runs.end()) == runs.end();
 }
 
 Collider make_collider(const UnitTemplate &unit, ShapeModel model, double Dn) {

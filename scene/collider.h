@@ -35,9 +35,17 @@ double depth_inside(const Collider &c, const Eigen::Vector3d &p);
 // bodies' side). The nearest triangles decide, their normals summed where
 // several are nearest (the wall's edges and corners: a point above a step's
 // edge lies behind the step face's plane, and outside the step). Walls the
-// scene builds face the bodies (Wall); an STL wall's triangles may face
-// either way, so each is turned towards `centre` (the body's centre).
+// scene builds face the bodies (Wall). An STL wall's triangles may face
+// either way: wound consistently (Wall::wound), the side of the wall that
+// `centre` (the body's centre) lies on is the front, edges and all; else
+// each nearest triangle is turned towards `centre` (a point above a step's
+// edge, with the centre below the step's top, then reads as inside).
 double depth_behind_wall(const Eigen::Vector3d &p, const Wall &w, const Eigen::Vector3d &centre);
+
+// Whether every edge two triangles share is run once each way (a surface's
+// normals then all face one of its sides). Vertices must be merged
+// (read_stl merges them).
+bool consistently_wound(const TriangleMesh &surface);
 
 // The deepest cut of posed body b into any wall, as its engine collides it
 // (m, <= 0 when clear), and the wall's index.

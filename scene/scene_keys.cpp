@@ -322,7 +322,7 @@ const std::vector<Key<SceneWall>> &wall_keys() {
             .only_for("slope"),
         key("min", &W::min, "m", "lower corner").required(" for type \"box\"").only_for("box"),
         key("max", &W::max, "m", "upper corner; > min").required(" for type \"box\"").only_for("box"),
-        key("file", &W::file, "", "STL in metres, relative to the scene file's folder; must exist")
+        key("file", &W::file, "", "STL in metres, either winding, relative to the scene's folder; must exist")
             .file()
             .required()
             .only_for("stl"),

@@ -269,6 +269,7 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
         else {
             wall.surface = read_stl(w.file);
             wall.oriented = false;
+            wall.wound = consistently_wound(wall.surface);
         }
         setup.walls.push_back(std::move(wall));
     }

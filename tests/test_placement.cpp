@@ -9,6 +9,7 @@
 #include "scene.h"
 #include "scene_setup.h"
 #include "slope_profile.h"
+#include "stl_io.h"
 
 #include <gtest/gtest.h>
 
@@ -250,6 +251,37 @@ TEST(WallDepth, AStepsEdgeIsOutsideAboveAndInsideBelow) {
     const Eigen::Vector3d above_face = on_face + 0.03 * normal;
     EXPECT_NEAR(armour::depth_behind_wall(on_face + 0.005 * normal, unoriented, above_face), -0.005, 1e-9);
     EXPECT_NEAR(armour::depth_behind_wall(on_face - 0.002 * normal, unoriented, above_face), 0.002, 1e-9);
+
+    // Written to an STL file and read back (vertices merged), as a scene's
+    // STL wall is: consistently wound, so the body's centre picks the front
+    // of the whole wall, and the step's edge reads as on the built wall with
+    // the centre below the step's top.
+    const std::string stl = testing::TempDir() + "wall_depth_step.stl";
+    armour::write_stl(unoriented.surface, stl);
+    armour::Wall from_file;
+    from_file.surface = armour::read_stl(stl);
+    std::remove(stl.c_str());
+    from_file.oriented = false;
+    from_file.wound = armour::consistently_wound(from_file.surface);
+    ASSERT_TRUE(from_file.wound);
+    const double kFloat = 1e-7; // m: binary STL stores float coordinates
+    EXPECT_NEAR(armour::depth_behind_wall({1.393, 0.013, 0.25}, from_file, centre), -0.01, kFloat);
+    EXPECT_NEAR(armour::depth_behind_wall({1.403, 0.0, 0.245}, from_file, centre), -std::hypot(0.003, 0.005),
+                kFloat);
+    EXPECT_NEAR(armour::depth_behind_wall({1.397, 0.0, 0.23}, from_file, centre), 0.003, kFloat);
+    EXPECT_NEAR(armour::depth_behind_wall(on_face - 0.002 * normal, from_file, centre), 0.002, kFloat);
+    EXPECT_NEAR(armour::depth_behind_wall(by_side - 0.008 * normal, from_file, centre), 0.008, kFloat);
+    // A body on the other side of the same wall (under the berm's top):
+    // its front is the other side.
+    EXPECT_NEAR(armour::depth_behind_wall({1.30, 0.0, 0.23}, from_file, {1.30, 0.0, 0.20}), -0.01, kFloat);
+    // Without the winding each nearest triangle turns to the centre, and the
+    // point above the step's edge reads as 10 mm inside: why winding counts.
+    armour::Wall turned = from_file;
+    turned.wound = false;
+    EXPECT_NEAR(armour::depth_behind_wall({1.393, 0.013, 0.25}, turned, centre), 0.01, kFloat);
+    // One triangle turned over: no longer consistently wound.
+    std::swap(turned.surface.triangles[0][1], turned.surface.triangles[0][2]);
+    EXPECT_FALSE(armour::consistently_wound(turned.surface));
 }
 
 } // namespace
