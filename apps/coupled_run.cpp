@@ -406,8 +406,9 @@ std::vector<std::string> check_coupled_scene(const Scene &scene, const SceneSetu
         for (const auto &w : setup.walls) {
             // The exact shape, which the fluid sees (build_scene checked the clump).
             double into = -HUGE_VAL;
+            const double front = wall_front(w, b.pose.position);
             for (const auto &v : vertices)
-                into = std::max(into, depth_behind_wall(v, w, b.pose.position));
+                into = std::max(into, depth_behind_wall(v, w, b.pose.position, front));
             if (into > resolvable)
                 throw InputError(
                     file + ": " + who + " cuts into wall '" + w.name + "' by " + figure_text(into) +

@@ -19,7 +19,6 @@ Usage
 """
 import argparse
 import json
-import math
 import os
 import sys
 
@@ -106,8 +105,8 @@ def main():
         axis.set_ylabel(f"{os.path.basename(os.path.normpath(a.run_b))}: {label}")
     fig.suptitle(f"each unit over 0 .. {until:g} s")
     fig.tight_layout()
-    fig.savefig(os.path.join(a.out, "compare_damage.png.tmp.png"), dpi=120)
-    os.replace(os.path.join(a.out, "compare_damage.png.tmp.png"), os.path.join(a.out, "compare_damage.png"))
+    fig.savefig(os.path.join(a.out, "compare_damage.tmp.png"), dpi=120)
+    os.replace(os.path.join(a.out, "compare_damage.tmp.png"), os.path.join(a.out, "compare_damage.png"))
 
 
 if __name__ == "__main__":

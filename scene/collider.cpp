@@ -35,15 +35,17 @@ std::pair<double, int> exact_wall_penetration(const BodyInit &b, const Collider 
                                               const std::vector<Wall> &walls) {
     double deepest = -HUGE_VAL;
     int which = -1;
-    for (std::size_t w = 0; w < walls.size(); ++w)
+    for (std::size_t w = 0; w < walls.size(); ++w) {
+        const double front = wall_front(walls[w], b.pose.position);
         for (const Eigen::Vector3d &local : c.points) {
-            const double depth =
-                depth_behind_wall(b.pose.position + b.pose.orientation * local, walls[w], b.pose.position);
+            const double depth = depth_behind_wall(b.pose.position + b.pose.orientation * local, walls[w],
+                                                   b.pose.position, front);
             if (depth > deepest) {
                 deepest = depth;
                 which = static_cast<int>(w);
             }
         }
+    }
     return {deepest, which};
 }
 
@@ -72,22 +74,31 @@ template <class Turn> WallPoint nearest_on_wall(const Eigen::Vector3d &p, const 
 
 } // namespace
 
-double depth_behind_wall(const Eigen::Vector3d &p, const Wall &w, const Eigen::Vector3d &centre) {
-    const auto as_wound = [](const Eigen::Vector3d &n, const Eigen::Vector3d &) { return n; };
-    double front = 1.0; // the wound normals' sign that faces the body
-    if (!w.oriented && w.wound) {
-        const WallPoint c = nearest_on_wall(centre, w, as_wound);
-        front = (centre - c.point).dot(c.normal) < 0.0 ? -1.0 : 1.0;
-    }
+double wall_front(const Wall &w, const Eigen::Vector3d &centre) {
+    if (w.oriented)
+        return 1.0;
+    if (!w.wound)
+        return 0.0;
+    const WallPoint c =
+        nearest_on_wall(centre, w, [](const Eigen::Vector3d &n, const Eigen::Vector3d &) { return n; });
+    return (centre - c.point).dot(c.normal) < 0.0 ? -1.0 : 1.0;
+}
+
+double depth_behind_wall(const Eigen::Vector3d &p, const Wall &w, const Eigen::Vector3d &centre,
+                         double front) {
     const WallPoint q = nearest_on_wall(p, w, [&](const Eigen::Vector3d &n, const Eigen::Vector3d &on) {
-        if (!w.oriented && !w.wound && (centre - on).dot(n) < 0.0)
-            return Eigen::Vector3d(-n);
+        if (front == 0.0)
+            return Eigen::Vector3d((centre - on).dot(n) < 0.0 ? -n : n);
         return Eigen::Vector3d(front * n);
     });
     if (q.distance == HUGE_VAL)
         return -HUGE_VAL;
     // The distance, signed by the summed normals.
     return (p - q.point).dot(q.normal) < 0.0 ? q.distance : -q.distance;
+}
+
+double depth_behind_wall(const Eigen::Vector3d &p, const Wall &w, const Eigen::Vector3d &centre) {
+    return depth_behind_wall(p, w, centre, wall_front(w, centre));
 }
 
 bool consistently_wound(const TriangleMesh &surface) {

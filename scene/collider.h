@@ -41,6 +41,12 @@ double depth_inside(const Collider &c, const Eigen::Vector3d &p);
 // each nearest triangle is turned towards `centre` (a point above a step's
 // edge, with the centre below the step's top, then reads as inside).
 double depth_behind_wall(const Eigen::Vector3d &p, const Wall &w, const Eigen::Vector3d &centre);
+// The same for many points of one body: which way wall w's normals face the
+// body (+1 or -1; 0 for an STL wound either way, each triangle then turned
+// to `centre`), worked out once per body and wall.
+double wall_front(const Wall &w, const Eigen::Vector3d &centre);
+double depth_behind_wall(const Eigen::Vector3d &p, const Wall &w, const Eigen::Vector3d &centre,
+                         double front);
 
 // Whether every edge two triangles share is run once each way (a surface's
 // normals then all face one of its sides). Vertices must be merged

@@ -358,7 +358,7 @@ void read_waves(const Table &root, Scene &s) {
                        "iteration that has not converged there (docs/waves.md)");
         const double largest = kLargestWaveOverHs * w.hs, miche = miche_height(w.tp, depth, g);
         if (largest > kDepthBreakingRatio * depth || largest > miche)
-            t.fail("Hs", "1.8 Hs = " + number_text(largest) +
+            t.fail("Hs", number_text(kLargestWaveOverHs) + " Hs = " + number_text(largest) +
                              " m (the largest of ~1000 waves) breaks at the inlet: "
                              "it must stay below 0.78 h = " +
                              number_text(kDepthBreakingRatio * depth) +
