@@ -345,20 +345,19 @@ std::vector<std::string> check_coupled_scene(const Scene &scene, const SceneSetu
         throw InputError(file + ": key 'fluid.case': no case template " + tmpl.string() +
                          " (known: " + known + ")");
     }
+    const std::string used = template_text(tmpl); // every file of the template, read once
     {
         std::map<std::string, std::string>
             tokens; // [waves] and the template agree, before anything is written
-        wave_tokens(scene, template_text(tmpl), tokens);
+        wave_tokens(scene, used, tokens);
     }
-    check_flume_grading(scene, setup, template_text(tmpl));
-    if (!fs::is_regular_file(plugin_path()))
-        throw InputError("OpenFOAM plugin " + plugin_path() +
-                         " not found: build the target armourFoamCoupling");
-    if (template_text(tmpl).find("@ARMOUR_WAVES@") != std::string::npos &&
-        !fs::is_regular_file(waves_library(plugin_path())))
+    check_flume_grading(scene, setup, used);
+    const std::string plugin = plugin_path();
+    if (!fs::is_regular_file(plugin))
+        throw InputError("OpenFOAM plugin " + plugin + " not found: build the target armourFoamCoupling");
+    if (used.find("@ARMOUR_WAVES@") != std::string::npos && !fs::is_regular_file(waves_library(plugin)))
         throw InputError("fluid.case \"" + f.case_name + "\" needs the wave library " +
-                         waves_library(plugin_path()) +
-                         ": build the target armourWaves (or set ARMOUR_WAVES_LIB)");
+                         waves_library(plugin) + ": build the target armourWaves (or set ARMOUR_WAVES_LIB)");
     const FlumeMesh mesh = flume_mesh(scene);
     for (const char *tool : {"blockMesh", "setFields", "interFoam"})
         if (!on_path(tool))
