@@ -18,6 +18,12 @@ mkdir -p "$build"
     cmake --build "$build" -j "$jobs"; } > "$build/build.log" 2>&1 ||
   { tail -n 40 "$build/build.log"; echo "fuzz: the build failed (log: $build/build.log)" >&2; exit 1; }
 
+# The targets write each input to a file named by their pid in the temp
+# directory (fuzz/fuzz_input.h); give them one of ours, removed on exit.
+scratch="$(mktemp -d)"
+trap 'rm -rf "$scratch"' EXIT
+export TMPDIR="$scratch"
+
 seeds_of() {
   case "$1" in
     scene) ls "$root"/scenes/*.toml "$root"/fuzz/seeds/*.toml ;;
