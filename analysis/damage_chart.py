@@ -6,7 +6,9 @@ Description
     damage_history.csv (units displaced and N_od against time, s) and writes
     one PNG: left, every unit at its settled place on the slope coloured by
     its final displacement / Dn (displaced units ringed); right, N_od against
-    time. Needs python3-matplotlib (numpy comes with it).
+    time and, on its own axis, the largest displacement of any unit / Dn (what
+    moves before anything is displaced: a run without damage is not a flat
+    line). Needs python3-matplotlib (numpy comes with it).
 
 Usage
     python3 analysis/damage_chart.py OUT/damage.csv OUT/damage_history.csv OUT/damage.png
@@ -43,11 +45,18 @@ def main(units_csv, history_csv, png):
     left.set_title("units at their settled place (red ring: displaced)")
     left.set_aspect("equal", adjustable="datalim")
     t = [float(h["time_s"]) for h in history]
-    right.plot(t, [float(h["N_od"]) for h in history], color="black")
+    n_od = [float(h["N_od"]) for h in history]
+    right.plot(t, n_od, color="black")
+    right.set_ylim(0.0, max(0.5, 1.1 * max(n_od, default=0.0)))  # N_od 0.5: start of damage for cubes
     right.set_xlabel("time (s)")
     right.set_ylabel("N_od (units displaced per Dn of width)")
     right.set_title("damage against time")
     right.grid(alpha=0.3)
+    largest = right.twinx()
+    largest.plot(t, [float(h["max_displacement_over_Dn"]) for h in history], color="tab:orange")
+    largest.set_ylabel("largest displacement of a unit / Dn", color="tab:orange")
+    largest.tick_params(axis="y", labelcolor="tab:orange")
+    largest.set_ylim(bottom=0.0)
     fig.tight_layout()
     fig.savefig(png + ".tmp.png", dpi=100)
     import os
