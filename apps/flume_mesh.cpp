@@ -138,9 +138,7 @@ double MeshAxis::column_centre(double at) const {
 }
 
 Eigen::Vector3d fine_cell_size(const Scene &scene) {
-    const SceneFluid &f = *scene.fluid;
-    return (scene.domain_max - scene.domain_min)
-        .cwiseQuotient(Eigen::Vector3d(f.cells[0], f.cells[1], f.cells[2]));
+    return scene.fluid->fine_cell(scene.domain_max - scene.domain_min);
 }
 
 FlumeMesh flume_mesh(const Scene &scene) {

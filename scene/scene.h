@@ -167,6 +167,11 @@ struct SceneFluid {
     std::string turbulence = "laminar";
     double turbulence_intensity = 1e-4; // I [-]: k = 1.5 (I sqrt(g depth))^2
     double turbulence_length = 0.01;    // m, l: omega = sqrt(k) / (Cmu^0.25 l)
+
+    // m along x, y, z: the cell inside refine_min .. refine_max (everywhere on a uniform mesh).
+    Eigen::Vector3d fine_cell(const Eigen::Vector3d &domain_extent) const {
+        return domain_extent.cwiseQuotient(Eigen::Vector3d(cells[0], cells[1], cells[2]));
+    }
 };
 
 // [[porous]]: a permeable region (rock underlayer, core) as a Darcy-Forchheimer

@@ -278,8 +278,7 @@ void read_fluid(const Table &root, Scene &s) {
                    "the refined box " + vector_text(lo) + " .. " + vector_text(hi) +
                        " m must lie inside run.domain_min .. run.domain_max " + vector_text(s.domain_min) +
                        " .. " + vector_text(s.domain_max) + " m");
-        const Eigen::Vector3d fine =
-            extent.cwiseQuotient(Eigen::Vector3d(f.cells[0], f.cells[1], f.cells[2]));
+        const Eigen::Vector3d fine = f.fine_cell(extent);
         if (((hi - lo).array() < fine.array() * (1.0 - 1e-9)).any())
             t.fail("refine_max", "the refined box " + vector_text(lo) + " .. " + vector_text(hi) +
                                      " m must be at least one fine cell " + vector_text(fine) +
