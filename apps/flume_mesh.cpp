@@ -2,7 +2,6 @@
 
 #include "scene_keys.h"
 #include "scene_setup.h"
-#include "wave_theory.h"
 
 #include <algorithm>
 #include <cmath>
@@ -169,22 +168,6 @@ void check_flume_grading(const Scene &scene, const SceneSetup &setup, const std:
     const Eigen::Vector3d lo = *f.refine_min - 0.5 * fine,
                           hi = *f.refine_max + 0.5 * fine +
                                Eigen::Vector3d(0.0, 0.0, settle_headroom(scene, setup));
-    // The z grading holds all along the flume: the box's z range is the free
-    // surface's band everywhere, so it must hold the waves' crests and troughs.
-    double height = f.wave_height;
-    if (scene.waves && scene.waves->type == "regular")
-        height = scene.waves->height;
-    if (scene.waves && scene.waves->type == "irregular")
-        height = kLargestWaveOverHs * scene.waves->hs;
-    if (f.coarse_cell_size.z() > fine.z() &&
-        (f.refine_min->z() > f.water_level - height || f.refine_max->z() < f.water_level + height))
-        throw InputError(
-            scene.file + ": key '" +
-            (f.refine_min->z() > f.water_level - height ? "fluid.refine_min" : "fluid.refine_max") +
-            "': the refined box's z range " + number_text(f.refine_min->z()) + " .. " +
-            number_text(f.refine_max->z()) + " m must hold the free surface " + number_text(f.water_level) +
-            " m +- the wave height " + number_text(height) +
-            " m: the z grading holds all along the flume, and coarse cells there damp the waves");
     for (std::size_t i = 0; i < setup.bodies.size(); ++i) {
         const BodyInit &b = setup.bodies[i];
         for (const auto &v : setup.units[b.unit].mesh.vertices) {

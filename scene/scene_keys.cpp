@@ -147,8 +147,8 @@ const std::vector<Key<SceneFluid>> &fluid_keys() {
             "graded mesh (fluid.case \"wave_flume\"; docs/openfoam.md): along each axis, cells keep the size "
             "`cells` gives between refine_min and refine_max and grow outside (coarse_cell_size); both or "
             "neither, inside the run domain, >= one fine cell across; every unit starts inside (to half a "
-            "fine "
-            "cell), and a graded z range holds water_level +- the wave height")
+            "fine cell), and a graded z range holds water_level +- the wave height (short of the domain's "
+            "top or floor)")
             .custom("none: uniform"),
         key("refine_max", &F::refine_max, "m", "the refined box's opposite corner; > refine_min")
             .custom("none"),

@@ -357,11 +357,11 @@ void read_waves(const Table &root, Scene &s) {
                        "iteration that has not converged there (docs/waves.md)");
         const double largest = kLargestWaveOverHs * w.hs, miche = miche_height(w.tp, depth, g);
         if (largest > kDepthBreakingRatio * depth || largest > miche)
-            t.fail("Hs", number_text(kLargestWaveOverHs) + " Hs = " + number_text(largest) +
+            t.fail("Hs", number_text(kLargestWaveOverHs) + " Hs = " + figure_text(largest) +
                              " m (the largest of ~1000 waves) breaks at the inlet: "
                              "it must stay below 0.78 h = " +
-                             number_text(kDepthBreakingRatio * depth) +
-                             " m and 0.142 L tanh(kh) = " + number_text(miche) + " m at Tp");
+                             figure_text(kDepthBreakingRatio * depth) +
+                             " m and 0.142 L tanh(kh) = " + figure_text(miche) + " m at Tp");
     }
     if (!t.has("ramp_time"))
         w.ramp_time = 2.0 * period;
@@ -374,6 +374,39 @@ void read_waves(const Table &root, Scene &s) {
                 number_text(s.domain_min.x()) + ", " + number_text(s.domain_max.x()) + ") m",
             *w.gauge_x);
     s.waves = w;
+}
+
+// A graded z axis holds all along the flume: the refined box's z range is the
+// free surface's band everywhere, so it must hold the largest wave's crest
+// and trough (+- its height: a bound, not a profile), except where it reaches
+// the domain's top or floor and there are no coarse cells beyond it. Here,
+// not when the mesh is made, so that a sweep's cases are refused in its plan.
+void check_surface_band(const Table &root, const Scene &s) {
+    if (!s.fluid || !s.fluid->refine_min)
+        return;
+    const SceneFluid &f = *s.fluid;
+    const double fine_z = f.fine_cell(s.domain_max - s.domain_min).z();
+    if (f.coarse_cell_size.z() <= fine_z)
+        return; // z not graded
+    double height = f.wave_height;
+    if (s.waves && s.waves->type == "regular")
+        height = s.waves->height;
+    if (s.waves && s.waves->type == "irregular")
+        height = kLargestWaveOverHs * s.waves->hs;
+    const double tolerance = 1e-9 * (s.domain_max.z() - s.domain_min.z());
+    const bool coarse_below = f.refine_min->z() > s.domain_min.z() + tolerance,
+               coarse_above = f.refine_max->z() < s.domain_max.z() - tolerance;
+    const bool misses_trough = coarse_below && f.refine_min->z() > f.water_level - height,
+               misses_crest = coarse_above && f.refine_max->z() < f.water_level + height;
+    if (misses_trough || misses_crest)
+        root.section("fluid").fail(
+            misses_trough ? "refine_min" : "refine_max",
+            "the refined box's z range " + number_text(f.refine_min->z()) + " .. " +
+                number_text(f.refine_max->z()) + " m must hold the free surface " +
+                number_text(f.water_level) + " m +- the wave height " + figure_text(height) + " m" +
+                (s.waves && s.waves->type == "irregular" ? " (" + number_text(kLargestWaveOverHs) + " Hs)"
+                                                         : "") +
+                ": the z grading holds all along the flume, and coarse cells there damp the waves");
 }
 
 std::string unit_of(const Table &t, const Scene &s, const std::string &u) {
@@ -689,6 +722,7 @@ Scene load_scene(const std::string &path, const std::vector<std::string> &overri
     read_contact_and_analysis(root, s);
     read_fluid(root, s);
     read_waves(root, s);
+    check_surface_band(root, s);
     // A coupled run without run.engine takes exact hulls where the build has
     // them: there interFoam takes 97-99 % of the time whichever engine runs,
     // and sphere clumps change the answer (the platform case: 3 of 3 cubes

@@ -60,19 +60,19 @@ TEST(FlumeMesh, UniformWithoutARefinedBox) {
 }
 
 // The stability scene graded as docs/stability.md's bench does, with box
-// edges that fall between fine nodes (x 1.153, z 0.197) and a box that
-// touches the flume's end and top (nothing to grade there).
+// edges that fall between fine nodes (x 1.153, z 0.183, just under the largest wave's trough bound 0.184) and
+// a box that touches the flume's end and top (nothing to grade there).
 TEST(FlumeMesh, GradedStabilityFlumeKeepsTheFineCellsInTheBoxAndGrowsSlowlyOutside) {
     const armour::Scene scene =
         armour::load_scene(scene_path("stability_cubes.toml"),
-                           {"fluid.refine_min=[1.153, -0.124, 0.197]", "fluid.refine_max=[2.0, 0.124, 0.62]",
+                           {"fluid.refine_min=[1.153, -0.124, 0.183]", "fluid.refine_max=[2.0, 0.124, 0.62]",
                             "fluid.coarse_cell_size=[0.05, 0.0, 0.03]"});
     const armour::FlumeMesh mesh = armour::flume_mesh(scene);
     ASSERT_TRUE(mesh.graded);
     const double h = 0.01; // m, the scene's fluid.cells
     expect_graded(mesh.axes[0], 0.0, 2.0, h, 1.153, 2.0, 5.0, "x");
     expect_graded(mesh.axes[1], -0.124, 0.124, 0.248 / 25, -0.124, 0.124, 1.0, "y");
-    expect_graded(mesh.axes[2], 0.0, 0.62, h, 0.197, 0.62, 3.0, "z");
+    expect_graded(mesh.axes[2], 0.0, 0.62, h, 0.183, 0.62, 3.0, "z");
     EXPECT_EQ(mesh.axes[1].cells, 25);
     // Along x the 1.15 m in front of the box is long enough to reach 5 h.
     EXPECT_NEAR(mesh.axes[0].largest_cell() / (5.0 * h), 1.0, 0.05);

@@ -1032,3 +1032,26 @@ TEST_F(SceneFile, WavesOutsideTheirLimitsAreRefusedNamingTheKey) {
     EXPECT_NE(error_of(dry).find("key 'waves.type': [waves] makes waves in a coupled run"), std::string::npos)
         << error_of(dry);
 }
+
+// The graded mesh's z band must hold the largest wave's crest and trough,
+// except at the domain's top or floor (no coarse cells beyond). On the
+// shipped stability scene (band 0.18 .. 0.62 m, the domain's top; still
+// water 0.40 m): Hs 0.12 m reaches 0.184 m, Hs 0.15 m 0.13 m. The scene is
+// refused when it is read, so a sweep's plan refuses such a case too.
+TEST_F(SceneFile, SurfaceBandOfAGradedMeshHoldsTheLargestWave) {
+    const std::string scene = (kSourceDir / "scenes" / "stability_cubes.toml").string();
+    ASSERT_EQ(error_of(scene), "");
+    const std::string high = error_of(scene, {"waves.Hs=0.15"});
+    EXPECT_NE(high.find("key 'fluid.refine_min': the refined box's z range 0.18 .. 0.62 m must hold the free "
+                        "surface 0.4 m +- the wave height 0.27 m (1.8 Hs)"),
+              std::string::npos)
+        << high;
+    // The crest 0.67 m stands above the domain's top: the band reaches it.
+    EXPECT_EQ(error_of(scene, {"waves.Hs=0.15", "fluid.refine_min=[1.15, -0.124, 0.13]"}), "");
+    const std::string low_top = error_of(scene, {"fluid.refine_max=[2.0, 0.124, 0.6]"});
+    EXPECT_NE(low_top.find("key 'fluid.refine_max': the refined box's z range 0.18 .. 0.6 m must hold"),
+              std::string::npos)
+        << low_top;
+    // Not graded in z: the band may be anything.
+    EXPECT_EQ(error_of(scene, {"waves.Hs=0.15", "fluid.coarse_cell_size=[0.05, 0.0, 0.0]"}), "");
+}

@@ -163,6 +163,22 @@ TEST_F(SweepTest, DryRunChecksEveryCaseAndWritesNothing) {
     EXPECT_FALSE(fs::exists(dir_ / "out"));
 }
 
+// The shipped studies as a user starts them: every case passes the scene
+// reader's checks (a case refused at its start on a cluster costs a queue).
+TEST_F(SweepTest, ShippedStudiesCheckEveryCase) {
+    int studies = 0;
+    for (const auto &entry : fs::directory_iterator(kSource + "/studies")) {
+        if (entry.path().extension() != ".toml")
+            continue;
+        ++studies;
+        const Result r = run(kArmour + " sweep " + entry.path().string() + " --out " +
+                             (dir_ / entry.path().stem()).string() + " --dry-run");
+        EXPECT_EQ(r.status, 0) << entry.path() << ": " << r.output;
+        EXPECT_NE(r.output.find("all checked"), std::string::npos) << r.output;
+    }
+    EXPECT_GE(studies, 2);
+}
+
 TEST_F(SweepTest, KilledSweepLosesOnlyTheRunningCase) {
     const fs::path sweep = tilt_sweep(), out = dir_ / "out";
     const pid_t pid = ::fork();
