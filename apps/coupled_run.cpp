@@ -21,6 +21,7 @@
 #include <charconv>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -31,6 +32,7 @@
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <sstream>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <thread>
 #include <unistd.h>
@@ -125,10 +127,16 @@ void run_tool(const std::string &name, const std::vector<std::string> &args, con
         argv.push_back(const_cast<char *>(a.c_str()));
     argv.push_back(nullptr);
     const std::string dir = case_dir.string(), log_path = log.string();
+    const pid_t armour = ::getpid();
     const pid_t pid = ::fork();
     if (pid < 0)
         throw InputError(name + ": cannot start: " + std::strerror(errno));
     if (pid == 0) {
+        // interFoam is the run (the engine lives in its plugin): killed alone,
+        // `armour run` must not leave it going on to the end in the background
+        // (mpirun passes the signal to its ranks).
+        if (::prctl(PR_SET_PDEATHSIG, SIGTERM) != 0 || ::getppid() != armour)
+            ::_exit(127);
         const int fd = ::open(log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
         if (fd < 0 || ::chdir(dir.c_str()) != 0)
             ::_exit(127);

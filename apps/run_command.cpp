@@ -454,7 +454,19 @@ Checkpoint checked_resume(const RunRequest &r, const Scene &scene, const fs::pat
     const fs::path ran = out / "scene.resolved.toml";
     if (!fs::is_regular_file(ran))
         throw InputError("--resume: " + ran.string() + " is missing: not a run to continue");
-    const std::string now = resumable_form(scene), before = resumable_form(load_scene(ran.string()));
+    const Scene ran_scene = load_scene(ran.string());
+    Scene resumed = scene;
+    if (resumed.fluid && ran_scene.fluid) {
+        // --np is not in the scene file: the resolved scene records it.
+        const int np = r.np > 0 ? r.np : resumed.fluid->np, ran_np = ran_scene.fluid->np;
+        if (np != ran_np)
+            throw InputError(
+                "--np: the run in " + out.string() + " ran interFoam on " + std::to_string(ran_np) +
+                " rank(s), and its checkpoints hold the fields split that way; resume with --np " +
+                std::to_string(ran_np));
+        resumed.fluid->np = np;
+    }
+    const std::string now = resumable_form(resumed), before = resumable_form(ran_scene);
     if (now != before) {
         std::istringstream a(now), b(before);
         std::string la, lb;

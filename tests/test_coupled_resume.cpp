@@ -11,6 +11,7 @@
 // within 1e-3 Dn of the uninterrupted run up to its arrival; after it, for
 // every resume, each cube ends within one Dn (measured 0.07-0.6 Dn, reported).
 #include "bodies_file.h"
+#include "checkpoints.h"
 #include "cli.h"
 
 #include <gtest/gtest.h>
@@ -259,6 +260,85 @@ TEST(CoupledResume, KilledDamBreakResumedEndsAsTheUninterruptedOne) {
                     "final poses by %.3g m (%.3g Dn; not bit-identical, docs/checkpoints.md)\n",
                     r.checkpoint, r.time_shift, r.pose, r.pose / kDn);
     }
+    if (!::testing::Test::HasFailure())
+        fs::remove_all(dir);
+}
+
+// `armour run` killed alone (SIGKILL to its pid, not its group: a user's
+// `kill -9`, a crash): its interFoam, which carries the run in its plugin,
+// ends with it instead of going on to the end in the background.
+TEST(CoupledResume, ArmourKilledAloneTakesItsSolverWithIt) {
+    const fs::path dir = fs::temp_directory_path() / ("armour_killed_alone_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    const fs::path out = dir / "run";
+    // 5 s of dam break at 2 cells per cube, a checkpoint every 0.02 s.
+    const pid_t pid =
+        start({"armour", "run", (fs::path(ARMOUR_SOURCE_DIR) / "scenes" / "dambreak_two_cubes.toml").string(),
+               "--out", out.string(), "--set", "fluid.cell_size=0.04", "--set", "run.duration=5", "--set",
+               "run.checkpoint_interval=0.02"});
+    const auto t0 = std::chrono::steady_clock::now();
+    while (latest_checkpoint(out) < 0.0 && since(t0) < 120.0)
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    const double at_kill = latest_checkpoint(out);
+    ASSERT_GE(at_kill, 0.0) << "the solver never reached its first checkpoint";
+    ::kill(pid, SIGKILL);
+    EXPECT_EQ(wait_for(pid), 128 + SIGKILL);
+    EXPECT_TRUE(wait_unlocked(out)) << "interFoam went on for 30 s after armour was killed";
+    // It runs ~1 simulated s per wall s here: alone, it would reach 5 s.
+    EXPECT_LT(latest_checkpoint(out), at_kill + 0.5) << "interFoam went on after armour was killed";
+    EXPECT_FALSE(fs::exists(out / "summary.json"));
+    if (!::testing::Test::HasFailure())
+        fs::remove_all(dir);
+}
+
+// A parallel run (--np 2: the fields in processor<N>/) checkpoints and
+// resumes: killed (its group) after its second checkpoint, refused when
+// resumed on another number of ranks, then resumed on 2 ranks to the end
+// with every record.
+TEST(CoupledResume, ParallelRunResumesOnItsOwnRanks) {
+    const fs::path dir = fs::temp_directory_path() / ("armour_parallel_resume_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    const fs::path out = dir / "run";
+    const auto args = [&](const std::vector<std::string> &extra) {
+        std::vector<std::string> a = {
+            "armour",
+            "run",
+            (fs::path(ARMOUR_SOURCE_DIR) / "scenes" / "dambreak_two_cubes.toml").string(),
+            "--out",
+            out.string(),
+            "--set",
+            "fluid.cell_size=0.04",
+            "--set",
+            "run.duration=0.3",
+            "--set",
+            "run.checkpoint_interval=0.1"};
+        a.insert(a.end(), extra.begin(), extra.end());
+        return a;
+    };
+    const pid_t pid = start(args({"--np", "2"}));
+    const auto t0 = std::chrono::steady_clock::now();
+    while (latest_checkpoint(out) < 0.15 && since(t0) < 120.0)
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    ::kill(-pid, SIGKILL);
+    wait_for(pid);
+    ASSERT_TRUE(wait_unlocked(out));
+    const double checkpoint = latest_checkpoint(out);
+    ASSERT_GE(checkpoint, 0.15) << "no second checkpoint";
+    ASSERT_LT(checkpoint, 0.25) << "the run ended before the kill";
+    for (const char *rank : {"processor0", "processor1"})
+        EXPECT_TRUE(
+            fs::is_directory(out / "checkpoints" / armour::checkpoint_name(checkpoint) / "fluid" / rank))
+            << rank;
+    EXPECT_EQ(wait_for(start(args({"--resume"}))), 2); // serial: refused, nothing changed
+    EXPECT_DOUBLE_EQ(latest_checkpoint(out), checkpoint);
+    ASSERT_EQ(wait_for(start(args({"--np", "2", "--resume"}))), 0);
+    const json summary = summary_of(out);
+    EXPECT_EQ(summary["records"], 31); // 0 .. 0.3 s every 0.01 s
+    EXPECT_NEAR(summary["simulated_seconds"].get<double>(), 0.3, 0.005);
+    const armour::BodiesFile run = armour::read_bodies_file((out / "bodies.h5").string());
+    ASSERT_EQ(run.time.size(), 31u);
+    for (std::size_t s = 1; s < run.time.size(); ++s)
+        EXPECT_NEAR(run.time[s] - run.time[s - 1], 0.01, 0.005) << s;
     if (!::testing::Test::HasFailure())
         fs::remove_all(dir);
 }

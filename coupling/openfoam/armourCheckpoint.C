@@ -78,27 +78,51 @@ void armourFoam::checkpointing::loadInto
 
 void armourFoam::checkpointing::commit(const Foam::Time& runTime)
 {
-    // The fields of pending_.time were written at the end of the last step.
+    // The fields of pending_.time were written at the end of the last step:
+    // in the case's time folder, or in processor<N>/ of a parallel run.
     const fs::path caseDir(runTime.globalPath());
     const fs::path fluid = fs::path(partial_)/"fluid";
     fs::create_directories(fluid);
-    fs::copy(caseDir/timeName_, fluid/timeName_, fs::copy_options::recursive);
+    const bool parallel = Foam::Pstream::parRun();
+    int copied = 0;
+    if (!parallel)
+    {
+        fs::copy
+        (
+            caseDir/timeName_,
+            fluid/timeName_,
+            fs::copy_options::recursive
+        );
+        ++copied;
+    }
     for (const auto& entry : fs::directory_iterator(caseDir))
     {
         const std::string name = entry.path().filename().string();
         if
         (
-            name.rfind("processor", 0) == 0
+            parallel
+         && name.rfind("processor", 0) == 0
          && fs::is_directory(entry.path()/timeName_)
         )
         {
+            fs::create_directories(fluid/name);
             fs::copy
             (
                 entry.path()/timeName_,
                 fluid/name/timeName_,
                 fs::copy_options::recursive
             );
+            ++copied;
         }
+    }
+    if (copied != (parallel ? Foam::Pstream::nProcs() : 1))
+    {
+        throw armour::InputError
+        (
+            caseDir.string() + ": the fields of t = " + timeName_
+          + " s are not all written (" + std::to_string(copied)
+          + " time folders): no checkpoint"
+        );
     }
     checkpoints_.commit(pending_, partial_);
     Foam::Info<< "    armourCoupling: checkpoint at t = " << pending_.time
