@@ -2,6 +2,7 @@
 // still, dambreak, platform, slope_waves. The solver runs in interFoam; the
 // driver then samples the plugin's bodies.h5 step by step.
 #include "analysis.h"
+#include "gauge_rows.h"
 #include "scene_keys.h"
 
 #include <nlohmann/json.hpp>
@@ -270,21 +271,12 @@ class DamBreakAnalysis : public UnitMotionAnalysis {
 };
 
 // Surface height at the first gauge of an armourWaveGauges function object
-// (postProcessing/gauges/<start>/surfaceElevation.dat): (time, z) rows.
+// (gauge_rows.h): (time, z) rows.
 std::vector<std::pair<double, double>> gauge_series(const fs::path &case_dir) {
     std::vector<std::pair<double, double>> rows;
-    std::error_code ec;
-    for (const auto &e : fs::recursive_directory_iterator(case_dir / "postProcessing", ec)) {
-        if (e.path().filename() != "surfaceElevation.dat")
-            continue;
-        std::ifstream in(e.path());
-        for (std::string line; std::getline(in, line);) {
-            double t = 0.0, z = 0.0;
-            if (!line.empty() && line[0] != '#' && std::sscanf(line.c_str(), "%lf %lf", &t, &z) == 2)
-                rows.emplace_back(t, z);
-        }
-        break;
-    }
+    for (const std::vector<double> &row : gauge_rows(case_dir))
+        if (row.size() >= 2)
+            rows.emplace_back(row[0], row[1]);
     return rows;
 }
 

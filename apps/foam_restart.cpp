@@ -47,12 +47,14 @@ bool time_of(const std::string &name, double &t) {
     return !name.empty() && end != name.c_str() && *end == '\0' && errno == 0;
 }
 
-// Removes the time folders of `dir` later than t (a killed run's writes after its checkpoint).
-void remove_later(const fs::path &dir, double t) {
+// Removes the time folders of `dir` later than t (a killed run's writes
+// after its checkpoint), and the one of t itself with `and_at`.
+void remove_later(const fs::path &dir, double t, bool and_at = false) {
     std::error_code ec;
     for (const auto &e : fs::directory_iterator(dir, ec)) {
         double time = 0.0;
-        if (e.is_directory() && time_of(e.path().filename().string(), time) && time > t * (1 + 1e-12))
+        if (e.is_directory() && time_of(e.path().filename().string(), time) &&
+            (and_at ? time >= t * (1 - 1e-12) : time > t * (1 + 1e-12)))
             fs::remove_all(e.path(), ec);
     }
 }
@@ -91,6 +93,13 @@ void restore_case(const fs::path &case_dir, const Checkpoint &checkpoint, double
                      fs::copy_options::recursive | fs::copy_options::overwrite_existing);
         }
     }
+    // Function objects (the wave gauges) write postProcessing/<name>/<start
+    // time>/: a part a killed resume started at t or later goes, so that the
+    // resume writes its own from t (gauge_rows.h stitches the parts).
+    std::error_code none;
+    for (const auto &e : fs::directory_iterator(case_dir / "postProcessing", none))
+        if (e.is_directory())
+            remove_later(e.path(), checkpoint.time, true);
     const fs::path control = case_dir / "system" / "controlDict";
     set_entry(control, "startFrom", "latestTime");
     char end[32];

@@ -309,6 +309,66 @@ void set_friction_between_units(Scene &scene, double friction) {
 // in this process would leave it unable to launch interFoam under mpirun.
 // The child writes OUT/settle (a normal `armour run` output), OUT/settle/scene.settled.toml
 // (rerunnable on its own) and OUT/settle/settled.json (how still it got).
+// OUT/settle/settled.json with the speed below which the layer counts as
+// still: 1 % of the smallest unit's size per second, the drift a resting
+// unit may show in water (the coupled rest test). A layer still moving
+// faster readjusts in the first coupled steps, and the flow (and the
+// pressure solver) sees that as a real motion.
+json settle_report(const fs::path &dir, const SceneSetup &setup) {
+    std::ifstream in(dir / "settled.json");
+    json report = json::parse(in);
+    double Dn = HUGE_VAL;
+    for (const double d : setup.unit_Dn)
+        Dn = std::min(Dn, d);
+    report["still_speed"] = 0.01 * Dn / 1.0;
+    return report;
+}
+
+// The coupled summary says where its start came from.
+int with_settle_report(OutputFolder &folder, int status, json report) {
+    const fs::path summary_file = folder.claim("summary.json");
+    std::ifstream in(summary_file);
+    if (status == 0 && in) {
+        json summary = json::parse(in);
+        in.close();
+        report["scene"] = "settle/scene.settled.toml";
+        summary["settle"] = report;
+        write_text_file(summary_file, summary.dump(2) + "\n");
+    }
+    return status;
+}
+
+// The settle's own scene (OUT/settle/scene.resolved.toml reruns it): the
+// scene without its fluid, the pile's headroom in its domain, its friction
+// between units as pairs.
+Scene settle_scene(const Scene &scene, const SceneSetup &setup) {
+    const SceneFluid &fluid = *scene.fluid;
+    Scene dry = scene;
+    dry.fluid.reset();
+    dry.waves.reset(); // both need [fluid]
+    dry.porous.clear();
+    dry.duration = fluid.settle_time;
+    dry.output_interval = std::min(scene.output_interval, fluid.settle_time);
+    dry.analysis = "none";
+    dry.checkpoint_interval = 0.0; // the settle run is short; the coupled run checkpoints
+    dry.domain_max.z() += settle_headroom(scene, setup);
+    if (fluid.settle_friction)
+        set_friction_between_units(dry, *fluid.settle_friction);
+    return dry;
+}
+
+// The scene the coupled run starts from after the settle: the same scene
+// with every unit an explicit [[body]] (`bodies`: at the settled poses).
+Scene settled_scene(const Scene &scene, std::vector<SceneBody> bodies) {
+    Scene settled = scene;
+    settled.fluid->settle_time = 0.0;
+    settled.fluid->settle_friction.reset();
+    settled.drops.clear();
+    settled.patterns.clear();
+    settled.bodies = std::move(bodies);
+    return settled;
+}
+
 Scene settle_before_coupling(const RunRequest &r, OutputFolder &folder, const Scene &scene, SceneSetup &setup,
                              json &report) {
     const SceneFluid &fluid = *scene.fluid;
@@ -329,25 +389,13 @@ Scene settle_before_coupling(const RunRequest &r, OutputFolder &folder, const Sc
     if (pid == 0) {
         int status = 1;
         try {
-            Scene dry = scene;
-            dry.fluid.reset();
-            dry.waves.reset(); // both need [fluid]
-            dry.porous.clear();
-            dry.duration = fluid.settle_time;
-            dry.output_interval = std::min(scene.output_interval, fluid.settle_time);
-            dry.analysis = "none";
-            dry.checkpoint_interval = 0.0; // the settle run is short; the coupled run checkpoints
+            const Scene dry = settle_scene(scene, setup);
             OutputFolder settle_folder(dir, "armour run", OutputFolder::Mode::streaming);
             std::vector<BodyState> states;
             StillWater water;
             water.level = fluid.water_level;
             water.density = fluid.fluid_density;
             water.update_interval = std::min(fluid.max_time_step, dry.output_interval);
-            // The settle is a scene of its own (OUT/settle/scene.resolved.toml
-            // reruns it): the pile's headroom in its domain, its friction as pairs.
-            dry.domain_max.z() += settle_headroom(scene, setup);
-            if (fluid.settle_friction)
-                set_friction_between_units(dry, *fluid.settle_friction);
             SceneSetup dry_setup = build_scene(dry, r.cache.empty() ? default_cache_dir() : r.cache, false);
             if (dry_setup.bodies.size() != setup.bodies.size())
                 throw InputError("fluid.settle_time: the settle placed " +
@@ -355,12 +403,7 @@ Scene settle_before_coupling(const RunRequest &r, OutputFolder &folder, const Sc
                                  std::to_string(setup.bodies.size()));
             run_dem(settle_folder, dry, dry_setup, &states, &water);
 
-            Scene settled = scene;
-            settled.fluid->settle_time = 0.0;
-            settled.fluid->settle_friction.reset();
-            settled.drops.clear();
-            settled.patterns.clear();
-            settled.bodies.clear();
+            std::vector<SceneBody> bodies;
             double speed = 0.0, displacement = 0.0;
             for (std::size_t i = 0; i < states.size(); ++i) {
                 const BodyInit &init = setup.bodies[i];
@@ -373,12 +416,12 @@ Scene settle_before_coupling(const RunRequest &r, OutputFolder &folder, const Sc
                 b.orientation = Eigen::Vector4d(q.w(), q.x(), q.y(), q.z());
                 b.velocity.setZero();
                 b.angular_velocity.setZero();
-                settled.bodies.push_back(b);
+                bodies.push_back(b);
                 speed = std::max(speed, states[i].velocity.norm());
                 displacement = std::max(displacement, (states[i].pose.position - init.pose.position).norm());
             }
             write_text_file(settle_folder.claim(settled_file.filename().string()),
-                            resolved_scene_toml(settled));
+                            resolved_scene_toml(settled_scene(scene, std::move(bodies))));
             write_text_file(
                 settle_folder.claim("settled.json"),
                 json{
@@ -405,18 +448,9 @@ Scene settle_before_coupling(const RunRequest &r, OutputFolder &folder, const Sc
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !fs::is_regular_file(settled_file))
         throw InputError(scene.file + ": key 'fluid.settle_time': the dry settle run failed (see the line " +
                          "above and " + dir.string() + ")");
-    std::ifstream in(dir / "settled.json");
-    report = json::parse(in);
-    const double speed = report["max_speed_at_end"].get<double>();
-    // Still = slower than 1 % of the smallest unit's size per second: the
-    // drift a resting unit may show in water (the coupled rest test). A layer
-    // still moving faster readjusts in the first coupled steps, and the flow
-    // (and the pressure solver) sees that as a real motion.
-    double Dn = HUGE_VAL;
-    for (const double d : setup.unit_Dn)
-        Dn = std::min(Dn, d);
-    const double still = 0.01 * Dn / 1.0;
-    report["still_speed"] = still;
+    report = settle_report(dir, setup);
+    const double speed = report["max_speed_at_end"].get<double>(),
+                 still = report["still_speed"].get<double>();
     if (speed > still)
         std::fprintf(stderr,
                      "armour: warning: after fluid.settle_time = %g s a unit still moves at %.3g m/s (> %.3g "
@@ -430,17 +464,32 @@ Scene settle_before_coupling(const RunRequest &r, OutputFolder &folder, const Sc
 
 // The scene as far as a resume may not change it: the keys a resume may
 // change (docs/checkpoints.md) set to fixed values.
-std::string resumable_form(Scene s) {
-    s.duration = 1.0;
-    s.checkpoint_interval = 0.0;
-    if (s.fluid)
-        s.fluid->write_interval = 0.0; // its default follows run.duration
+std::string resumable_form(Scene s, bool resumable_keys = true) {
+    if (resumable_keys) {
+        s.duration = 1.0;
+        s.checkpoint_interval = 0.0;
+        if (s.fluid)
+            s.fluid->write_interval = 0.0; // its default follows run.duration
+    }
     std::istringstream text(resolved_scene_toml(s));
     std::string form;
     for (std::string line; std::getline(text, line);)
         if (line.rfind('#', 0) != 0) // comments name the file
             form += line + "\n";
     return form;
+}
+
+void refuse_if_differs(const std::string &scene_file, const std::string &now, const std::string &before,
+                       const std::string &where) {
+    if (now == before)
+        return;
+    std::istringstream a(now), b(before);
+    std::string la, lb;
+    while (std::getline(a, la) && std::getline(b, lb) && la == lb) {
+    }
+    throw InputError(scene_file + ": differs from the scene that " + where + " ('" + la + "' against '" + lb +
+                     "'); a resume may change only run.duration, run.checkpoint_interval and "
+                     "fluid.write_interval");
 }
 
 // The checkpoint `armour run --resume` continues from, after checking that
@@ -466,17 +515,7 @@ Checkpoint checked_resume(const RunRequest &r, const Scene &scene, const fs::pat
                 std::to_string(ran_np));
         resumed.fluid->np = np;
     }
-    const std::string now = resumable_form(resumed), before = resumable_form(ran_scene);
-    if (now != before) {
-        std::istringstream a(now), b(before);
-        std::string la, lb;
-        while (std::getline(a, la) && std::getline(b, lb) && la == lb) {
-        }
-        throw InputError(r.scene + ": differs from the scene that ran in " + out.string() + " ('" + la +
-                         "' against '" + lb +
-                         "'); a resume may change only run.duration, "
-                         "run.checkpoint_interval and fluid.write_interval");
-    }
+    refuse_if_differs(r.scene, resumable_form(resumed), resumable_form(ran_scene), "ran in " + out.string());
     if (last->time >= scene.duration)
         throw InputError("--resume: the last checkpoint (t = " + checkpoint_name(last->time) +
                          " s) is not before run.duration = " + checkpoint_name(scene.duration) + " s");
@@ -485,11 +524,36 @@ Checkpoint checked_resume(const RunRequest &r, const Scene &scene, const fs::pat
 
 } // namespace
 
+// `--resume` of a run that settled its units first: the settle is not run
+// again. The scene must be the one that ran but for the resumable keys:
+// the settle's (OUT/settle/scene.resolved.toml: units, placement,
+// materials, walls, settle time and friction) and the coupled run's from
+// the settled poses (OUT/scene.resolved.toml).
+int resume_settled(const RunRequest &r, OutputFolder &folder, const Scene &scene, const SceneSetup &setup) {
+    const fs::path dir = folder.target() / "settle";
+    for (const char *name : {"scene.resolved.toml", "scene.settled.toml", "settled.json"})
+        if (!fs::is_regular_file(dir / name))
+            throw InputError("--resume: " + (dir / name).string() +
+                             " is missing: the run stopped before its settle ended; start it again without "
+                             "--resume");
+    refuse_if_differs(r.scene, resumable_form(settle_scene(scene, setup), false),
+                      resumable_form(load_scene((dir / "scene.resolved.toml").string()), false),
+                      "settled in " + dir.string());
+    const Scene settled = settled_scene(scene, load_scene((dir / "scene.settled.toml").string()).bodies);
+    const Checkpoint checkpoint = checked_resume(r, settled, folder.target());
+    const SceneSetup settled_setup =
+        build_scene(settled, r.cache.empty() ? default_cache_dir() : r.cache, false);
+    folder.resume();
+    return with_settle_report(folder, run_coupled(r, settled, settled_setup, folder, &checkpoint),
+                              settle_report(dir, setup));
+}
+
 int run_scene(const RunRequest &r) {
     const Scene scene = load_scene(r.scene, r.overrides);
     OutputFolder folder(r.out, "armour run", OutputFolder::Mode::streaming); // refused before any work
+    const bool settles = scene.fluid && scene.fluid->settle_time > 0.0;
     std::optional<Checkpoint> resume;
-    if (r.resume)
+    if (r.resume && !settles)
         resume = checked_resume(r, scene, folder.target());
     SceneSetup setup = build_scene(scene, r.cache.empty() ? default_cache_dir() : r.cache, true);
     if (!scene.fluid) {
@@ -508,15 +572,12 @@ int run_scene(const RunRequest &r) {
     if (scene.fluid->settle_friction && scene.fluid->settle_time <= 0.0)
         std::fprintf(stderr, "armour: warning: fluid.settle_friction is unused: there is no settle "
                              "(fluid.settle_time = 0)\n");
-    if (resume) {
-        if (scene.fluid->settle_time > 0.0)
-            throw InputError(r.scene +
-                             ": key 'fluid.settle_time': a run that settles its units first cannot be "
-                             "resumed yet; resume the settled scene (OUT/settle/scene.settled.toml) run on "
-                             "its own");
+    if (r.resume) {
         if (!engine_style(scene.engine).capabilities.restart)
             throw InputError(r.scene + ": key 'run.engine': the " + scene.engine +
                              " engine cannot restore a state, so its runs cannot be resumed");
+        if (settles)
+            return resume_settled(r, folder, scene, setup);
         folder.resume();
         return run_coupled(r, scene, setup, folder, &*resume);
     }
@@ -529,18 +590,7 @@ int run_scene(const RunRequest &r) {
     folder.open(); // an earlier result of this command is replaced
     json report;
     const Scene settled = settle_before_coupling(r, folder, scene, setup, report);
-    const int status = run_coupled(r, settled, setup, folder);
-    // The coupled summary says where its start came from.
-    const fs::path summary_file = folder.claim("summary.json");
-    std::ifstream in(summary_file);
-    if (status == 0 && in) {
-        json summary = json::parse(in);
-        in.close();
-        report["scene"] = "settle/scene.settled.toml";
-        summary["settle"] = report;
-        write_text_file(summary_file, summary.dump(2) + "\n");
-    }
-    return status;
+    return with_settle_report(folder, run_coupled(r, settled, setup, folder), report);
 }
 
 } // namespace armour

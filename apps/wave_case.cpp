@@ -1,6 +1,7 @@
 #include "wave_case.h"
 
 #include "flume_mesh.h"
+#include "gauge_rows.h"
 #include "jonswap.h"
 #include "scene_keys.h"
 #include "wave_separation.h"
@@ -122,26 +123,15 @@ struct GaugeRecord {
     std::vector<std::vector<double>> eta; // per gauge
 };
 
-GaugeRecord read_gauges(const fs::path &file, double level, std::size_t count) {
+GaugeRecord read_gauges(const fs::path &case_dir, double level, std::size_t count) {
     GaugeRecord r;
     r.eta.resize(count);
-    std::ifstream in(file);
-    for (std::string line; std::getline(in, line);) {
-        if (line.empty() || line[0] == '#')
+    for (const std::vector<double> &row : gauge_rows(case_dir)) {
+        if (row.size() < count + 1)
             continue;
-        std::istringstream s(line);
-        double t;
-        std::vector<double> z(count);
-        if (!(s >> t))
-            continue;
-        bool ok = true;
-        for (double &v : z)
-            ok = ok && static_cast<bool>(s >> v);
-        if (!ok)
-            continue;
-        r.t.push_back(t);
+        r.t.push_back(row[0]);
         for (std::size_t i = 0; i < count; ++i)
-            r.eta[i].push_back(z[i] - level);
+            r.eta[i].push_back(row[i + 1] - level);
     }
     return r;
 }
@@ -185,8 +175,7 @@ void add_wave_summary(const Scene &scene, const fs::path &case_dir, OutputFolder
     const double period = period_of(w), H = target_height(w);
     const bool regular = w.type == "regular";
     const std::vector<double> x = gauge_positions(scene);
-    const GaugeRecord rec = read_gauges(case_dir / "postProcessing" / "gauges" / "0" / "surfaceElevation.dat",
-                                        scene.fluid->water_level, 3);
+    const GaugeRecord rec = read_gauges(case_dir, scene.fluid->water_level, 3);
     json out = {
         {"type", w.type}, {"target_height", H}, {"target_period", period}, {"gauge_x", x}, {"depth", depth}};
     if (regular)

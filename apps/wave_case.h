@@ -12,9 +12,10 @@
 //     need such a template: either mismatch is an InputError naming the key.
 //
 //     After the run, add_wave_summary() reads the gauges
-//     (postProcessing/gauges/0/surfaceElevation.dat), separates incident and
-//     reflected waves over the analysis window (regular: the last whole
-//     periods after the ramp and the front's travel to the last gauge;
+//     (postProcessing/gauges/<start>/surfaceElevation.dat, whole across
+//     resumes: gauge_rows.h), separates incident and reflected waves
+//     over the analysis window (regular: the last whole periods after the
+//     ramp and the front's travel to the last gauge;
 //     irregular: the last repeat period of the train when the run holds
 //     one), adds summary["waves"] and writes OUT/waves_spectrum.csv and
 //     OUT/waves_spectrum.png (chart: analysis/wave_spectrum_chart.py).
