@@ -423,3 +423,50 @@ TEST(CoupledResume, SettledWaveRunResumesWithTheSameCommand) {
     if (!::testing::Test::HasFailure())
         fs::remove_all(dir);
 }
+
+// A sweep stopped while a coupled case runs (SIGTERM: the case goes back to
+// pending) runs that case again from its run's last checkpoint: the second
+// attempt resumes (its log says so, the killed part's solver log is kept)
+// and the case ends with every record.
+TEST(CoupledResume, StoppedSweepResumesItsCaseFromTheCheckpoint) {
+    const fs::path dir = fs::temp_directory_path() / ("armour_sweep_resume_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const fs::path file = dir / "sweep.toml", out = dir / "out";
+    std::ofstream(file) << "scene = \"" << ARMOUR_SOURCE_DIR << "/scenes/dambreak_two_cubes.toml\"\n"
+                        << "[set]\n\"fluid.cell_size\" = 0.04\n\"run.duration\" = 0.6\n"
+                        << "\"run.checkpoint_interval\" = 0.05\n[vary]\n\"fluid.max_courant\" = [0.5]\n";
+    const auto sweep = [&] {
+        std::fflush(nullptr);
+        const pid_t pid = ::fork();
+        if (pid == 0) {
+            ::freopen("/dev/null", "w", stderr);
+            ::execl(ARMOUR_EXE, ARMOUR_EXE, "sweep", file.c_str(), "--out", out.c_str(), "--jobs", "1",
+                    static_cast<char *>(nullptr));
+            ::_exit(127);
+        }
+        return pid;
+    };
+    const fs::path run = out / "cases" / "max_courant-0.5" / "run";
+    const pid_t first = sweep();
+    const auto t0 = std::chrono::steady_clock::now();
+    while (latest_checkpoint(run) < 0.2 && since(t0) < 300.0)
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    ::kill(first, SIGTERM);
+    EXPECT_EQ(wait_for(first), 1); // stopped: a case did not finish
+    const double checkpoint = latest_checkpoint(run);
+    ASSERT_GE(checkpoint, 0.2);
+    ASSERT_LT(checkpoint, 0.55) << "the case ended before the sweep was stopped";
+    ASSERT_FALSE(fs::exists(run / "summary.json"));
+    ASSERT_EQ(wait_for(sweep()), 0);
+    std::ifstream log_in(run.parent_path() / "log.txt");
+    const std::string log((std::istreambuf_iterator<char>(log_in)), std::istreambuf_iterator<char>());
+    EXPECT_NE(log.find("attempt 2 on"), std::string::npos) << log;
+    EXPECT_NE(log.find("resumed from its checkpoint at t = " + armour::checkpoint_name(checkpoint) + " s"),
+              std::string::npos)
+        << log;
+    EXPECT_TRUE(fs::exists(run / "case" / "log.interFoam.1")) << "the killed part's solver log";
+    EXPECT_EQ(summary_of(run)["records"], 61); // 0 .. 0.6 s every 0.01 s
+    if (!::testing::Test::HasFailure())
+        fs::remove_all(dir);
+}

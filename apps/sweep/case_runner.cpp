@@ -1,5 +1,6 @@
 #include "case_runner.h"
 
+#include "checkpoints.h"
 #include "mesh.h"
 #include "output_folder.h"
 
@@ -12,6 +13,7 @@
 #include <fcntl.h>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <sys/file.h>
 #include <sys/prctl.h>
@@ -135,6 +137,11 @@ int run_case(const fs::path &case_dir, const std::string &armour_exe) {
         ::close(lock);
         throw InputError((case_dir / "plan.json").string() + ": cannot read the case's plan");
     }
+    // A case stopped before it ended (killed, timed out, a Slurm time limit)
+    // goes on from its run's last checkpoint when its scene is the same.
+    const std::optional<Checkpoint> checkpoint =
+        r.attempts > 0 && r.scene_hash == plan.value("scene_hash", "") ? last_checkpoint(case_dir / "run")
+                                                                       : std::nullopt;
     r.scene_hash = plan.value("scene_hash", "");
     const int np = plan.value("np", 0);
     const double timeout = plan.value("timeout", 0.0);
@@ -153,7 +160,11 @@ int run_case(const fs::path &case_dir, const std::string &armour_exe) {
     const fs::path log = case_dir / "log.txt";
     {
         std::ofstream header(log, std::ios::app);
-        header << "=== armour sweep: attempt " << r.attempts << " on " << r.host << " ===\n";
+        header << "=== armour sweep: attempt " << r.attempts << " on " << r.host
+               << (checkpoint
+                       ? ", resumed from its checkpoint at t = " + checkpoint_name(checkpoint->time) + " s"
+                       : std::string())
+               << " ===\n";
     }
     std::vector<std::string> args = {armour_exe, "run", (case_dir / "scene.toml").string(), "--out",
                                      (case_dir / "run").string()};
@@ -161,6 +172,8 @@ int run_case(const fs::path &case_dir, const std::string &armour_exe) {
         args.push_back("--np");
         args.push_back(std::to_string(np));
     }
+    if (checkpoint)
+        args.emplace_back("--resume");
     std::signal(SIGTERM, on_stop);
     std::signal(SIGINT, on_stop);
     std::signal(SIGHUP, on_stop);
