@@ -101,7 +101,8 @@ int armour_main(int argc, const char *const *argv) {
     run_cmd->add_flag("--resume", run.resume,
                       "Continue the run in --out from its last checkpoint (run.checkpoint_interval, s of "
                       "simulated time); only run.duration, run.checkpoint_interval and fluid.write_interval "
-                      "may differ (docs/checkpoints.md)");
+                      "may differ, --np must be the run's; a run that settled first is not settled again "
+                      "(docs/checkpoints.md)");
 
     CLI::App *engines_cmd = app.add_subcommand(
         "engines", "List the rigid-body engines of this build, one per line, with their capabilities.");
