@@ -111,11 +111,16 @@ class DamageAnalysis : public Analysis {
         const WaveConditions w = wave_conditions(summary, scene_, std::max(0.0, end_ - start_));
         const double rho_s = scene_.units.empty() ? 0.0 : unit_density();
         const double rho_w = scene_.fluid ? scene_.fluid->fluid_density : kFreshWaterDensity;
-        std::optional<double> Ns, vdm;
+        std::optional<double> Ns, vdm, vdm_n_od, vdm_units;
         if (w.Hs)
             Ns = stability_number(*w.Hs, rho_s, rho_w, Dn);
-        if (w.s_om && w.waves && *w.waves > 0.0)
+        if (w.s_om && w.waves && *w.waves > 0.0) {
             vdm = van_der_meer_cubes_ns(N_od, *w.waves, *w.s_om);
+            if (Ns) {
+                vdm_n_od = van_der_meer_cubes_n_od(*Ns, *w.waves, *w.s_om);
+                vdm_units = *vdm_n_od * frame_.width / Dn;
+            }
+        }
 
         summary["units"] = units_.size();
         summary["units_displaced"] = displaced;
@@ -127,6 +132,8 @@ class DamageAnalysis : public Analysis {
             summary["waves"] = nullable(w.waves); // else the incident-wave analysis's object holds N
         summary["damage_S"] = nullable(S);
         summary["Ns_van_der_meer"] = nullable(vdm);
+        summary["N_od_van_der_meer"] = nullable(vdm_n_od);
+        summary["units_displaced_van_der_meer"] = nullable(vdm_units);
         summary["Ns_hudson_breaking"] = hudson_ns(6.5, frame_.cot);
         summary["Ns_hudson_nonbreaking"] = hudson_ns(7.5, frame_.cot);
         summary["damage"] = {
@@ -230,6 +237,11 @@ double van_der_meer_cubes_ns(double N_od, double waves, double s_om) {
     return (6.7 * std::pow(N_od, 0.4) / std::pow(waves, 0.3) + 1.0) * std::pow(s_om, -0.1);
 }
 
+double van_der_meer_cubes_n_od(double Ns, double waves, double s_om) {
+    const double excess = Ns * std::pow(s_om, 0.1) - 1.0;
+    return excess <= 0.0 ? 0.0 : std::pow(excess * std::pow(waves, 0.3) / 6.7, 2.5);
+}
+
 double hudson_ns(double K_D, double cot) {
     return std::cbrt(K_D * cot);
 }
@@ -273,7 +285,7 @@ AnalysisStyle damage_analysis_style() {
         "units on a slope from their settled poses: displaced (N_od), rocking, S, Ns against Van der Meer "
         "and Hudson",
         {"units_displaced", "N_od", "rocking_units", "damage_S"},
-        {},
+        {{"units_displaced", "units_displaced_van_der_meer"}, {"N_od", "N_od_van_der_meer"}},
         false,
         [](const AnalysisContext &c) { return std::make_unique<DamageAnalysis>(c); }};
 }

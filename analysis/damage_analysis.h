@@ -28,6 +28,7 @@
 //     UnitDamageTracker unit(reference_pose, Dn, 5.0);
 //     unit.sample(pose);                            // every recorded step
 //     double ns = van_der_meer_cubes_ns(0.5, 1000, 0.03); // 2.33
+//     double n_od = van_der_meer_cubes_n_od(2.33, 1000, 0.03); // 0.5
 #pragma once
 
 #include "rigid_body_engine.h"
@@ -68,6 +69,9 @@ double n_od(int displaced, double slope_width, double Dn);
 double stability_number(double Hs, double unit_density, double water_density, double Dn);
 // Van der Meer (1988), double-layer cubes: Ns = (6.7 N_od^0.4 / N^0.3 + 1.0) s_om^−0.1.
 double van_der_meer_cubes_ns(double N_od, double waves, double s_om);
+// The same curve solved for N_od: the damage it predicts at Ns (0 below its
+// floor Ns = s_om^-0.1).
+double van_der_meer_cubes_n_od(double Ns, double waves, double s_om);
 // Hudson: H/(Δ Dn) = (K_D cot α)^(1/3).
 double hudson_ns(double K_D, double cot);
 

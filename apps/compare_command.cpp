@@ -261,7 +261,7 @@ int run_compare(const CompareRequest &r) {
             vs_exact[key] = std::isfinite(v) && std::isfinite(x) ? json(v - x) : json(nullptr);
         }
         for (const auto &[key, analytic_key] : analysis.analytic_keys)
-            if (s.contains(analytic_key)) {
+            if (s.contains(analytic_key) && s[analytic_key].is_number()) { // null: no prediction
                 const double v = number_or_nan(s, key);
                 vs_analytic[key] = std::isfinite(v) ? json(v - s[analytic_key].get<double>()) : json(nullptr);
             }

@@ -279,6 +279,12 @@ TEST(Damage, FormulasGiveThePublishedNumbers) {
     EXPECT_NEAR(armour::van_der_meer_cubes_ns(0.5, 1000, 0.03), 2.33, 0.005);
     EXPECT_NEAR(armour::van_der_meer_cubes_ns(2.0, 1000, 0.03), 3.00, 0.005);
     EXPECT_NEAR(armour::van_der_meer_cubes_ns(0.5, 3000, 0.02), 2.16, 0.005);
+    // Solved for N_od: the same points back, and nothing below the curve's floor.
+    for (const double n : {0.1, 0.5, 2.0})
+        EXPECT_NEAR(armour::van_der_meer_cubes_n_od(armour::van_der_meer_cubes_ns(n, 1000, 0.03), 1000, 0.03),
+                    n, 1e-9 * n);
+    EXPECT_EQ(armour::van_der_meer_cubes_n_od(1.4, 1000, 0.03), 0.0); // floor 1.42
+    EXPECT_NEAR(armour::van_der_meer_cubes_n_od(2.33, 1000, 0.03), 0.5, 0.01);
     EXPECT_NEAR(armour::hudson_ns(6.5, 1.5), 2.14, 0.005);
     EXPECT_NEAR(armour::hudson_ns(7.5, 1.5), 2.24, 0.005);
     EXPECT_DOUBLE_EQ(armour::stability_number(0.28, 2400, 1000, 0.2), 1.0);
@@ -373,6 +379,11 @@ TEST(Damage, SyntheticTrajectoriesGiveTheirKnownFigures) {
     EXPECT_NEAR(summary["waves"].get<double>(), 1.25, 1e-12); // 2.5 s of 2 s waves
     EXPECT_NEAR(summary["Ns_van_der_meer"].get<double>(), armour::van_der_meer_cubes_ns(1.0, 1.25, s_om),
                 1e-3);
+    const double predicted = armour::van_der_meer_cubes_n_od(0.28 / (1.4 * kA), 1.25, s_om);
+    EXPECT_NEAR(summary["N_od_van_der_meer"].get<double>(), predicted, 1e-3 * predicted + 1e-12);
+    EXPECT_NEAR(summary["units_displaced_van_der_meer"].get<double>() /
+                    summary["damage"]["slope_width"].get<double>() * kA,
+                predicted, 1e-3 * predicted + 1e-12);
     EXPECT_NEAR(summary["Ns_hudson_breaking"].get<double>(), std::cbrt(6.5 * 1.5), 1e-12);
     EXPECT_NEAR(summary["Ns_hudson_nonbreaking"].get<double>(), std::cbrt(7.5 * 1.5), 1e-12);
 
@@ -436,7 +447,8 @@ TEST(Damage, ADrySlopeRunWritesEveryFileAndKey) {
     const nlohmann::json summary = nlohmann::json::parse(in);
     for (const char *key :
          {"units", "units_displaced", "N_od", "rocking_units", "Ns", "s_om", "waves", "damage_S",
-          "Ns_van_der_meer", "Ns_hudson_breaking", "Ns_hudson_nonbreaking", "damage"})
+          "Ns_van_der_meer", "N_od_van_der_meer", "units_displaced_van_der_meer", "Ns_hudson_breaking",
+          "Ns_hudson_nonbreaking", "damage"})
         EXPECT_TRUE(summary.contains(key)) << key;
     EXPECT_EQ(summary["units"].get<int>(), 6);
     EXPECT_NEAR(summary["Ns"].get<double>(), 0.3 / (1.4 * 0.2), 1e-9);

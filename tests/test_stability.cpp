@@ -90,7 +90,8 @@ TEST(StabilityCubes, ShortIrregularRunWritesEveryDamageFileAndKey) {
                              "waves_spectrum.png", "bodies.h5", "settle/scene.settled.toml"})
         EXPECT_TRUE(fs::is_regular_file(run.out / file)) << file;
     for (const char *key : {"units", "units_displaced", "N_od", "rocking_units", "Ns", "s_om", "waves",
-                            "damage_S", "Ns_van_der_meer", "Ns_hudson_breaking", "Ns_hudson_nonbreaking"})
+                            "damage_S", "Ns_van_der_meer", "N_od_van_der_meer",
+                            "units_displaced_van_der_meer", "Ns_hudson_breaking", "Ns_hudson_nonbreaking"})
         EXPECT_TRUE(s.contains(key)) << key;
     ASSERT_TRUE(s["waves"].is_object()) << run.output;
     const json &w = s["waves"];
@@ -122,6 +123,14 @@ TEST(StabilityCubes, ShortIrregularRunWritesEveryDamageFileAndKey) {
     // N_od counts displaced units per Dn of the 0.248 m wide slope.
     EXPECT_NEAR(s["N_od"].get<double>(), s["units_displaced"].get<double>() / (0.248 / kDn), 1e-9);
     EXPECT_TRUE(s["Ns_van_der_meer"].is_number());
+    // The damage Van der Meer predicts at this run's Ns, N and s_om, as N_od and as units on this slope.
+    ASSERT_TRUE(s["N_od_van_der_meer"].is_number());
+    const double ns = s["Ns"], waves = w["waves"], s_om = w["s_om"];
+    const double excess = ns * std::pow(s_om, 0.1) - 1.0;
+    const double predicted = excess > 0.0 ? std::pow(excess * std::pow(waves, 0.3) / 6.7, 2.5) : 0.0;
+    EXPECT_NEAR(s["N_od_van_der_meer"].get<double>(), predicted, 1e-9 + 1e-9 * predicted);
+    EXPECT_NEAR(s["units_displaced_van_der_meer"].get<double>(), predicted * 0.248 / kDn,
+                1e-9 + 1e-9 * predicted);
     if (!HasFailure())
         fs::remove_all(run.dir);
 }
