@@ -70,6 +70,28 @@ double since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// A fresh folder of this test process in the temp directory.
+fs::path test_dir(const std::string &name) {
+    const fs::path dir = fs::temp_directory_path() / ("armour_" + name + "_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir;
+}
+
+// `armour run scenes/SCENE --out OUT --set SET ...` followed by `flags`.
+std::vector<std::string> run_args(const std::string &scene, const fs::path &out,
+                                  const std::vector<std::string> &sets,
+                                  const std::vector<std::string> &flags = {}) {
+    std::vector<std::string> a = {"armour", "run", (fs::path(ARMOUR_SOURCE_DIR) / "scenes" / scene).string(),
+                                  "--out", out.string()};
+    for (const std::string &set : sets) {
+        a.emplace_back("--set");
+        a.push_back(set);
+    }
+    a.insert(a.end(), flags.begin(), flags.end());
+    return a;
+}
+
 json summary_of(const fs::path &out) {
     std::ifstream in(out / "summary.json");
     return json::parse(in);
@@ -169,25 +191,11 @@ Resumed compare_records(const fs::path &reference, const fs::path &resumed, doub
 } // namespace
 
 TEST(CoupledResume, KilledDamBreakResumedEndsAsTheUninterruptedOne) {
-    const fs::path dir = fs::temp_directory_path() / ("armour_coupled_resume_" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    const fs::path dir = test_dir("coupled_resume");
     const auto args = [&](const fs::path &out, bool resume) {
-        std::vector<std::string> a = {
-            "armour",
-            "run",
-            (fs::path(ARMOUR_SOURCE_DIR) / "scenes" / "dambreak_two_cubes.toml").string(),
-            "--out",
-            out.string(),
-            "--set",
-            "fluid.cell_size=0.04",
-            "--set",
-            "run.duration=0.6",
-            "--set",
-            "run.checkpoint_interval=0.02"};
-        if (resume)
-            a.push_back("--resume");
-        return a;
+        return run_args("dambreak_two_cubes.toml", out,
+                        {"fluid.cell_size=0.04", "run.duration=0.6", "run.checkpoint_interval=0.02"},
+                        resume ? std::vector<std::string>{"--resume"} : std::vector<std::string>{});
     };
 
     const fs::path reference = dir / "reference";
@@ -269,14 +277,11 @@ TEST(CoupledResume, KilledDamBreakResumedEndsAsTheUninterruptedOne) {
 // `kill -9`, a crash): its interFoam, which carries the run in its plugin,
 // ends with it instead of going on to the end in the background.
 TEST(CoupledResume, ArmourKilledAloneTakesItsSolverWithIt) {
-    const fs::path dir = fs::temp_directory_path() / ("armour_killed_alone_" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    const fs::path out = dir / "run";
+    const fs::path dir = test_dir("killed_alone"), out = dir / "run";
     // 5 s of dam break at 2 cells per cube, a checkpoint every 0.02 s.
     const pid_t pid =
-        start({"armour", "run", (fs::path(ARMOUR_SOURCE_DIR) / "scenes" / "dambreak_two_cubes.toml").string(),
-               "--out", out.string(), "--set", "fluid.cell_size=0.04", "--set", "run.duration=5", "--set",
-               "run.checkpoint_interval=0.02"});
+        start(run_args("dambreak_two_cubes.toml", out,
+                       {"fluid.cell_size=0.04", "run.duration=5", "run.checkpoint_interval=0.02"}));
     const auto t0 = std::chrono::steady_clock::now();
     while (latest_checkpoint(out) < 0.0 && since(t0) < 120.0)
         std::this_thread::sleep_for(std::chrono::milliseconds(10));
@@ -297,24 +302,10 @@ TEST(CoupledResume, ArmourKilledAloneTakesItsSolverWithIt) {
 // resumed on another number of ranks, then resumed on 2 ranks to the end
 // with every record.
 TEST(CoupledResume, ParallelRunResumesOnItsOwnRanks) {
-    const fs::path dir = fs::temp_directory_path() / ("armour_parallel_resume_" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    const fs::path out = dir / "run";
-    const auto args = [&](const std::vector<std::string> &extra) {
-        std::vector<std::string> a = {
-            "armour",
-            "run",
-            (fs::path(ARMOUR_SOURCE_DIR) / "scenes" / "dambreak_two_cubes.toml").string(),
-            "--out",
-            out.string(),
-            "--set",
-            "fluid.cell_size=0.04",
-            "--set",
-            "run.duration=0.3",
-            "--set",
-            "run.checkpoint_interval=0.1"};
-        a.insert(a.end(), extra.begin(), extra.end());
-        return a;
+    const fs::path dir = test_dir("parallel_resume"), out = dir / "run";
+    const auto args = [&](const std::vector<std::string> &flags) {
+        return run_args("dambreak_two_cubes.toml", out,
+                        {"fluid.cell_size=0.04", "run.duration=0.3", "run.checkpoint_interval=0.1"}, flags);
     };
     const pid_t pid = start(args({"--np", "2"}));
     const auto t0 = std::chrono::steady_clock::now();
@@ -352,27 +343,12 @@ TEST(CoupledResume, ParallelRunResumesOnItsOwnRanks) {
 // again, a changed placement is refused, and the wave analysis reads the
 // gauges whole across the parts, as the uninterrupted run does.
 TEST(CoupledResume, SettledWaveRunResumesWithTheSameCommand) {
-    const fs::path dir = fs::temp_directory_path() / ("armour_settled_resume_" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    const auto args = [&](const fs::path &out, const std::vector<std::string> &extra) {
-        std::vector<std::string> a = {
-            "armour",
-            "run",
-            (fs::path(ARMOUR_SOURCE_DIR) / "scenes" / "stability_cubes.toml").string(),
-            "--out",
-            out.string(),
-            "--set",
-            "pattern.0.rows=5",
-            "--set",
-            "fluid.cells=[50,6,16]",
-            "--set",
-            "fluid.penalty=200",
-            "--set",
-            "run.duration=12",
-            "--set",
-            "run.checkpoint_interval=3"};
-        a.insert(a.end(), extra.begin(), extra.end());
-        return a;
+    const fs::path dir = test_dir("settled_resume");
+    const auto args = [&](const fs::path &out, const std::vector<std::string> &flags) {
+        return run_args("stability_cubes.toml", out,
+                        {"pattern.0.rows=5", "fluid.cells=[50,6,16]", "fluid.penalty=200", "run.duration=12",
+                         "run.checkpoint_interval=3"},
+                        flags);
     };
     const fs::path reference = dir / "reference", killed = dir / "killed";
     ASSERT_EQ(wait_for(start(args(reference, {}))), 0);
@@ -429,9 +405,7 @@ TEST(CoupledResume, SettledWaveRunResumesWithTheSameCommand) {
 // attempt resumes (its log says so, the killed part's solver log is kept)
 // and the case ends with every record.
 TEST(CoupledResume, StoppedSweepResumesItsCaseFromTheCheckpoint) {
-    const fs::path dir = fs::temp_directory_path() / ("armour_sweep_resume_" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    const fs::path dir = test_dir("sweep_resume");
     const fs::path file = dir / "sweep.toml", out = dir / "out";
     std::ofstream(file) << "scene = \"" << ARMOUR_SOURCE_DIR << "/scenes/dambreak_two_cubes.toml\"\n"
                         << "[set]\n\"fluid.cell_size\" = 0.04\n\"run.duration\" = 0.6\n"
