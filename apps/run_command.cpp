@@ -300,15 +300,6 @@ void set_friction_between_units(Scene &scene, double friction) {
         }
 }
 
-// Settles a coupled scene's units in the DEM for fluid.settle_time, under
-// the buoyancy of the scene's still water (without it the contacts, loaded
-// by the dry weight, would relax in the first coupled steps as if the water
-// had appeared at once), and returns the scene the coupled run starts from:
-// the same scene with every unit an explicit [[body]] at its settled pose, at
-// rest. The DEM runs in a forked child: an engine that starts MPI (LIGGGHTS)
-// in this process would leave it unable to launch interFoam under mpirun.
-// The child writes OUT/settle (a normal `armour run` output), OUT/settle/scene.settled.toml
-// (rerunnable on its own) and OUT/settle/settled.json (how still it got).
 // OUT/settle/settled.json with the speed below which the layer counts as
 // still: 1 % of the smallest unit's size per second, the drift a resting
 // unit may show in water (the coupled rest test). A layer still moving
@@ -369,6 +360,15 @@ Scene settled_scene(const Scene &scene, std::vector<SceneBody> bodies) {
     return settled;
 }
 
+// Settles a coupled scene's units in the DEM for fluid.settle_time, under
+// the buoyancy of the scene's still water (without it the contacts, loaded
+// by the dry weight, would relax in the first coupled steps as if the water
+// had appeared at once), and returns the scene the coupled run starts from:
+// the same scene with every unit an explicit [[body]] at its settled pose, at
+// rest. The DEM runs in a forked child: an engine that starts MPI (LIGGGHTS)
+// in this process would leave it unable to launch interFoam under mpirun.
+// The child writes OUT/settle (a normal `armour run` output), OUT/settle/scene.settled.toml
+// (rerunnable on its own) and OUT/settle/settled.json (how still it got).
 Scene settle_before_coupling(const RunRequest &r, OutputFolder &folder, const Scene &scene, SceneSetup &setup,
                              json &report) {
     const SceneFluid &fluid = *scene.fluid;
@@ -522,8 +522,6 @@ Checkpoint checked_resume(const RunRequest &r, const Scene &scene, const fs::pat
     return *last;
 }
 
-} // namespace
-
 // `--resume` of a run that settled its units first: the settle is not run
 // again. The scene must be the one that ran but for the resumable keys:
 // the settle's (OUT/settle/scene.resolved.toml: units, placement,
@@ -547,6 +545,8 @@ int resume_settled(const RunRequest &r, OutputFolder &folder, const Scene &scene
     return with_settle_report(folder, run_coupled(r, settled, settled_setup, folder, &checkpoint),
                               settle_report(dir, setup));
 }
+
+} // namespace
 
 int run_scene(const RunRequest &r) {
     const Scene scene = load_scene(r.scene, r.overrides);
