@@ -115,6 +115,27 @@ bool wait_unlocked(const fs::path &out) {
     return false;
 }
 
+// Waits until no process runs in OUT/case: mpirun's ranks are not in
+// armour's process group, and after a SIGKILL of that group (mpirun gone
+// with it) they may go on for a moment, even to the run's end, writing
+// their time folders.
+bool wait_solver_gone(const fs::path &out) {
+    const fs::path case_dir = fs::weakly_canonical(out / "case");
+    const auto t0 = std::chrono::steady_clock::now();
+    while (since(t0) < 30.0) {
+        bool running = false;
+        std::error_code ec;
+        for (const auto &e : fs::directory_iterator("/proc", ec)) {
+            std::error_code gone;
+            running = running || fs::read_symlink(e.path() / "cwd", gone) == case_dir;
+        }
+        if (!running)
+            return true;
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return false;
+}
+
 // The time (s) of the latest complete checkpoint in OUT/checkpoints, -1 when none.
 double latest_checkpoint(const fs::path &out) {
     double latest = -1.0;
@@ -314,6 +335,7 @@ TEST(CoupledResume, ParallelRunResumesOnItsOwnRanks) {
     ::kill(-pid, SIGKILL);
     wait_for(pid);
     ASSERT_TRUE(wait_unlocked(out));
+    ASSERT_TRUE(wait_solver_gone(out)) << "interFoam's ranks outlived the kill by 30 s";
     const double checkpoint = latest_checkpoint(out);
     ASSERT_GE(checkpoint, 0.15) << "no second checkpoint";
     ASSERT_LT(checkpoint, 0.25) << "the run ended before the kill";
