@@ -1,9 +1,12 @@
 #include "gauge_rows.h"
 
+#include "checkpoints.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -18,10 +21,9 @@ std::vector<std::vector<double>> gauge_rows(const fs::path &case_dir) {
     std::error_code ec;
     for (const auto &e : fs::directory_iterator(case_dir / "postProcessing" / "gauges", ec)) {
         const std::string name = e.path().filename().string();
-        char *end = nullptr;
-        const double start = std::strtod(name.c_str(), &end);
-        if (e.is_directory() && end && *end == '\0' && fs::is_regular_file(e.path() / "surfaceElevation.dat"))
-            parts.emplace_back(start, e.path() / "surfaceElevation.dat");
+        const std::optional<double> start = time_of_name(name);
+        if (e.is_directory() && start && fs::is_regular_file(e.path() / "surfaceElevation.dat"))
+            parts.emplace_back(*start, e.path() / "surfaceElevation.dat");
     }
     std::sort(parts.begin(), parts.end());
     std::vector<std::vector<double>> rows;

@@ -35,6 +35,7 @@
 #include <sys/prctl.h>
 #include <sys/wait.h>
 #include <thread>
+#include <tuple>
 #include <unistd.h>
 
 namespace armour {
@@ -521,6 +522,11 @@ std::vector<std::string> check_coupled_scene(const Scene &scene, const SceneSetu
 int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &setup, OutputFolder &folder,
                 const Checkpoint *resume) {
     const auto start = std::chrono::steady_clock::now();
+    // The run's wall time, earlier parts included: the plugin writes it into
+    // each checkpoint as the seconds since this origin (s since the epoch).
+    const double earlier_wall = resume ? resume->wall_seconds : 0.0;
+    const std::chrono::duration<double> since_epoch = std::chrono::system_clock::now().time_since_epoch();
+    ::setenv("ARMOUR_WALL_ORIGIN", num(since_epoch.count() - earlier_wall).c_str(), 1);
     Scene scene = scene_in;
     SceneFluid &f = *scene.fluid;
     if (r.np > 0)
@@ -593,6 +599,7 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
             {"@DELTA_T@", num(first_dt)},
             {"@MAX_DELTA_T@", num(f.max_time_step)},
             {"@MAX_CO@", num(f.max_courant)},
+            {"@MAX_ALPHA_CO@", num(f.max_interface_courant)},
             {"@WRITE_INTERVAL@", num(f.write_interval)},
             {"@RHO_WATER@", num(f.fluid_density)},
             {"@NU_WATER@", num(f.viscosity)},
@@ -649,13 +656,13 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
     } else {
         run_tool("interFoam",
                  {"mpirun", "--allow-run-as-root", "-np", std::to_string(f.np), "-x", "WM_PROJECT_DIR", "-x",
-                  "LD_LIBRARY_PATH", "interFoam", "-parallel"},
+                  "LD_LIBRARY_PATH", "-x", "ARMOUR_WALL_ORIGIN", "interFoam", "-parallel"},
                  case_dir, scene.duration, true);
     }
     const double solver_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - solver_start).count();
     const double wall_seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        earlier_wall + std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
     const BodiesFile rec =
         setup.bodies.empty() ? BodiesFile{} : read_bodies_file((out / "bodies.h5").string());
@@ -695,6 +702,7 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
           {"steps", resume ? coupling_steps(out) : count_solver_steps(solver_log)},
           {"max_time_step", f.max_time_step},
           {"max_courant", f.max_courant},
+          {"max_interface_courant", f.max_interface_courant},
           {"water_level", f.water_level},
           {"fluid_density", f.fluid_density},
           {"penalty", f.penalty},
@@ -755,13 +763,16 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
         summary["fluid"]["frozen"] = f.frozen;
         summary["fluid"]["courant_max_seen"] = co;
         summary["fluid"]["interface_courant_max_seen"] = interface_co;
-        if (std::max(co, interface_co) > 1.1 * f.max_courant) {
-            const std::string w = "fluid Courant number reached " + figure_text(std::max(co, interface_co)) +
-                                  " > fluid.max_courant " + num(f.max_courant) +
-                                  " (+10 %): the adjustable step lagged a sudden flow; lower max_time_step";
-            summary["warnings"].push_back(w);
-            std::fprintf(stderr, "armour: warning: %s\n", w.c_str());
-        }
+        for (const auto &[seen, limit, key] :
+             {std::tuple(co, f.max_courant, "max_courant"),
+              std::tuple(interface_co, f.max_interface_courant, "max_interface_courant")})
+            if (seen > 1.1 * limit) {
+                const std::string w =
+                    "fluid Courant number reached " + figure_text(seen) + " > fluid." + key + " " +
+                    num(limit) + " (+10 %): the adjustable step lagged a sudden flow; lower max_time_step";
+                summary["warnings"].push_back(w);
+                std::fprintf(stderr, "armour: warning: %s\n", w.c_str());
+            }
         std::ifstream times_file(out / "coupling_times.json");
         const json times = times_file ? json::parse(times_file, nullptr, false) : json();
         if (times.is_object()) {

@@ -2,10 +2,9 @@
 
 #include "mesh.h"
 
-#include <cerrno>
 #include <charconv>
-#include <cstdlib>
 #include <fstream>
+#include <optional>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -39,22 +38,13 @@ void set_entry(const fs::path &dict, const std::string &key, const std::string &
     write_text(dict, std::regex_replace(text, entry, "$1$2 " + value + ";"));
 }
 
-// A time folder's time, if the name is one (OpenFOAM names them by their time).
-bool time_of(const std::string &name, double &t) {
-    char *end = nullptr;
-    errno = 0;
-    t = std::strtod(name.c_str(), &end);
-    return !name.empty() && end != name.c_str() && *end == '\0' && errno == 0;
-}
-
 // Removes the time folders of `dir` later than t (a killed run's writes
 // after its checkpoint), and the one of t itself with `and_at`.
 void remove_later(const fs::path &dir, double t, bool and_at = false) {
     std::error_code ec;
     for (const auto &e : fs::directory_iterator(dir, ec)) {
-        double time = 0.0;
-        if (e.is_directory() && time_of(e.path().filename().string(), time) &&
-            (and_at ? time >= t * (1 - 1e-12) : time > t * (1 + 1e-12)))
+        const std::optional<double> time = time_of_name(e.path().filename().string());
+        if (e.is_directory() && time && (and_at ? *time >= t * (1 - 1e-12) : *time > t * (1 + 1e-12)))
             fs::remove_all(e.path(), ec);
     }
 }

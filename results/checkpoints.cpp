@@ -3,8 +3,10 @@
 #include "mesh.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <unistd.h>
@@ -52,6 +54,15 @@ std::string checkpoint_name(double t) {
     char text[32];
     std::snprintf(text, sizeof text, "%.9g", t);
     return text;
+}
+
+std::optional<double> time_of_name(const std::string &name) {
+    char *end = nullptr;
+    errno = 0;
+    const double t = std::strtod(name.c_str(), &end);
+    if (name.empty() || end == name.c_str() || *end != '\0' || errno != 0)
+        return std::nullopt;
+    return t;
 }
 
 std::optional<Checkpoint> last_checkpoint(const fs::path &out) {

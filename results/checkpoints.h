@@ -40,6 +40,10 @@ std::optional<Checkpoint> last_checkpoint(const std::filesystem::path &out);
 // whole steps of 1e-4 s read as 0.1 rather than 0.10000000000000001.
 std::string checkpoint_name(double t);
 
+// The time (s) a folder's name reads as (an OpenFOAM time folder, a part of
+// postProcessing/), when the whole name is one number.
+std::optional<double> time_of_name(const std::string &name);
+
 class Checkpoints {
   public:
     // interval <= 0: never due. `after`: the time already covered (a resumed

@@ -138,7 +138,8 @@ struct SceneFluid {
     double air_density = 1.0;                  // kg/m^3
     double viscosity = 1e-6;                   // m^2/s, water, kinematic
     double air_viscosity = 1.48e-5;            // m^2/s, air, kinematic
-    double max_courant = 0.5;                  // interFoam maxCo and maxAlphaCo
+    double max_courant = 0.5;                  // interFoam maxCo: every cell
+    double max_interface_courant = 0.5;        // interFoam maxAlphaCo (the parser's default: max_courant)
     double max_time_step = 0.005;              // s, largest fluid step (at most run.output_interval)
     double write_interval = 0.0;               // s between field writes (the parser's default: run.duration)
     // Optional water column (dam break): water in this box at the start, besides

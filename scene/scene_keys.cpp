@@ -4,9 +4,7 @@
 #include "mesh.h"
 #include "shapes.h"
 
-#include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <type_traits>
 
 namespace armour {
@@ -178,8 +176,12 @@ const std::vector<Key<SceneFluid>> &fluid_keys() {
         key("air_density", &F::air_density, "kg/m^3", "air; < fluid_density").in(Range::above(0)),
         key("viscosity", &F::viscosity, "m^2/s", "water, kinematic").in(Range::above(0)),
         key("air_viscosity", &F::air_viscosity, "m^2/s", "air, kinematic").in(Range::above(0)),
-        key("max_courant", &F::max_courant, "", "interFoam's maxCo and maxAlphaCo (the step adapts to it)")
+        key("max_courant", &F::max_courant, "", "interFoam's maxCo, every cell's Courant number")
             .in(Range::open_closed(0, 1)),
+        key("max_interface_courant", &F::max_interface_courant, "",
+            "interFoam's maxAlphaCo, the free surface's cells; <= max_courant")
+            .in(Range::open_closed(0, 1))
+            .defaults("`fluid.max_courant`"),
         key("max_time_step", &F::max_time_step, "s", "largest fluid step; <= run.output_interval")
             .in(Range::above(0))
             .defaults("min(0.005, `run.output_interval`)"),
@@ -490,53 +492,6 @@ const std::vector<Key<ScenePorous>> &porous_keys() {
             .in(Range::above(0)),
     };
     return keys;
-}
-
-// ---------------------------------------------------------------- text
-
-std::string number_text(double v) {
-    char buf[64];
-    const auto result = std::to_chars(buf, buf + sizeof buf, v);
-    return std::string(buf, result.ptr);
-}
-
-std::string figure_text(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.4g", v);
-    return buf;
-}
-
-// "1" would read back as an integer and "-0" would lose its sign.
-std::string toml_float(double v) {
-    std::string s = number_text(v);
-    if (s.find_first_of(".eEn") == std::string::npos)
-        s += ".0";
-    return s;
-}
-
-std::string vector_text(const Eigen::Ref<const Eigen::VectorXd> &v) {
-    std::string out = "[";
-    for (Eigen::Index i = 0; i < v.size(); ++i)
-        out += (i ? ", " : "") + toml_float(v[i]);
-    return out + "]";
-}
-
-std::string toml_string(const std::string &s) {
-    std::string out = "\"";
-    for (const char c : s) {
-        const auto u = static_cast<unsigned char>(c);
-        if (c == '"' || c == '\\') {
-            out += '\\';
-            out += c;
-        } else if (u < 0x20 || u == 0x7f) {
-            char buf[8];
-            std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(u));
-            out += buf;
-        } else {
-            out += c;
-        }
-    }
-    return out + "\"";
 }
 
 bool Range::bounded() const {

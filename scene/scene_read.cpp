@@ -205,6 +205,8 @@ void read_fluid(const Table &root, Scene &s) {
     f.max_time_step = std::min(f.max_time_step, s.output_interval);
     f.write_interval = s.duration;
     read_keys(t, keys, f);
+    if (!t.has("max_interface_courant"))
+        f.max_interface_courant = f.max_courant;
     // Both take their scale from gravity (without it, NaN in the case): the
     // height at which the interior mirrors the outside, and k's start from
     // the celerity sqrt(g depth).
@@ -296,6 +298,9 @@ void read_fluid(const Table &root, Scene &s) {
     t.check(f.max_time_step <= s.output_interval, "max_time_step",
             "must be in (0, run.output_interval = " + number_text(s.output_interval) + "] s",
             f.max_time_step);
+    // Interface cells are cells: a larger limit there could never bind.
+    t.check(f.max_interface_courant <= f.max_courant, "max_interface_courant",
+            "must be in (0, max_courant = " + number_text(f.max_courant) + "]", f.max_interface_courant);
     t.check(f.write_interval <= s.duration, "write_interval",
             "must be in (0, run.duration = " + number_text(s.duration) + "] s", f.write_interval);
     s.fluid = f;

@@ -5,6 +5,7 @@
 // Dn), the same summary but for wall times. And a resume refuses what it
 // cannot continue.
 #include "bodies_file.h"
+#include "checkpoints.h"
 #include "cli.h"
 
 #include <gtest/gtest.h>
@@ -269,3 +270,14 @@ TEST_P(Resume, RefusesAChangedSceneAndAFolderWithoutCheckpoint) {
 
 INSTANTIATE_TEST_SUITE_P(Engines, Resume, ::testing::Values("free_body", "bullet", "liggghts"),
                          [](const ::testing::TestParamInfo<std::string> &p) { return p.param; });
+
+// Time folders and postProcessing/ parts are found by their names: a name is
+// a time only when all of it is one number (not "uniform", "processor0", a
+// name with a suffix, one out of range).
+TEST(CheckpointNames, FolderNamesReadAsTheirTime) {
+    EXPECT_EQ(armour::time_of_name("30.0037782764934633"), 30.0037782764934633);
+    EXPECT_EQ(armour::time_of_name("0"), 0.0);
+    EXPECT_EQ(armour::time_of_name(armour::checkpoint_name(0.1)), 0.1);
+    for (const char *other : {"", "uniform", "processor0", "0.5x", "0.5 ", "1e999"})
+        EXPECT_FALSE(armour::time_of_name(other).has_value()) << '"' << other << '"';
+}

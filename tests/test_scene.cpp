@@ -761,7 +761,7 @@ TEST_F(SceneFile, FluidTableReadsEveryKey) {
     EXPECT_DOUBLE_EQ(f.viscosity, 1.2e-6);
     EXPECT_DOUBLE_EQ(f.air_viscosity, 1.5e-5);
     EXPECT_DOUBLE_EQ(f.max_courant, 0.4);
-    EXPECT_DOUBLE_EQ(f.max_time_step, 0.002);
+    EXPECT_DOUBLE_EQ(f.max_interface_courant, 0.4); // follows max_courant
     EXPECT_DOUBLE_EQ(f.write_interval, 0.5);
     EXPECT_FALSE(load_scene(write(kMinimal)).fluid.has_value());
 }
@@ -798,8 +798,14 @@ TEST_F(SceneFile, FluidDefaultsAndCellSize) {
     EXPECT_DOUBLE_EQ(f.viscosity, 1e-6);
     EXPECT_DOUBLE_EQ(f.air_viscosity, 1.48e-5);
     EXPECT_DOUBLE_EQ(f.max_courant, 0.5);
+    EXPECT_DOUBLE_EQ(f.max_interface_courant, 0.5);
     EXPECT_DOUBLE_EQ(f.max_time_step, 0.005);
     EXPECT_DOUBLE_EQ(f.write_interval, s.duration);
+    const Scene air =
+        load_scene(write(std::string(kMinimal) + "[fluid]\nwater_level = 1\ncell_size = 0.5\n"
+                                                 "max_courant = 1\nmax_interface_courant = 0.5\n"));
+    EXPECT_DOUBLE_EQ(air.fluid->max_courant, 1.0);
+    EXPECT_DOUBLE_EQ(air.fluid->max_interface_courant, 0.5);
 }
 
 TEST_F(SceneFile, FluidErrorsNameLineAndKey) {
@@ -815,6 +821,8 @@ TEST_F(SceneFile, FluidErrorsNameLineAndKey) {
     expect_error(at("water_level = 1\ncell_size = 20\n"), 16, "fluid.cell_size", "smallest extent");
     expect_error(at("water_level = 1\ncells = [4, 4, 4]\nmax_courant = 1.5\n"), 17, "fluid.max_courant",
                  "(0, 1]");
+    expect_error(at("water_level = 1\ncells = [4, 4, 4]\nmax_interface_courant = 0.6\n"), 17,
+                 "fluid.max_interface_courant", "(0, max_courant = 0.5]");
     expect_error(at("water_level = 1\ncells = [4, 4, 4]\npenalty = 0\n"), 17, "fluid.penalty", "> 0");
     expect_error(at("water_level = 1\ncells = [4, 4, 4]\nmask = \"clump\"\n"), 17, "fluid.mask",
                  "\"exact\", \"spheres\"");

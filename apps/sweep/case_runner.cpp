@@ -191,6 +191,7 @@ int run_case(const fs::path &case_dir, const std::string &armour_exe) {
         ::dup2(out, 1);
         ::dup2(out, 2);
         std::vector<char *> argv;
+        argv.reserve(args.size() + 1);
         for (auto &a : args)
             argv.push_back(a.data());
         argv.push_back(nullptr);

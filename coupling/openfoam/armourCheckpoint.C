@@ -7,10 +7,32 @@
 #include "Pstream.H"
 #include "error.H"
 
+#include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 
 namespace fs = std::filesystem;
+
+namespace
+{
+    //- The run's wall time [s], earlier parts included: `armour run` passes
+    //  its origin (s since the epoch) in ARMOUR_WALL_ORIGIN; a case run by
+    //  hand has none and records 0
+    double runWallSeconds()
+    {
+        const char* origin = std::getenv("ARMOUR_WALL_ORIGIN");
+        if (!origin || !*origin)
+        {
+            return 0;
+        }
+        const double now = std::chrono::duration<double>
+        (
+            std::chrono::system_clock::now().time_since_epoch()
+        ).count();
+        return now - std::atof(origin);
+    }
+}
 
 // * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
 
@@ -158,6 +180,7 @@ void armourFoam::checkpointing::step
         // written at the end of this step.
         pending_.time = t;
         pending_.records = rec.records();
+        pending_.wall_seconds = runWallSeconds();
         timeName_ = runTime.timeName();
         std::string dir;
         if (Foam::Pstream::master())

@@ -20,7 +20,11 @@
 #include "scene_setup.h"
 
 #include <chrono>
+#include <csignal>
 #include <exception>
+
+#include <sys/prctl.h>
+#include <unistd.h>
 
 // * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * * * //
 
@@ -38,6 +42,28 @@ namespace
 {
     //- Bodies whose loads the log lists each step
     const std::size_t maxLoggedBodies = 10;
+
+    //- A rank ends when the program that launched it (mpirun, orted,
+    //  slurmstepd) ends. mpirun passes on the signals it receives, but
+    //  killed with -9 (with `armour run`'s whole group) it cannot, and the
+    //  ranks, which talk to each other and not to it, would run the whole
+    //  simulation on in the background, writing into a folder no command
+    //  holds. A serial solver is left alone: started by hand under nohup,
+    //  it must outlive its shell (`armour run` sets its own solver's).
+    void endWithLauncher()
+    {
+        const pid_t launcher = ::getppid();
+        if (::prctl(PR_SET_PDEATHSIG, SIGTERM) != 0)
+        {
+            WarningInFunction
+                << "armour: cannot tie this rank to its launcher: it would"
+                << " outlive a killed mpirun" << Foam::endl;
+        }
+        else if (::getppid() != launcher)
+        {
+            ::raise(SIGTERM); // it ended before the tie was made
+        }
+    }
 }
 
 
@@ -97,6 +123,10 @@ Foam::fv::armourCoupling::armourCoupling
     ),
     lastTimeIndex_(mesh.time().timeIndex())
 {
+    if (Pstream::parRun())
+    {
+        endWithLauncher();
+    }
     fieldNames_ = wordList(1, "U");
     applied_.setSize(fieldNames_.size(), false);
 

@@ -1,0 +1,132 @@
+#!/usr/bin/env bash
+# Which cells set the fluid step in waves on the armour, and what a separate
+# free-surface limit saves (issue 16; docs/stability.md, Cost). A window of
+# a coupled run is run twice from one of its checkpoints, interFoam alone
+# on copies of its case: as the run ran (its maxCo and maxAlphaCo), and with
+# every cell held to --max-courant but the free surface's cells (0.01 < alpha
+# < 0.99) to --max-interface-courant (fluid.max_courant and
+# fluid.max_interface_courant). Reported per row: fluid steps, CPU seconds
+# (interFoam's ExecutionTime), the share of steps whose largest Courant
+# number lies off the free surface (interface Courant < 0.9 x the largest);
+# between the rows: the units' fluid loads at the records of the window
+# (rms of the difference / rms of the load, largest difference in unit
+# weights) and their poses at its end (largest difference in Dn; for units
+# other than cubes, N and m). The rows
+# run one after another in one call: compare their ratios. Writes
+# OUT/summary.json (SI).
+# Usage: bash bench/run_courant_window.sh RUN_DIR [--checkpoint T] [--seconds S]
+#          [--max-courant C] [--max-interface-courant C] [--build DIR] [--out DIR]
+#   RUN_DIR      an `armour run` output folder with checkpoints (a serial run)
+#   --checkpoint the checkpoint's time in s, as its folder is named (default the latest)
+#   --seconds    simulated seconds of the window (default 2)
+#   --max-courant, --max-interface-courant  the second row's limits (default 1.0 and 0.5)
+#   --out        default ${TMPDIR:-/tmp}/armour-bench/courant_window
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+bench_name=courant_window bench_targets="armourFoamCoupling armourWaves"
+bench_options="checkpoint seconds max-courant max-interface-courant"
+opt_checkpoint="" opt_seconds=2 opt_max_courant=1.0 opt_max_interface_courant=0.5
+run_dir="${1:-}"
+[ -n "$run_dir" ] && [ "${run_dir#-}" = "$run_dir" ] || {
+  echo "$(basename "$0"): RUN_DIR: give an armour run output folder first (see --help)" >&2
+  exit 2
+}
+shift
+source "$root/bench/common.sh"
+bench_args "$@"
+run_dir="$(cd "$run_dir" && pwd)"
+[ -f "$run_dir/scene.resolved.toml" ] && [ -d "$run_dir/case/constant" ] ||
+  bench_fail "$run_dir: not an armour run output folder (no scene.resolved.toml or case/)"
+[ -n "$opt_checkpoint" ] || opt_checkpoint="$(ls "$run_dir/checkpoints" 2>/dev/null | grep -v '^\.' | sort -g | tail -1)"
+checkpoint="$run_dir/checkpoints/$opt_checkpoint"
+[ -f "$checkpoint/checkpoint.json" ] || bench_fail "--checkpoint $opt_checkpoint: no checkpoint $checkpoint"
+fields=("$checkpoint"/fluid/[0-9]*)
+[ -d "${fields[0]}" ] && [ ${#fields[@]} -eq 1 ] ||
+  bench_fail "$checkpoint/fluid: holds no single time folder (a parallel run's checkpoint is not supported)"
+start="$(basename "${fields[0]}")"
+end="$(awk -v a="$start" -v b="$opt_seconds" 'BEGIN { printf "%.10g", a + b }')"
+export WM_PROJECT_DIR="${WM_PROJECT_DIR:-/usr/share/openfoam}"
+
+# row NAME MAXCO MAXALPHACO: a copy of the run at the checkpoint, interFoam to $end.
+row() {
+  local dir="$out/$1" control
+  rm -rf "$dir"
+  mkdir -p "$dir/case" "$dir/checkpoints"
+  cp -r "$checkpoint" "$dir/checkpoints/"
+  cp "$run_dir/scene.resolved.toml" "$run_dir/bodies.h5" "$dir/"
+  [ -f "$run_dir/fluid.csv" ] && cp "$run_dir/fluid.csv" "$dir/"
+  cp -r "$run_dir/case/constant" "$run_dir/case/system" "${fields[0]}" "$dir/case/"
+  sed -i "s#$run_dir#$dir#g" "$dir/case/constant/fvOptions"
+  control="$dir/case/system/controlDict"
+  sed -i -e "s#^libs .*#libs (\"$build/coupling/openfoam/libarmourFoamCoupling.so\" \"$build/coupling/openfoam/waves/libarmourWaves.so\" \"libwaveModels.so\");#" \
+    -e 's/^startFrom .*/startFrom latestTime;/' -e "s/^endTime .*/endTime $end;/" \
+    -e "s/^writeInterval .*/writeInterval $opt_seconds;/" \
+    -e "s/^maxCo .*/maxCo $2;/" -e "s/^maxAlphaCo .*/maxAlphaCo $3;/" "$control"
+  echo "courant_window: $1 (maxCo $2, maxAlphaCo $3) from t = $start s to $end s ..." >&2
+  (cd "$dir/case" && interFoam >log.interFoam 2>&1) || bench_fail "$1: interFoam failed: $dir/case/log.interFoam"
+}
+
+cut -d' ' -f1-3 /proc/loadavg >"$out/loadavg_before"
+as_run_co="$(awk '/^maxCo /{sub(";","",$2); print $2}' "$run_dir/case/system/controlDict")"
+as_run_alpha="$(awk '/^maxAlphaCo /{sub(";","",$2); print $2}' "$run_dir/case/system/controlDict")"
+row as_run "$as_run_co" "$as_run_alpha"
+row split "$opt_max_courant" "$opt_max_interface_courant"
+cut -d' ' -f1-3 /proc/loadavg >"$out/loadavg_after"
+
+/usr/bin/python3 - "$out" "$start" "$end" "$opt_checkpoint" <<'EOF'
+import json, os, re, sys, tomllib
+import h5py
+import numpy as np
+
+out, start, end, checkpoint = sys.argv[1], float(sys.argv[2]), float(sys.argv[3]), sys.argv[4]
+
+def log_figures(row):
+    text = open(os.path.join(out, row, "case", "log.interFoam")).read()
+    co = [float(x) for x in re.findall(r"^Courant Number mean: \S+ max: (\S+)", text, re.M)]
+    iface = [float(x) for x in re.findall(r"^Interface Courant Number mean: \S+ max: (\S+)", text, re.M)]
+    cpu = [float(x) for x in re.findall(r"^ExecutionTime = (\S+) s", text, re.M)]
+    steps = len(re.findall(r"^Time = ", text, re.M))
+    # The first line pair is the start's report, before any step.
+    pairs = list(zip(co[1:], iface[1:]))
+    off = sum(1 for c, i in pairs if i < 0.9 * c)
+    control = open(os.path.join(out, row, "case", "system", "controlDict")).read()
+    limit = lambda key: float(re.search(r"^%s\s+([^;]+);" % key, control, re.M).group(1))
+    return {"max_courant": limit("maxCo"), "max_interface_courant": limit("maxAlphaCo"), "steps": steps,
+            "cpu_seconds": cpu[-1] if cpu else None,
+            "steps_set_off_the_surface": off / max(len(pairs), 1),
+            "courant_max_seen": max(co) if co else None, "interface_courant_max_seen": max(iface) if iface else None}
+
+def bodies(row):
+    with h5py.File(os.path.join(out, row, "bodies.h5"), "r") as f:
+        t = f["time"][:]
+        keep = t > start + 1e-9
+        return t[keep], f["bodies/external_force"][:][keep], f["bodies/position"][:][keep]
+
+rows = {row: log_figures(row) for row in ("as_run", "split")}
+ta, fa, pa = bodies("as_run")
+tb, fb, pb = bodies("split")
+n = min(len(ta), len(tb))
+with open(os.path.join(out, "as_run", "scene.resolved.toml"), "rb") as f:
+    unit = tomllib.load(f)["unit"][0]
+# Cubes: Dn is the edge; another shape's loads and poses are given in N and m.
+dn = unit["size"] if unit["shape"] == "cube" else 1.0
+weight = unit["density"] * unit["size"] ** 3 * 9.81 if unit["shape"] == "cube" else 1.0
+diff = np.linalg.norm(fa[:n] - fb[:n], axis=2)
+load = np.linalg.norm(fa[:n], axis=2)
+summary = {
+    "checkpoint": checkpoint, "window": [start, end], "rows": rows,
+    "cpu_ratio": rows["split"]["cpu_seconds"] / rows["as_run"]["cpu_seconds"],
+    "steps_ratio": rows["split"]["steps"] / rows["as_run"]["steps"],
+    "records_compared": n,
+    "record_time_shift": float(np.max(np.abs(ta[:n] - tb[:n]))) if n else None,
+    "load_rms_difference_over_rms": float(np.sqrt((diff**2).mean()) / np.sqrt((load**2).mean())) if n else None,
+    "load_max_difference_in_unit_weights": float(diff.max() / weight) if n else None,
+    "largest_load_in_unit_weights": float(load.max() / weight) if n else None,
+    "final_pose_max_difference_in_Dn": float(np.linalg.norm(pa[n - 1] - pb[n - 1], axis=1).max() / dn) if n else None,
+    "si_units": {"window": "s", "cpu_seconds": "s", "record_time_shift": "s"},
+}
+with open(os.path.join(out, "summary.json.tmp"), "w") as f:
+    json.dump(summary, f, indent=2)
+os.replace(os.path.join(out, "summary.json.tmp"), os.path.join(out, "summary.json"))
+print(json.dumps(summary, indent=2))
+EOF
