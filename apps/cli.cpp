@@ -100,8 +100,9 @@ int armour_main(int argc, const char *const *argv) {
                         "Engine, same as --set run.engine=\"NAME\" (`armour engines` lists them)");
     run_cmd->add_flag("--resume", run.resume,
                       "Continue the run in --out from its last checkpoint (run.checkpoint_interval, s of "
-                      "simulated time); only run.duration, run.checkpoint_interval and fluid.write_interval "
-                      "may differ, --np must be the run's; a run that settled first is not settled again "
+                      "simulated time); only run.duration, run.checkpoint_interval, fluid.write_interval and "
+                      "the Courant limits may differ; on the run's ranks unless --np gives others (the "
+                      "fields are split anew); a run that settled first is not settled again "
                       "(docs/checkpoints.md)");
 
     CLI::App *engines_cmd = app.add_subcommand(

@@ -12,6 +12,7 @@
 #include "openfoam_environment.h"
 #include "output_folder.h"
 #include "scene_keys.h"
+#include "solver_log.h"
 #include "stl_io.h"
 #include "wave_case.h"
 
@@ -92,29 +93,6 @@ std::vector<Eigen::Vector3d> posed_vertices(const SceneSetup &setup, const BodyI
     for (const auto &v : setup.units[b.unit].mesh.vertices)
         out.push_back(b.pose.position + b.pose.orientation * v);
     return out;
-}
-
-// The first FOAM FATAL message of a log, as one line.
-std::string fatal_line(const std::string &log) {
-    const auto at = log.find("FOAM FATAL");
-    if (at == std::string::npos)
-        return "";
-    std::istringstream in(log.substr(at));
-    std::string line, out;
-    for (int n = 0; n < 8 && std::getline(in, line);) {
-        line = std::regex_replace(line, std::regex("\\s+"), " ");
-        if (line.empty() || line == " ")
-            continue;
-        out += (out.empty() ? "" : " ") + line;
-        ++n;
-    }
-    return std::regex_replace(out, std::regex("\\s+"), " ");
-}
-
-// Last "Time = t" of a solver log (the step being solved).
-double last_solver_time(const std::string &log) {
-    const auto at = log.rfind("\nTime = ");
-    return at == std::string::npos ? 0.0 : std::atof(log.c_str() + at + 8);
 }
 
 // Runs one tool in the case folder, output to log.<name>, with a progress
@@ -234,13 +212,6 @@ int coupling_steps(const fs::path &out) {
     std::ifstream in(out / "coupling_times.json");
     const json times = json::parse(in, nullptr, false);
     return times.is_object() ? times.value("coupling_steps", 0) : 0;
-}
-
-int count_solver_steps(const std::string &log) {
-    int n = 0;
-    for (std::size_t at = log.find("\nTime = "); at != std::string::npos; at = log.find("\nTime = ", at + 1))
-        ++n;
-    return n;
 }
 
 // Every file of a case template as one text (to see which tokens it uses).
@@ -531,6 +502,8 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
     SceneFluid &f = *scene.fluid;
     if (r.np > 0)
         f.np = r.np; // the resolved scene records what ran
+    else if (resume)
+        f.np = checkpoint_ranks(*resume); // a resume goes on with the run's ranks unless told
     const std::vector<std::string> warnings = check_coupled_scene(scene, setup, f.np);
     const std::string plugin = plugin_path(); // checked by check_coupled_scene
     for (const auto &w : warnings)
@@ -561,9 +534,20 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
         folder.claim("checkpoints"); // the plugin writes them
     // Debian's OpenFOAM finds its etc/ files only through this.
     ::setenv("WM_PROJECT_DIR", "/usr/share/openfoam", 0);
-    if (resume)
-        restore_case(case_dir, *resume, scene.duration);
-    else {
+    if (resume) {
+        const RestoredCase restored = restore_case(case_dir, *resume, scene.duration);
+        set_courant_limits(case_dir, f.max_courant, f.max_interface_courant);
+        if (restored.ranks != f.np) { // the fields split anew for this run's ranks
+            if (restored.ranks > 1)
+                run_tool("reconstructPar", {"reconstructPar", "-time", restored.time_name}, case_dir,
+                         scene.duration, false);
+            if (f.np > 1) {
+                set_ranks(case_dir, f.np);
+                run_tool("decomposePar", {"decomposePar", "-force", "-time", restored.time_name}, case_dir,
+                         scene.duration, false);
+            }
+        }
+    } else {
         fs::copy(source_dir() / "foam_cases" / f.case_name, case_dir, fs::copy_options::recursive);
         if (setup.bodies.empty()) // an empty wave flume: interFoam alone, nothing to couple
             fs::remove(case_dir / "constant" / "fvOptions");
@@ -668,7 +652,7 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
         setup.bodies.empty() ? BodiesFile{} : read_bodies_file((out / "bodies.h5").string());
     if (!setup.bodies.empty() && (rec.time.empty() || rec.bodies() != setup.bodies.size()))
         throw InputError(out.string() + "/bodies.h5: the plugin recorded no steps");
-    const std::string solver_log = read_text_file(case_dir / "log.interFoam");
+    const SolverLogFigures solver_log = solver_log_figures(read_text_file(case_dir / "log.interFoam"));
 
     json spheres = json::object(), across = json::object();
     for (std::size_t k = 0; k < setup.units.size(); ++k) {
@@ -699,7 +683,7 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
           {"cells_across_unit", across},
           {"np", f.np},
           // A resumed run's coupling steps go on from its checkpoint; its log starts there.
-          {"steps", resume ? coupling_steps(out) : count_solver_steps(solver_log)},
+          {"steps", resume ? coupling_steps(out) : solver_log.steps},
           {"max_time_step", f.max_time_step},
           {"max_courant", f.max_courant},
           {"max_interface_courant", f.max_interface_courant},
@@ -734,38 +718,17 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
     // previous step's flux, so it may overshoot; more than 10 % is reported),
     // and the plugin's timings (coupling_times.json: engine advance = DEM).
     {
-        const int steps = count_solver_steps(solver_log);
         summary["fluid"]["solver_seconds"] = solver_seconds;
-        summary["fluid"]["seconds_per_step"] = solver_seconds / std::max(steps, 1);
-        // interFoam's own CPU clock after each step (the master rank's, the
-        // plugin's work included): from the first step's end to the last
-        // it leaves out start-up (libraries, mesh, engine set-up), and CPU
-        // time is what a shared machine's noise disturbs least. The bench
-        // compares this.
-        std::vector<double> cpu;
-        double co = 0.0, interface_co = 0.0;
-        std::istringstream lines(solver_log);
-        for (std::string line; std::getline(lines, line);) {
-            if (line.rfind("ExecutionTime = ", 0) == 0) {
-                cpu.push_back(std::atof(line.c_str() + 16));
-                continue;
-            }
-            const auto at = line.find("Courant Number mean:");
-            const auto mx = line.find("max:", at == std::string::npos ? 0 : at);
-            if (at == std::string::npos || mx == std::string::npos)
-                continue;
-            double &worst = at == 0 ? co : interface_co; // "Interface Courant Number ..."
-            worst = std::max(worst, std::atof(line.c_str() + mx + 4));
-        }
+        summary["fluid"]["seconds_per_step"] = solver_seconds / std::max(solver_log.steps, 1);
+        // interFoam's own CPU clock per step: the bench compares this.
         summary["fluid"]["cpu_seconds_per_step"] =
-            cpu.size() >= 2 ? json((cpu.back() - cpu.front()) / static_cast<double>(cpu.size() - 1))
-                            : json(nullptr);
+            solver_log.cpu_seconds_per_step ? json(*solver_log.cpu_seconds_per_step) : json(nullptr);
         summary["fluid"]["frozen"] = f.frozen;
-        summary["fluid"]["courant_max_seen"] = co;
-        summary["fluid"]["interface_courant_max_seen"] = interface_co;
+        summary["fluid"]["courant_max_seen"] = solver_log.courant_max;
+        summary["fluid"]["interface_courant_max_seen"] = solver_log.interface_courant_max;
         for (const auto &[seen, limit, key] :
-             {std::tuple(co, f.max_courant, "max_courant"),
-              std::tuple(interface_co, f.max_interface_courant, "max_interface_courant")})
+             {std::tuple(solver_log.courant_max, f.max_courant, "max_courant"),
+              std::tuple(solver_log.interface_courant_max, f.max_interface_courant, "max_interface_courant")})
             if (seen > 1.1 * limit) {
                 const std::string w =
                     "fluid Courant number reached " + figure_text(seen) + " > fluid." + key + " " +

@@ -2,6 +2,7 @@
 
 #include "mesh.h"
 
+#include <algorithm>
 #include <charconv>
 #include <fstream>
 #include <optional>
@@ -65,19 +66,36 @@ void write_fields_exactly(const fs::path &case_dir) {
     set_entry(control, "writeControl", "runTime");
 }
 
-void restore_case(const fs::path &case_dir, const Checkpoint &checkpoint, double end_time) {
+int checkpoint_ranks(const Checkpoint &checkpoint) {
+    int ranks = 1;
+    std::error_code ec;
+    for (const auto &e : fs::directory_iterator(checkpoint.dir / "fluid", ec)) {
+        const std::string name = e.path().filename().string();
+        if (name.rfind("processor", 0) == 0 && name.size() > 9 &&
+            name.find_first_not_of("0123456789", 9) == std::string::npos)
+            ranks = std::max(ranks, std::stoi(name.substr(9)) + 1);
+    }
+    return ranks;
+}
+
+RestoredCase restore_case(const fs::path &case_dir, const Checkpoint &checkpoint, double end_time) {
     const fs::path fluid = checkpoint.dir / "fluid";
     if (!fs::is_directory(fluid))
         throw InputError(fluid.string() + ": missing (a checkpoint of a run without [fluid]?)");
+    RestoredCase restored;
+    restored.ranks = checkpoint_ranks(checkpoint);
     std::error_code ec;
     for (const auto &e : fs::directory_iterator(fluid)) {
         const std::string name = e.path().filename().string();
         if (name.rfind("processor", 0) == 0) { // a parallel run: processor<N>/<time>
+            for (const auto &t : fs::directory_iterator(e.path()))
+                restored.time_name = t.path().filename().string();
             remove_later(case_dir / name, checkpoint.time);
             for (const auto &t : fs::directory_iterator(e.path()))
                 fs::copy(t.path(), case_dir / name / t.path().filename(),
                          fs::copy_options::recursive | fs::copy_options::overwrite_existing);
         } else {
+            restored.time_name = name;
             remove_later(case_dir, checkpoint.time);
             fs::copy(e.path(), case_dir / name,
                      fs::copy_options::recursive | fs::copy_options::overwrite_existing);
@@ -103,6 +121,27 @@ void restore_case(const fs::path &case_dir, const Checkpoint &checkpoint, double
             break;
         }
     }
+    return restored;
+}
+
+void set_ranks(const fs::path &case_dir, int ranks) {
+    const fs::path dict = case_dir / "system" / "decomposeParDict";
+    set_entry(dict, "numberOfSubdomains", std::to_string(ranks));
+    // The templates split the flume along x (method simple, coeffs n (N 1 1)).
+    const std::string text = text_of(dict);
+    const std::regex split("(\\n[ \\t]+n[ \\t]+)\\([^)]*\\)");
+    if (!std::regex_search(text, split))
+        throw InputError(dict.string() + ": no 'n (nx ny nz)' entry to set");
+    write_text(dict, std::regex_replace(text, split, "$1(" + std::to_string(ranks) + " 1 1)"));
+}
+
+void set_courant_limits(const fs::path &case_dir, double every_cell, double free_surface) {
+    const fs::path control = case_dir / "system" / "controlDict";
+    char text[32];
+    *std::to_chars(text, text + sizeof text - 1, every_cell).ptr = '\0';
+    set_entry(control, "maxCo", text);
+    *std::to_chars(text, text + sizeof text - 1, free_surface).ptr = '\0';
+    set_entry(control, "maxAlphaCo", text);
 }
 
 } // namespace armour

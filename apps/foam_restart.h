@@ -14,17 +14,34 @@
 //
 // Usage
 //     write_fields_exactly(case_dir);                    // a new case with checkpoints
-//     restore_case(case_dir, checkpoint, scene.duration); // a resumed one
+//     const RestoredCase restored = restore_case(case_dir, checkpoint, scene.duration); // a resumed one
+//     if (restored.ranks != np) { /* reconstructPar, */ set_ranks(case_dir, np); /* decomposePar */ }
 #pragma once
 
 #include "checkpoints.h"
 
 #include <filesystem>
+#include <string>
 
 namespace armour {
 
 void write_fields_exactly(const std::filesystem::path &case_dir);
 
-void restore_case(const std::filesystem::path &case_dir, const Checkpoint &checkpoint, double end_time);
+// The ranks a coupled run's checkpoint holds its fields split over (1: not split).
+int checkpoint_ranks(const Checkpoint &checkpoint);
+
+struct RestoredCase {
+    int ranks = 1;         // the ranks its fields are split over (processor<N>/), 1 when not split
+    std::string time_name; // the checkpoint's time folder, as the case names it
+};
+RestoredCase restore_case(const std::filesystem::path &case_dir, const Checkpoint &checkpoint,
+                          double end_time);
+
+// A resume on another number of ranks splits the fields anew (decomposePar
+// after reconstructPar): system/decomposeParDict for `ranks` along x.
+void set_ranks(const std::filesystem::path &case_dir, int ranks);
+
+// The Courant limits a resume may change (controlDict maxCo, maxAlphaCo).
+void set_courant_limits(const std::filesystem::path &case_dir, double every_cell, double free_surface);
 
 } // namespace armour

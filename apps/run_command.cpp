@@ -488,8 +488,8 @@ void refuse_if_differs(const std::string &scene_file, const std::string &now, co
     while (std::getline(a, la) && std::getline(b, lb) && la == lb) {
     }
     throw InputError(scene_file + ": differs from the scene that " + where + " ('" + la + "' against '" + lb +
-                     "'); a resume may change only run.duration, run.checkpoint_interval and "
-                     "fluid.write_interval");
+                     "'); a resume may change only run.duration, run.checkpoint_interval, "
+                     "fluid.write_interval, fluid.max_courant, fluid.max_interface_courant and --np");
 }
 
 // The checkpoint `armour run --resume` continues from, after checking that
@@ -503,19 +503,19 @@ Checkpoint checked_resume(const RunRequest &r, const Scene &scene, const fs::pat
     const fs::path ran = out / "scene.resolved.toml";
     if (!fs::is_regular_file(ran))
         throw InputError("--resume: " + ran.string() + " is missing: not a run to continue");
-    const Scene ran_scene = load_scene(ran.string());
+    Scene ran_scene_form = load_scene(ran.string());
     Scene resumed = scene;
-    if (resumed.fluid && ran_scene.fluid) {
-        // --np is not in the scene file: the resolved scene records it.
-        const int np = r.np > 0 ? r.np : resumed.fluid->np, ran_np = ran_scene.fluid->np;
-        if (np != ran_np)
-            throw InputError(
-                "--np: the run in " + out.string() + " ran interFoam on " + std::to_string(ran_np) +
-                " rank(s), and its checkpoints hold the fields split that way; resume with --np " +
-                std::to_string(ran_np));
-        resumed.fluid->np = np;
+    if (resumed.fluid && ran_scene_form.fluid) {
+        // The ranks and the Courant limits set how the steps after the
+        // checkpoint are taken, not what it holds: a resume may change them
+        // (the fields are split anew for other ranks).
+        for (Scene *form : {&resumed, &ran_scene_form}) {
+            form->fluid->np = 1;
+            form->fluid->max_courant = form->fluid->max_interface_courant = 1.0;
+        }
     }
-    refuse_if_differs(r.scene, resumable_form(resumed), resumable_form(ran_scene), "ran in " + out.string());
+    refuse_if_differs(r.scene, resumable_form(resumed), resumable_form(ran_scene_form),
+                      "ran in " + out.string());
     if (last->time >= scene.duration)
         throw InputError("--resume: the last checkpoint (t = " + checkpoint_name(last->time) +
                          " s) is not before run.duration = " + checkpoint_name(scene.duration) + " s");

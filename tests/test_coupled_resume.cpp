@@ -27,6 +27,7 @@
 #include <fstream>
 #include <functional>
 #include <random>
+#include <sstream>
 #include <string>
 #include <sys/file.h>
 #include <sys/wait.h>
@@ -340,51 +341,84 @@ TEST(CoupledResume, ParallelRanksEndWhenTheirGroupIsKilled) {
 }
 
 // A parallel run (--np 2: the fields in processor<N>/) checkpoints and
-// resumes: killed (its group) after its second checkpoint, refused when
-// resumed on another number of ranks, then resumed on 2 ranks to the end
-// with every record and the wall time of both parts.
-TEST(CoupledResume, ParallelRunResumesOnItsOwnRanks) {
+// resumes on any number of ranks. Killed (its group) after its second
+// checkpoint; resumed plainly: on its own 2 ranks; killed again, resumed on
+// 1 rank (the fields reconstructed) with another Courant limit; killed
+// again, resumed on 2 (split anew) to the end: every record on the output
+// grid, and the wall time of all parts.
+TEST(CoupledResume, ParallelRunResumesOnAnyNumberOfRanks) {
     const fs::path dir = test_dir("parallel_resume"), out = dir / "run";
     const auto args = [&](const std::vector<std::string> &flags) {
         return run_args("dambreak_two_cubes.toml", out,
-                        {"fluid.cell_size=0.04", "run.duration=0.3", "run.checkpoint_interval=0.1"}, flags);
+                        {"fluid.cell_size=0.04", "run.duration=0.6", "run.checkpoint_interval=0.1"}, flags);
     };
-    const pid_t pid = start(args({"--np", "2"}));
+    // Starts a part, kills its group once a checkpoint at `after` s or later
+    // is complete; returns that checkpoint's time.
+    const auto part_killed_after = [&](const std::vector<std::string> &flags, double after) {
+        const auto t0 = std::chrono::steady_clock::now();
+        const pid_t pid = start(args(flags));
+        while (latest_checkpoint(out) < after && since(t0) < 120.0)
+            std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        ::kill(-pid, SIGKILL);
+        wait_for(pid);
+        EXPECT_TRUE(wait_unlocked(out));
+        EXPECT_TRUE(wait_solver_gone(out)) << "interFoam's ranks outlived the kill by 30 s";
+        return latest_checkpoint(out);
+    };
+    const auto split_over = [&](double checkpoint) {
+        const fs::path fluid = out / "checkpoints" / armour::checkpoint_name(checkpoint) / "fluid";
+        int ranks = 0;
+        for (const auto &e : fs::directory_iterator(fluid))
+            ranks += e.path().filename().string().rfind("processor", 0) == 0 ? 1 : 0;
+        return ranks;
+    };
+    const auto wall_at = [&](double checkpoint) {
+        std::ifstream in(out / "checkpoints" / armour::checkpoint_name(checkpoint) / "checkpoint.json");
+        return json::parse(in).value("wall_seconds", 0.0);
+    };
+
     const auto t0 = std::chrono::steady_clock::now();
-    while (latest_checkpoint(out) < 0.15 && since(t0) < 120.0)
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    ::kill(-pid, SIGKILL);
-    wait_for(pid);
+    const double first = part_killed_after({"--np", "2"}, 0.15);
     const double first_part = since(t0);
-    ASSERT_TRUE(wait_unlocked(out));
-    ASSERT_TRUE(wait_solver_gone(out)) << "interFoam's ranks outlived the kill by 30 s";
-    const double checkpoint = latest_checkpoint(out);
-    ASSERT_GE(checkpoint, 0.15) << "no second checkpoint";
-    ASSERT_LT(checkpoint, 0.25) << "the run ended before the kill";
-    for (const char *rank : {"processor0", "processor1"})
-        EXPECT_TRUE(
-            fs::is_directory(out / "checkpoints" / armour::checkpoint_name(checkpoint) / "fluid" / rank))
-            << rank;
-    EXPECT_EQ(wait_for(start(args({"--resume"}))), 2); // serial: refused, nothing changed
-    EXPECT_DOUBLE_EQ(latest_checkpoint(out), checkpoint);
+    ASSERT_GE(first, 0.15) << "no second checkpoint";
+    ASSERT_LT(first, 0.25) << "the run went past the kill";
+    EXPECT_EQ(split_over(first), 2);
+    const double first_wall = wall_at(first); // a checkpoint goes two checkpoints later
+    const double second = part_killed_after({"--resume"}, first + 0.05);
+    ASSERT_GT(second, first);
+    ASSERT_LT(second, 0.35);
+    EXPECT_EQ(split_over(second), 2) << "a plain --resume goes on with the run's ranks";
+    const double second_wall = wall_at(second);
+    const double third =
+        part_killed_after({"--np", "1", "--resume", "--set", "fluid.max_courant=0.8"}, second + 0.05);
+    ASSERT_GT(third, second);
+    ASSERT_LT(third, 0.45);
+    EXPECT_EQ(split_over(third), 0) << "the serial part's checkpoint holds the whole fields";
+    const double third_wall = wall_at(third);
+    std::ifstream control_file(out / "case" / "system" / "controlDict");
+    std::stringstream control;
+    control << control_file.rdbuf();
+    EXPECT_NE(control.str().find("\nmaxCo 0.8;"), std::string::npos)
+        << "a resume may change the Courant limit";
     const auto t1 = std::chrono::steady_clock::now();
     ASSERT_EQ(wait_for(start(args({"--np", "2", "--resume"}))), 0);
-    const double second_part = since(t1);
+    const double last_part = since(t1);
     const json summary = summary_of(out);
-    EXPECT_EQ(summary["records"], 31); // 0 .. 0.3 s every 0.01 s
-    // Wall time adds up over the parts: the checkpoint carries the first
-    // part's up to it, the summary that plus the second part's.
-    std::ifstream at(out / "checkpoints" / armour::checkpoint_name(checkpoint) / "checkpoint.json");
-    const double checkpoint_wall = json::parse(at).value("wall_seconds", 0.0);
-    EXPECT_GT(checkpoint_wall, 0.0);
-    EXPECT_LT(checkpoint_wall, first_part);
-    EXPECT_GT(summary["wall_seconds"].get<double>(), checkpoint_wall);
-    EXPECT_LT(summary["wall_seconds"].get<double>(), checkpoint_wall + second_part);
-    EXPECT_NEAR(summary["simulated_seconds"].get<double>(), 0.3, 0.005);
+    EXPECT_EQ(summary["records"], 61); // 0 .. 0.6 s every 0.01 s
+    EXPECT_EQ(summary["fluid"]["np"], 2);
+    EXPECT_NEAR(summary["simulated_seconds"].get<double>(), 0.6, 0.005);
     const armour::BodiesFile run = armour::read_bodies_file((out / "bodies.h5").string());
-    ASSERT_EQ(run.time.size(), 31u);
+    ASSERT_EQ(run.time.size(), 61u);
     for (std::size_t s = 1; s < run.time.size(); ++s)
         EXPECT_NEAR(run.time[s] - run.time[s - 1], 0.01, 0.005) << s;
+    // Wall time adds up over the parts: each checkpoint carries the parts'
+    // up to it, the summary that of the last checkpoint plus the last part's.
+    EXPECT_GT(first_wall, 0.0);
+    EXPECT_LT(first_wall, first_part);
+    EXPECT_GT(second_wall, first_wall);
+    EXPECT_GT(third_wall, second_wall);
+    EXPECT_GT(summary["wall_seconds"].get<double>(), third_wall);
+    EXPECT_LT(summary["wall_seconds"].get<double>(), third_wall + last_part);
     if (!::testing::Test::HasFailure())
         fs::remove_all(dir);
 }
