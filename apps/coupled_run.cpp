@@ -19,7 +19,6 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cerrno>
-#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -46,16 +45,8 @@ using nlohmann::json;
 
 namespace {
 
-// Shortest text that reads back as the same double: the case files then
-// hold exactly the scene's values.
-std::string num(double v) {
-    char buf[64];
-    const auto result = std::to_chars(buf, buf + sizeof buf, v);
-    return std::string(buf, result.ptr);
-}
-
 std::string foam_vector(const Eigen::Vector3d &v) {
-    return "(" + num(v.x()) + " " + num(v.y()) + " " + num(v.z()) + ")";
+    return "(" + number_text(v.x()) + " " + number_text(v.y()) + " " + number_text(v.z()) + ")";
 }
 
 fs::path source_dir() {
@@ -250,18 +241,18 @@ void geometry_tokens(const Scene &scene, const SceneSetup &setup, const std::str
         if (used.find("@SLOPE_") != std::string::npos) {
             if (!(w.toe_x > lo.x() && crest_x < hi.x() && crest_z < hi.z()))
                 throw InputError(where + "slope wall '" + w.name + "': fluid.case \"" +
-                                 scene.fluid->case_name + "\" needs the toe (x = " + num(w.toe_x) +
-                                 " m) and the crest (x = " + num(crest_x) + " m, z = " + num(crest_z) +
-                                 " m) inside the mesh box");
+                                 scene.fluid->case_name + "\" needs the toe (x = " + number_text(w.toe_x) +
+                                 " m) and the crest (x = " + number_text(crest_x) +
+                                 " m, z = " + number_text(crest_z) + " m) inside the mesh box");
             if (w.floor_z != lo.z() || w.toe_height != 0.0)
                 throw InputError(where + "slope wall '" + w.name + "': fluid.case \"" +
                                  scene.fluid->case_name + "\" needs floor_z = run.domain_min.z (" +
-                                 num(lo.z()) +
+                                 number_text(lo.z()) +
                                  " m) and toe_height = 0 (the fluid bed is the slope's profile)");
         }
-        tokens["@SLOPE_TOE_X@"] = num(w.toe_x);
-        tokens["@SLOPE_CREST_X@"] = num(crest_x);
-        tokens["@SLOPE_CREST_Z@"] = num(crest_z);
+        tokens["@SLOPE_TOE_X@"] = number_text(w.toe_x);
+        tokens["@SLOPE_CREST_X@"] = number_text(crest_x);
+        tokens["@SLOPE_CREST_Z@"] = number_text(crest_z);
         tokens["@NX_SEA@"] = std::to_string(cells_along(w.toe_x - lo.x(), h.x()));
         tokens["@NX_SLOPE@"] = std::to_string(cells_along(crest_x - w.toe_x, h.x()));
         tokens["@NX_CREST@"] = std::to_string(cells_along(hi.x() - crest_x, h.x()));
@@ -282,9 +273,9 @@ void geometry_tokens(const Scene &scene, const SceneSetup &setup, const std::str
                              "\" needs it inside the mesh box along x, its top inside along z, and it must "
                              "span the whole width (y) and reach down to the floor (bounding box " +
                              foam_vector(a) + " .. " + foam_vector(b) + " m)");
-        tokens["@PLATFORM_X0@"] = num(a.x());
-        tokens["@PLATFORM_X1@"] = num(b.x());
-        tokens["@PLATFORM_Z1@"] = num(b.z());
+        tokens["@PLATFORM_X0@"] = number_text(a.x());
+        tokens["@PLATFORM_X1@"] = number_text(b.x());
+        tokens["@PLATFORM_Z1@"] = number_text(b.z());
         tokens["@NX_BEFORE_PLATFORM@"] = std::to_string(cells_along(a.x() - lo.x(), h.x()));
         tokens["@NX_ON_PLATFORM@"] = std::to_string(cells_along(b.x() - a.x(), h.x()));
         tokens["@NX_AFTER_PLATFORM@"] = std::to_string(cells_along(hi.x() - b.x(), h.x()));
@@ -483,7 +474,8 @@ std::vector<std::string> check_coupled_scene(const Scene &scene, const SceneSetu
                                " s (run.force_time_step = true): contacts may blow up");
         if (dt.used > f.max_time_step)
             warnings.push_back("engine step " + figure_text(dt.used) + " s exceeds fluid.max_time_step " +
-                               num(f.max_time_step) + " s: fluid steps shorter than it run no engine step");
+                               number_text(f.max_time_step) +
+                               " s: fluid steps shorter than it run no engine step");
     }
     if (const std::string why = analysis_refusal(scene, setup); !why.empty())
         throw InputError(file + ": key 'analysis.kind': " + why);
@@ -497,7 +489,7 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
     // each checkpoint as the seconds since this origin (s since the epoch).
     const double earlier_wall = resume ? resume->wall_seconds : 0.0;
     const std::chrono::duration<double> since_epoch = std::chrono::system_clock::now().time_since_epoch();
-    ::setenv("ARMOUR_WALL_ORIGIN", num(since_epoch.count() - earlier_wall).c_str(), 1);
+    ::setenv("ARMOUR_WALL_ORIGIN", number_text(since_epoch.count() - earlier_wall).c_str(), 1);
     Scene scene = scene_in;
     SceneFluid &f = *scene.fluid;
     if (r.np > 0)
@@ -566,37 +558,37 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
         std::map<std::string, std::string> tokens = {
             {"@ARMOUR_PLUGIN@", plugin},
             {"@NP@", std::to_string(f.np)},
-            {"@X0@", num(lo.x())},
-            {"@Y0@", num(lo.y())},
-            {"@Z0@", num(lo.z())},
-            {"@X1@", num(hi.x())},
-            {"@Y1@", num(hi.y())},
-            {"@Z1@", num(hi.z())},
+            {"@X0@", number_text(lo.x())},
+            {"@Y0@", number_text(lo.y())},
+            {"@Z0@", number_text(lo.z())},
+            {"@X1@", number_text(hi.x())},
+            {"@Y1@", number_text(hi.y())},
+            {"@Z1@", number_text(hi.z())},
             {"@NX@", std::to_string(mesh.axes[0].cells)},
             {"@NY@", std::to_string(mesh.axes[1].cells)},
             {"@NZ@", std::to_string(mesh.axes[2].cells)},
             {"@GRADING@", mesh.axes[0].grading + " " + mesh.axes[1].grading + " " + mesh.axes[2].grading},
             {"@BOX_MIN@", foam_vector(lo - pad)},
             {"@WATER_MAX@", foam_vector(Eigen::Vector3d(hi.x() + pad.x(), hi.y() + pad.y(), f.water_level))},
-            {"@WATER_LEVEL@", num(f.water_level)},
-            {"@END_TIME@", num(scene.duration)},
-            {"@DELTA_T@", num(first_dt)},
-            {"@MAX_DELTA_T@", num(f.max_time_step)},
-            {"@MAX_CO@", num(f.max_courant)},
-            {"@MAX_ALPHA_CO@", num(f.max_interface_courant)},
-            {"@WRITE_INTERVAL@", num(f.write_interval)},
-            {"@RHO_WATER@", num(f.fluid_density)},
-            {"@NU_WATER@", num(f.viscosity)},
-            {"@RHO_AIR@", num(f.air_density)},
-            {"@NU_AIR@", num(f.air_viscosity)},
+            {"@WATER_LEVEL@", number_text(f.water_level)},
+            {"@END_TIME@", number_text(scene.duration)},
+            {"@DELTA_T@", number_text(first_dt)},
+            {"@MAX_DELTA_T@", number_text(f.max_time_step)},
+            {"@MAX_CO@", number_text(f.max_courant)},
+            {"@MAX_ALPHA_CO@", number_text(f.max_interface_courant)},
+            {"@WRITE_INTERVAL@", number_text(f.write_interval)},
+            {"@RHO_WATER@", number_text(f.fluid_density)},
+            {"@NU_WATER@", number_text(f.viscosity)},
+            {"@RHO_AIR@", number_text(f.air_density)},
+            {"@NU_AIR@", number_text(f.air_viscosity)},
             {"@GRAVITY@", foam_vector(scene.gravity)},
             {"@SCENE@", resolved.string()},
             {"@CACHE@", r.cache.empty() ? default_cache_dir() : fs::absolute(r.cache).string()},
             {"@OUTPUT@", out.string()},
             {"@WATER_BOX_MIN@", foam_vector(column_min)},
             {"@WATER_BOX_MAX@", foam_vector(column_max)},
-            {"@WATER_DEPTH@", num(f.water_level - lo.z())},
-            {"@WAVE_HEIGHT@", num(f.wave_height)},
+            {"@WATER_DEPTH@", number_text(f.water_level - lo.z())},
+            {"@WAVE_HEIGHT@", number_text(f.wave_height)},
         };
         geometry_tokens(scene, setup, used, tokens);
         wave_tokens(scene, used, tokens);
@@ -732,7 +724,8 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
             if (seen > 1.1 * limit) {
                 const std::string w =
                     "fluid Courant number reached " + figure_text(seen) + " > fluid." + key + " " +
-                    num(limit) + " (+10 %): the adjustable step lagged a sudden flow; lower max_time_step";
+                    number_text(limit) +
+                    " (+10 %): the adjustable step lagged a sudden flow; lower max_time_step";
                 summary["warnings"].push_back(w);
                 std::fprintf(stderr, "armour: warning: %s\n", w.c_str());
             }

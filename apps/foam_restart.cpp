@@ -1,9 +1,9 @@
 #include "foam_restart.h"
 
 #include "mesh.h"
+#include "scene_keys.h"
 
 #include <algorithm>
-#include <charconv>
 #include <fstream>
 #include <optional>
 #include <regex>
@@ -88,12 +88,12 @@ RestoredCase restore_case(const fs::path &case_dir, const Checkpoint &checkpoint
     for (const auto &e : fs::directory_iterator(fluid)) {
         const std::string name = e.path().filename().string();
         if (name.rfind("processor", 0) == 0) { // a parallel run: processor<N>/<time>
-            for (const auto &t : fs::directory_iterator(e.path()))
-                restored.time_name = t.path().filename().string();
             remove_later(case_dir / name, checkpoint.time);
-            for (const auto &t : fs::directory_iterator(e.path()))
-                fs::copy(t.path(), case_dir / name / t.path().filename(),
+            for (const auto &t : fs::directory_iterator(e.path())) {
+                restored.time_name = t.path().filename().string();
+                fs::copy(t.path(), case_dir / name / restored.time_name,
                          fs::copy_options::recursive | fs::copy_options::overwrite_existing);
+            }
         } else {
             restored.time_name = name;
             remove_later(case_dir, checkpoint.time);
@@ -110,9 +110,7 @@ RestoredCase restore_case(const fs::path &case_dir, const Checkpoint &checkpoint
             remove_later(e.path(), checkpoint.time, true);
     const fs::path control = case_dir / "system" / "controlDict";
     set_entry(control, "startFrom", "latestTime");
-    char end[32];
-    *std::to_chars(end, end + sizeof end - 1, end_time).ptr = '\0';
-    set_entry(control, "endTime", end);
+    set_entry(control, "endTime", number_text(end_time));
     // The killed run's solver log stays beside the new one.
     for (int n = 1;; ++n) {
         const fs::path kept = case_dir / ("log.interFoam." + std::to_string(n));
@@ -137,11 +135,8 @@ void set_ranks(const fs::path &case_dir, int ranks) {
 
 void set_courant_limits(const fs::path &case_dir, double every_cell, double free_surface) {
     const fs::path control = case_dir / "system" / "controlDict";
-    char text[32];
-    *std::to_chars(text, text + sizeof text - 1, every_cell).ptr = '\0';
-    set_entry(control, "maxCo", text);
-    *std::to_chars(text, text + sizeof text - 1, free_surface).ptr = '\0';
-    set_entry(control, "maxAlphaCo", text);
+    set_entry(control, "maxCo", number_text(every_cell));
+    set_entry(control, "maxAlphaCo", number_text(free_surface));
 }
 
 } // namespace armour
