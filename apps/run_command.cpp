@@ -468,8 +468,14 @@ std::string resumable_form(Scene s, bool resumable_keys = true) {
     if (resumable_keys) {
         s.duration = 1.0;
         s.checkpoint_interval = 0.0;
-        if (s.fluid)
+        if (s.fluid) {
             s.fluid->write_interval = 0.0; // its default follows run.duration
+            // The ranks and the Courant limits set how the steps after the
+            // checkpoint are taken, not what it holds (the fields are split
+            // anew for other ranks).
+            s.fluid->np = 1;
+            s.fluid->max_courant = s.fluid->max_interface_courant = 1.0;
+        }
     }
     std::istringstream text(resolved_scene_toml(s));
     std::string form;
@@ -503,18 +509,7 @@ Checkpoint checked_resume(const RunRequest &r, const Scene &scene, const fs::pat
     const fs::path ran = out / "scene.resolved.toml";
     if (!fs::is_regular_file(ran))
         throw InputError("--resume: " + ran.string() + " is missing: not a run to continue");
-    Scene ran_scene_form = load_scene(ran.string());
-    Scene resumed = scene;
-    if (resumed.fluid && ran_scene_form.fluid) {
-        // The ranks and the Courant limits set how the steps after the
-        // checkpoint are taken, not what it holds: a resume may change them
-        // (the fields are split anew for other ranks).
-        for (Scene *form : {&resumed, &ran_scene_form}) {
-            form->fluid->np = 1;
-            form->fluid->max_courant = form->fluid->max_interface_courant = 1.0;
-        }
-    }
-    refuse_if_differs(r.scene, resumable_form(resumed), resumable_form(ran_scene_form),
+    refuse_if_differs(r.scene, resumable_form(scene), resumable_form(load_scene(ran.string())),
                       "ran in " + out.string());
     if (last->time >= scene.duration)
         throw InputError("--resume: the last checkpoint (t = " + checkpoint_name(last->time) +
