@@ -529,6 +529,7 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
     if (resume) {
         const RestoredCase restored = restore_case(case_dir, *resume, scene.duration);
         set_courant_limits(case_dir, f.max_courant, f.max_interface_courant);
+        set_libraries(case_dir, source_dir() / "foam_cases" / f.case_name, plugin, waves_library(plugin));
         if (restored.ranks != f.np) { // the fields split anew for this run's ranks
             if (restored.ranks > 1)
                 run_tool("reconstructPar", {"reconstructPar", "-time", restored.time_name}, case_dir,

@@ -133,6 +133,20 @@ void set_ranks(const fs::path &case_dir, int ranks) {
     write_text(dict, std::regex_replace(text, split, "$1(" + std::to_string(ranks) + " 1 1)"));
 }
 
+void set_libraries(const fs::path &case_dir, const fs::path &template_dir, const std::string &plugin,
+                   const std::string &waves) {
+    const std::string text = text_of(template_dir / "system" / "controlDict");
+    std::smatch m;
+    if (!std::regex_search(text, m, std::regex("(^|\\n)libs[ \\t]+([^;\\n]*);")))
+        return; // a template that loads no library
+    std::string libs = m.str(2);
+    for (const auto &[token, path] :
+         {std::pair{std::string("@ARMOUR_PLUGIN@"), plugin}, std::pair{std::string("@ARMOUR_WAVES@"), waves}})
+        for (auto at = libs.find(token); at != std::string::npos; at = libs.find(token, at + path.size()))
+            libs.replace(at, token.size(), path);
+    set_entry(case_dir / "system" / "controlDict", "libs", libs);
+}
+
 void set_courant_limits(const fs::path &case_dir, double every_cell, double free_surface) {
     const fs::path control = case_dir / "system" / "controlDict";
     set_entry(control, "maxCo", number_text(every_cell));
