@@ -526,10 +526,18 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
         folder.claim("checkpoints"); // the plugin writes them
     // Debian's OpenFOAM finds its etc/ files only through this.
     ::setenv("WM_PROJECT_DIR", "/usr/share/openfoam", 0);
+    // The paths the case names (a resume sets them anew: foam_restart.h).
+    const std::map<std::string, std::string> paths = {
+        {"@ARMOUR_PLUGIN@", plugin},
+        {"@ARMOUR_WAVES@", waves_library(plugin)}, // checked by check_coupled_scene where used
+        {"@SCENE@", resolved.string()},
+        {"@CACHE@", r.cache.empty() ? default_cache_dir() : fs::absolute(r.cache).string()},
+        {"@OUTPUT@", out.string()},
+    };
     if (resume) {
         const RestoredCase restored = restore_case(case_dir, *resume, scene.duration);
         set_courant_limits(case_dir, f.max_courant, f.max_interface_courant);
-        set_libraries(case_dir, source_dir() / "foam_cases" / f.case_name, plugin, waves_library(plugin));
+        refill_paths(case_dir, source_dir() / "foam_cases" / f.case_name, paths);
         if (restored.ranks != f.np) { // the fields split anew for this run's ranks
             if (restored.ranks > 1)
                 run_tool("reconstructPar", {"reconstructPar", "-time", restored.time_name}, case_dir,
@@ -556,8 +564,8 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
         const Eigen::Vector3d column_min =
                                   f.has_water_box ? f.water_box_min : Eigen::Vector3d(lo - 2.0 * pad),
                               column_max = f.has_water_box ? f.water_box_max : Eigen::Vector3d(lo - pad);
-        std::map<std::string, std::string> tokens = {
-            {"@ARMOUR_PLUGIN@", plugin},
+        std::map<std::string, std::string> tokens = paths;
+        tokens.insert({
             {"@NP@", std::to_string(f.np)},
             {"@X0@", number_text(lo.x())},
             {"@Y0@", number_text(lo.y())},
@@ -583,22 +591,17 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
             {"@RHO_AIR@", number_text(f.air_density)},
             {"@NU_AIR@", number_text(f.air_viscosity)},
             {"@GRAVITY@", foam_vector(scene.gravity)},
-            {"@SCENE@", resolved.string()},
-            {"@CACHE@", r.cache.empty() ? default_cache_dir() : fs::absolute(r.cache).string()},
-            {"@OUTPUT@", out.string()},
             {"@WATER_BOX_MIN@", foam_vector(column_min)},
             {"@WATER_BOX_MAX@", foam_vector(column_max)},
             {"@WATER_DEPTH@", number_text(f.water_level - lo.z())},
             {"@WAVE_HEIGHT@", number_text(f.wave_height)},
-        };
+        });
         geometry_tokens(scene, setup, used, tokens);
         wave_tokens(scene, used, tokens);
-        if (used.find("@ARMOUR_WAVES@") != std::string::npos) {
-            tokens["@ARMOUR_WAVES@"] = waves_library(plugin); // checked by check_coupled_scene
-            if (f.wave_height <= 0.0 && !makes_wave_train(scene))
-                throw InputError(scene.file + ": key 'fluid.wave_height': fluid.case \"" + f.case_name +
-                                 "\" makes a solitary wave: give its height (> 0 m)");
-        }
+        if (used.find("@ARMOUR_WAVES@") != std::string::npos && f.wave_height <= 0.0 &&
+            !makes_wave_train(scene))
+            throw InputError(scene.file + ": key 'fluid.wave_height': fluid.case \"" + f.case_name +
+                             "\" makes a solitary wave: give its height (> 0 m)");
         fill_tokens(case_dir, tokens);
         write_fluid_models(scene, case_dir);
 
@@ -627,14 +630,19 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
         if (f.np > 1)
             run_tool("decomposePar", {"decomposePar", "-force"}, case_dir, scene.duration, false);
     }
+    const std::vector<std::string> malloc_settings = keep_solver_memory();
     const auto solver_start = std::chrono::steady_clock::now();
     if (f.np == 1) {
         run_tool("interFoam", {"interFoam"}, case_dir, scene.duration, true);
     } else {
-        run_tool("interFoam",
-                 {"mpirun", "--allow-run-as-root", "-np", std::to_string(f.np), "-x", "WM_PROJECT_DIR", "-x",
-                  "LD_LIBRARY_PATH", "-x", "ARMOUR_WALL_ORIGIN", "interFoam", "-parallel"},
-                 case_dir, scene.duration, true);
+        std::vector<std::string> mpirun = {"mpirun", "--allow-run-as-root", "-np", std::to_string(f.np)};
+        for (const auto &name : {std::string("WM_PROJECT_DIR"), std::string("LD_LIBRARY_PATH"),
+                                 std::string("ARMOUR_WALL_ORIGIN")})
+            mpirun.insert(mpirun.end(), {"-x", name});
+        for (const auto &name : malloc_settings)
+            mpirun.insert(mpirun.end(), {"-x", name});
+        mpirun.insert(mpirun.end(), {"interFoam", "-parallel"});
+        run_tool("interFoam", mpirun, case_dir, scene.duration, true);
     }
     const double solver_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - solver_start).count();

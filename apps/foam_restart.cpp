@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <map>
 #include <optional>
 #include <regex>
 #include <sstream>
@@ -133,18 +134,48 @@ void set_ranks(const fs::path &case_dir, int ranks) {
     write_text(dict, std::regex_replace(text, split, "$1(" + std::to_string(ranks) + " 1 1)"));
 }
 
-void set_libraries(const fs::path &case_dir, const fs::path &template_dir, const std::string &plugin,
-                   const std::string &waves) {
-    const std::string text = text_of(template_dir / "system" / "controlDict");
-    std::smatch m;
-    if (!std::regex_search(text, m, std::regex("(^|\\n)libs[ \\t]+([^;\\n]*);")))
-        return; // a template that loads no library
-    std::string libs = m.str(2);
-    for (const auto &[token, path] :
-         {std::pair{std::string("@ARMOUR_PLUGIN@"), plugin}, std::pair{std::string("@ARMOUR_WAVES@"), waves}})
-        for (auto at = libs.find(token); at != std::string::npos; at = libs.find(token, at + path.size()))
-            libs.replace(at, token.size(), path);
-    set_entry(case_dir / "system" / "controlDict", "libs", libs);
+void refill_paths(const fs::path &case_dir, const fs::path &template_dir,
+                  const std::map<std::string, std::string> &tokens) {
+    const std::regex entry("^[ \\t]*([A-Za-z_]+)[ \\t]+([^;]*);[ \\t]*$");
+    for (const char *folder : {"system", "constant"}) {
+        std::error_code ec;
+        for (const auto &e : fs::directory_iterator(template_dir / folder, ec)) {
+            if (!e.is_regular_file())
+                continue;
+            std::map<std::string, std::string> values; // key -> filled value
+            std::istringstream lines(text_of(e.path()));
+            for (std::string line; std::getline(lines, line);) {
+                std::smatch m;
+                if (!std::regex_match(line, m, entry))
+                    continue;
+                std::string value = m.str(2);
+                bool has_token = false;
+                for (const auto &[token, path] : tokens)
+                    for (auto at = value.find(token); at != std::string::npos;
+                         at = value.find(token, at + path.size())) {
+                        value.replace(at, token.size(), path);
+                        has_token = true;
+                    }
+                if (!has_token)
+                    continue;
+                if (const auto known = values.find(m.str(1)); known != values.end() && known->second != value)
+                    throw InputError(e.path().string() + ": '" + m.str(1) +
+                                     "' holds two different paths: a resume cannot set them anew");
+                values[m.str(1)] = value;
+            }
+            const fs::path target = case_dir / folder / e.path().filename();
+            if (values.empty() || !fs::is_regular_file(target))
+                continue;
+            std::string text = text_of(target);
+            for (const auto &[key, value] : values) {
+                const std::regex line("(^|\\n)([ \\t]*" + key + "[ \\t]+)[^;\\n]*;");
+                if (!std::regex_search(text, line))
+                    throw InputError(target.string() + ": no '" + key + "' entry to set");
+                text = std::regex_replace(text, line, "$1$2" + value + ";");
+            }
+            write_text(target, text);
+        }
+    }
 }
 
 void set_courant_limits(const fs::path &case_dir, double every_cell, double free_surface) {

@@ -21,6 +21,7 @@
 #include "checkpoints.h"
 
 #include <filesystem>
+#include <map>
 #include <string>
 
 namespace armour {
@@ -41,12 +42,14 @@ RestoredCase restore_case(const std::filesystem::path &case_dir, const Checkpoin
 // after reconstructPar): system/decomposeParDict for `ranks` along x.
 void set_ranks(const std::filesystem::path &case_dir, int ranks);
 
-// A resume loads this armour's plugin and wave library, not the run's: the
-// build that started a long run may be gone (a removed or moved build
-// folder, an installed copy) or older. The libs entry of the case
-// template's controlDict, its @ARMOUR_PLUGIN@ and @ARMOUR_WAVES@ filled.
-void set_libraries(const std::filesystem::path &case_dir, const std::filesystem::path &template_dir,
-                   const std::string &plugin, const std::string &waves);
+// A resume runs with this armour's plugin and wave library and writes into
+// the folder it is given, not the run's first: the build that started a
+// long run may be gone (removed, moved, an installed copy) and the run's
+// folder may have been moved or copied. Every entry of the case template's
+// system/ and constant/ files whose value holds one of `tokens`
+// (@ARMOUR_PLUGIN@, @OUTPUT@, ...) is set anew in the case, the tokens filled.
+void refill_paths(const std::filesystem::path &case_dir, const std::filesystem::path &template_dir,
+                  const std::map<std::string, std::string> &tokens);
 
 // The Courant limits a resume may change (controlDict maxCo, maxAlphaCo).
 void set_courant_limits(const std::filesystem::path &case_dir, double every_cell, double free_surface);

@@ -33,4 +33,21 @@ void check_openfoam_project_dir() {
                      "WM_PROJECT_DIR to its folder");
 }
 
+std::vector<std::string> keep_solver_memory() {
+    const char *choice = std::getenv("ARMOUR_SOLVER_MALLOC");
+    if (choice && std::string(choice) == "glibc")
+        return {};
+    const char *threshold = std::getenv("MALLOC_MMAP_THRESHOLD_"),
+               *trim = std::getenv("MALLOC_TRIM_THRESHOLD_");
+    if (!threshold && !trim) {
+        ::setenv("MALLOC_MMAP_THRESHOLD_", "4294967296", 0); // bytes
+        ::setenv("MALLOC_TRIM_THRESHOLD_", "4294967296", 0);
+    }
+    std::vector<std::string> names;
+    for (const char *name : {"MALLOC_MMAP_THRESHOLD_", "MALLOC_TRIM_THRESHOLD_"})
+        if (std::getenv(name))
+            names.emplace_back(name);
+    return names;
+}
+
 } // namespace armour

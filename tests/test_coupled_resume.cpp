@@ -286,17 +286,21 @@ TEST(CoupledResume, KilledDamBreakResumedEndsAsTheUninterruptedOne) {
         const fs::path killed = dir / "in_surge";
         const double checkpoint = kill_between(killed, arrival + 0.02, arrival + 0.2, random);
         ASSERT_GE(checkpoint, 0.0) << "no kill during the surge";
-        // The build that started the run is gone (its plugin named in the
-        // case's controlDict): the resume loads this armour's.
-        const fs::path control = killed / "case" / "system" / "controlDict";
+        // The run's folder moved, and the build that started it is gone (its
+        // plugin named in the case's controlDict): the resume writes into
+        // the folder it is given, with this armour's plugin.
+        const fs::path moved = dir / "in_surge_moved";
+        fs::rename(killed, moved);
+        const fs::path control = moved / "case" / "system" / "controlDict";
         std::string text = armour::read_text_file(control);
         const auto plugin = text.find("libarmourFoamCoupling.so");
         ASSERT_NE(plugin, std::string::npos);
         text.insert(plugin, "removed-build/");
         armour::write_text_file(control, text);
-        ASSERT_EQ(wait_for(start(args(killed, true))), 0);
+        ASSERT_EQ(wait_for(start(args(moved, true))), 0);
+        EXPECT_FALSE(fs::exists(killed)) << "the resume wrote into the run's old folder";
         EXPECT_EQ(armour::read_text_file(control).find("removed-build/"), std::string::npos);
-        const Resumed r = compare_records(reference, killed, checkpoint, arrival);
+        const Resumed r = compare_records(reference, moved, checkpoint, arrival);
         std::printf("[ resume   ] during the surge: resumed at %.3g s; record times differ by up to %.3g s; "
                     "final poses by %.3g m (%.3g Dn; not bit-identical, docs/checkpoints.md)\n",
                     r.checkpoint, r.time_shift, r.pose, r.pose / kDn);
