@@ -4,6 +4,7 @@
 // target exists only then).
 #include "bodies_file.h"
 #include "cli.h"
+#include "openfoam_environment.h"
 #include "paraview_poses.h"
 
 #include <gtest/gtest.h>
@@ -599,4 +600,40 @@ TEST(CoupledRun, InterfaceCourantLimitReachesTheCase) {
     EXPECT_TRUE(std::regex_search(control.str(), std::regex(R"(\nmaxCo\s+1;)"))) << control.str();
     EXPECT_TRUE(std::regex_search(control.str(), std::regex(R"(\nmaxAlphaCo\s+0\.25;)"))) << control.str();
     clean(r);
+}
+
+// The solvers armour starts keep freed memory in the heap (docs/openfoam.md,
+// "The solver's memory": 0.88 x the CPU per serial step at Dn/4); a user's
+// own glibc settings, or ARMOUR_SOLVER_MALLOC=glibc, are left alone.
+TEST(SolverEnvironment, KeepsFreedMemoryUnlessTheUserChoseOtherwise) {
+    const char *names[] = {"MALLOC_MMAP_THRESHOLD_", "MALLOC_TRIM_THRESHOLD_", "ARMOUR_SOLVER_MALLOC"};
+    std::map<std::string, std::string> saved;
+    for (const char *name : names)
+        if (const char *v = std::getenv(name))
+            saved[name] = v;
+    const auto unset_all = [&] {
+        for (const char *name : names)
+            ::unsetenv(name);
+    };
+
+    unset_all();
+    EXPECT_EQ(armour::keep_solver_memory(),
+              (std::vector<std::string>{"MALLOC_MMAP_THRESHOLD_", "MALLOC_TRIM_THRESHOLD_"}));
+    EXPECT_STREQ(std::getenv("MALLOC_MMAP_THRESHOLD_"), "4294967296");
+    EXPECT_STREQ(std::getenv("MALLOC_TRIM_THRESHOLD_"), "4294967296");
+
+    unset_all();
+    ::setenv("ARMOUR_SOLVER_MALLOC", "glibc", 1);
+    EXPECT_TRUE(armour::keep_solver_memory().empty());
+    EXPECT_EQ(std::getenv("MALLOC_MMAP_THRESHOLD_"), nullptr);
+
+    unset_all();
+    ::setenv("MALLOC_TRIM_THRESHOLD_", "1048576", 1);
+    EXPECT_EQ(armour::keep_solver_memory(), std::vector<std::string>{"MALLOC_TRIM_THRESHOLD_"});
+    EXPECT_STREQ(std::getenv("MALLOC_TRIM_THRESHOLD_"), "1048576");
+    EXPECT_EQ(std::getenv("MALLOC_MMAP_THRESHOLD_"), nullptr);
+
+    unset_all();
+    for (const auto &[name, value] : saved)
+        ::setenv(name.c_str(), value.c_str(), 1);
 }
