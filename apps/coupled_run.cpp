@@ -653,7 +653,9 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
         setup.bodies.empty() ? BodiesFile{} : read_bodies_file((out / "bodies.h5").string());
     if (!setup.bodies.empty() && (rec.time.empty() || rec.bodies() != setup.bodies.size()))
         throw InputError(out.string() + "/bodies.h5: the plugin recorded no steps");
-    const SolverLogFigures solver_log = solver_log_figures(read_text_file(case_dir / "log.interFoam"));
+    const SolverLogFigures solver_log =
+        solver_log_figures(read_text_file(case_dir / "log.interFoam"),
+                           {f.max_courant, f.max_interface_courant, f.max_time_step});
 
     json spheres = json::object(), across = json::object();
     for (std::size_t k = 0; k < setup.units.size(); ++k) {
@@ -727,14 +729,20 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
         summary["fluid"]["frozen"] = f.frozen;
         summary["fluid"]["courant_max_seen"] = solver_log.courant_max;
         summary["fluid"]["interface_courant_max_seen"] = solver_log.interface_courant_max;
-        for (const auto &[seen, limit, key] :
-             {std::tuple(solver_log.courant_max, f.max_courant, "max_courant"),
-              std::tuple(solver_log.interface_courant_max, f.max_interface_courant, "max_interface_courant")})
-            if (seen > 1.1 * limit) {
+        for (const auto &[seen, limit, over, key] :
+             {std::tuple(solver_log.courant_max, f.max_courant, solver_log.courant_over, "max_courant"),
+              std::tuple(solver_log.interface_courant_max, f.max_interface_courant,
+                         solver_log.interface_courant_over, "max_interface_courant")})
+            if (over.steps > 0) {
                 const std::string w =
                     "fluid Courant number reached " + figure_text(seen) + " > fluid." + key + " " +
-                    number_text(limit) +
-                    " (+10 %): the adjustable step lagged a sudden flow; lower max_time_step";
+                    number_text(limit) + " (+10 %) in " + std::to_string(over.steps) + " of " +
+                    std::to_string(solver_log.steps) + " steps: " +
+                    (over.after_capped_step
+                         ? "a step of fluid.max_time_step met a sudden flow; lower max_time_step"
+                         : "interFoam sets each step from the one before and lags a flow that speeds up; "
+                           "lower fluid." +
+                               std::string(key) + " for a firm bound");
                 summary["warnings"].push_back(w);
                 std::fprintf(stderr, "armour: warning: %s\n", w.c_str());
             }

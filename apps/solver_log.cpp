@@ -29,13 +29,14 @@ double last_solver_time(const std::string &log) {
     return at == std::string::npos ? 0.0 : std::atof(log.c_str() + at + 8);
 }
 
-SolverLogFigures solver_log_figures(const std::string &log) {
+SolverLogFigures solver_log_figures(const std::string &log, const SolverLimits &limits) {
     SolverLogFigures figures;
     // interFoam's own CPU clock after each step (the master rank's, the
     // plugin's work included): from the first step's end to the last it
     // leaves out start-up (libraries, mesh, engine set-up), and CPU time is
     // what a shared machine's noise disturbs least.
     std::vector<double> cpu;
+    double last_step = 0.0; // "deltaT = ": the step a following Courant line measures
     std::istringstream lines(log);
     for (std::string line; std::getline(lines, line);) {
         if (line.rfind("Time = ", 0) == 0) {
@@ -46,13 +47,25 @@ SolverLogFigures solver_log_figures(const std::string &log) {
             cpu.push_back(std::atof(line.c_str() + 16));
             continue;
         }
+        if (line.rfind("deltaT = ", 0) == 0) {
+            last_step = std::atof(line.c_str() + 9);
+            continue;
+        }
         const auto at = line.find("Courant Number mean:");
         const auto mx = line.find("max:", at == std::string::npos ? 0 : at);
         if (at == std::string::npos || mx == std::string::npos)
             continue;
-        double &worst =
-            at == 0 ? figures.courant_max : figures.interface_courant_max; // "Interface Courant..."
-        worst = std::max(worst, std::atof(line.c_str() + mx + 4));
+        const bool every_cell = at == 0; // else "Interface Courant Number ..."
+        const double co = std::atof(line.c_str() + mx + 4);
+        double &worst = every_cell ? figures.courant_max : figures.interface_courant_max;
+        worst = std::max(worst, co);
+        const double limit = every_cell ? limits.max_courant : limits.max_interface_courant;
+        if (limit > 0.0 && co > 1.1 * limit) {
+            CourantOvershoot &over = every_cell ? figures.courant_over : figures.interface_courant_over;
+            ++over.steps;
+            over.after_capped_step |=
+                limits.max_time_step > 0.0 && last_step >= limits.max_time_step * (1 - 1e-9);
+        }
     }
     if (cpu.size() >= 2)
         figures.cpu_seconds_per_step = (cpu.back() - cpu.front()) / static_cast<double>(cpu.size() - 1);

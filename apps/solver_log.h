@@ -5,11 +5,12 @@
 //     failed tool's one line), the time of the step being solved (progress),
 //     the number of steps, its CPU clock per step and the largest Courant
 //     numbers it reported, every cell's and the free surface's (0.01 < alpha
-//     < 0.99). Times in s.
+//     < 0.99), and the steps that passed the run's Courant limits. Times in s.
 //
 // Usage
 //     const std::string log = read_text_file(case_dir / "log.interFoam");
-//     const SolverLogFigures figures = solver_log_figures(log);
+//     const SolverLogFigures figures = solver_log_figures(log, {max_courant, max_interface_courant,
+//     max_time_step});
 #pragma once
 
 #include <optional>
@@ -23,12 +24,29 @@ std::string fatal_line(const std::string &log);
 // Last "Time = t" of a solver log (the step being solved), 0 when none.
 double last_solver_time(const std::string &log);
 
+// A Courant limit passed by more than 10 %. interFoam sets each step from
+// the Courant number of the step before, so a flow that speeds up passes the
+// limit for a step; after a step at max_time_step (the cap, not the Courant
+// number, set it) the overshoot can be any size.
+struct CourantOvershoot {
+    int steps = 0;                  // steps whose Courant number passed 1.1 x the limit
+    bool after_capped_step = false; // one of them followed a step of max_time_step
+};
+
+// The run's limits, to count the overshoots (0: not counted).
+struct SolverLimits {
+    double max_courant = 0.0;
+    double max_interface_courant = 0.0;
+    double max_time_step = 0.0; // s
+};
+
 struct SolverLogFigures {
     int steps = 0;                              // "Time = " lines
     std::optional<double> cpu_seconds_per_step; // ExecutionTime from the first step's end to the last
     double courant_max = 0.0;                   // "Courant Number ... max:"
     double interface_courant_max = 0.0;         // "Interface Courant Number ... max:"
+    CourantOvershoot courant_over, interface_courant_over;
 };
-SolverLogFigures solver_log_figures(const std::string &log);
+SolverLogFigures solver_log_figures(const std::string &log, const SolverLimits &limits = {});
 
 } // namespace armour

@@ -6,6 +6,7 @@
 #include "cli.h"
 #include "openfoam_environment.h"
 #include "paraview_poses.h"
+#include "solver_log.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -636,4 +637,32 @@ TEST(SolverEnvironment, KeepsFreedMemoryUnlessTheUserChoseOtherwise) {
     unset_all();
     for (const auto &[name, value] : saved)
         ::setenv(name.c_str(), value.c_str(), 1);
+}
+
+// The Courant warning says what set the step that passed a limit: a step of
+// max_time_step (the cap; lower it) or the Courant number of the step before
+// (interFoam's lag; lower the limit). interFoam's log order: the Courant
+// numbers of the step just taken, then the next step's deltaT and time.
+TEST(SolverLog, CountsStepsPastTheCourantLimitsAndWhatSetTheStep) {
+    const std::string log = "Courant Number mean: 0 max: 0\n"
+                            "Interface Courant Number mean: 0 max: 0\n"
+                            "deltaT = 0.005\nTime = 0.005\n\nExecutionTime = 0.5 s  ClockTime = 1 s\n\n"
+                            "Courant Number mean: 0.1 max: 1.37\n"           // after the 5 ms cap
+                            "Interface Courant Number mean: 0.01 max: 0.3\n" // within 0.5
+                            "deltaT = 0.003\nTime = 0.008\n\nExecutionTime = 0.9 s  ClockTime = 1 s\n\n"
+                            "Courant Number mean: 0.1 max: 1.05\n"           // within 1.1 x 1.0
+                            "Interface Courant Number mean: 0.01 max: 0.6\n" // past 0.55, after 3 ms
+                            "deltaT = 0.0025\nTime = 0.0105\n\nExecutionTime = 1.3 s  ClockTime = 2 s\n";
+    const armour::SolverLogFigures f = armour::solver_log_figures(log, {1.0, 0.5, 0.005});
+    EXPECT_EQ(f.steps, 3);
+    EXPECT_DOUBLE_EQ(f.courant_max, 1.37);
+    EXPECT_DOUBLE_EQ(f.interface_courant_max, 0.6);
+    ASSERT_TRUE(f.cpu_seconds_per_step.has_value());
+    EXPECT_DOUBLE_EQ(*f.cpu_seconds_per_step, 0.4);
+    EXPECT_EQ(f.courant_over.steps, 1);
+    EXPECT_TRUE(f.courant_over.after_capped_step);
+    EXPECT_EQ(f.interface_courant_over.steps, 1);
+    EXPECT_FALSE(f.interface_courant_over.after_capped_step);
+    const armour::SolverLogFigures unchecked = armour::solver_log_figures(log);
+    EXPECT_EQ(unchecked.courant_over.steps + unchecked.interface_courant_over.steps, 0);
 }
