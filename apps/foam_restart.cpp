@@ -171,7 +171,10 @@ void refill_paths(const fs::path &case_dir, const fs::path &template_dir,
                 const std::regex line("(^|\\n)([ \\t]*" + key + "[ \\t]+)[^;\\n]*;");
                 if (!std::regex_search(text, line))
                     throw InputError(target.string() + ": no '" + key + "' entry to set");
-                text = std::regex_replace(text, line, "$1$2" + value + ";");
+                std::string format = "$1$2"; // a '$' of the value stays itself
+                format += std::regex_replace(value, std::regex("\\$"), "$$$$");
+                format += ';';
+                text = std::regex_replace(text, line, format);
             }
             write_text(target, text);
         }

@@ -72,11 +72,11 @@ std::optional<Checkpoint> last_checkpoint(const fs::path &out) {
     return found.back();
 }
 
-Checkpoints::Checkpoints(fs::path out, double interval, double after)
-    : root_(std::move(out) / "checkpoints"), interval_(interval),
+Checkpoints::Checkpoints(const fs::path &out, double interval, double after)
+    : root_(out / "checkpoints"), interval_(interval),
       next_(interval > 0.0 ? (std::floor(after / interval + 1e-9) + 1.0) * interval : HUGE_VAL) {}
 
-fs::path Checkpoints::write(Checkpoint at, const std::function<void(const fs::path &)> &fill) {
+fs::path Checkpoints::write(const Checkpoint &at, const std::function<void(const fs::path &)> &fill) {
     const fs::path partial = begin();
     fill(partial);
     return commit(at, partial);
@@ -89,13 +89,13 @@ fs::path Checkpoints::begin() {
     for (const auto &entry : fs::directory_iterator(root_, ec))
         if (entry.path().filename().string().rfind(".partial-", 0) == 0)
             fs::remove_all(entry.path(), ec);
-    const fs::path partial = root_ / (".partial-" + std::to_string(::getpid()));
+    fs::path partial = root_ / (".partial-" + std::to_string(::getpid()));
     if (!fs::create_directories(partial / "engine", ec) || ec)
         throw InputError(partial.string() + ": cannot create the checkpoint folder: " + ec.message());
     return partial;
 }
 
-fs::path Checkpoints::commit(Checkpoint at, const fs::path &partial) {
+fs::path Checkpoints::commit(const Checkpoint &at, const fs::path &partial) {
     std::error_code ec;
     const nlohmann::json j = {{"time", at.time},
                               {"records", at.records},
@@ -107,7 +107,7 @@ fs::path Checkpoints::commit(Checkpoint at, const fs::path &partial) {
         if (!out.flush())
             throw InputError((partial / "checkpoint.json").string() + ": write failed");
     }
-    const fs::path final_dir = root_ / checkpoint_name(at.time);
+    fs::path final_dir = root_ / checkpoint_name(at.time);
     fs::remove_all(final_dir, ec); // an earlier run's checkpoint of the same time
     fs::rename(partial, final_dir, ec);
     if (ec)
@@ -130,7 +130,6 @@ fs::path Checkpoints::commit(Checkpoint at, const fs::path &partial) {
         drop(found[i].dir);
     while (next_ <= at.time + 1e-9 * interval_)
         next_ += interval_;
-    at.dir = final_dir;
     return final_dir;
 }
 

@@ -48,14 +48,14 @@ class Checkpoints {
   public:
     // interval <= 0: never due. `after`: the time already covered (a resumed
     // run), so the next one falls on the same grid of multiples of interval.
-    Checkpoints(std::filesystem::path out, double interval, double after = 0.0);
+    Checkpoints(const std::filesystem::path &out, double interval, double after = 0.0);
 
     bool due(double t) const { return interval_ > 0.0 && t >= next_ - 1e-9 * interval_; }
 
     // Writes the checkpoint `at`: `fill` writes the states into the folder it
     // is given (engine/ already exists), then checkpoint.json, the rename
     // into place, and the removal of all but the last two. Returns its folder.
-    std::filesystem::path write(Checkpoint at,
+    std::filesystem::path write(const Checkpoint &at,
                                 const std::function<void(const std::filesystem::path &)> &fill);
 
     // The same in two parts, for a writer whose states are ready at
@@ -63,7 +63,7 @@ class Checkpoints {
     // after the engine's): begin() makes the partial folder (with engine/),
     // commit() finishes it as write() does.
     std::filesystem::path begin();
-    std::filesystem::path commit(Checkpoint at, const std::filesystem::path &partial);
+    std::filesystem::path commit(const Checkpoint &at, const std::filesystem::path &partial);
 
   private:
     std::filesystem::path root_;
