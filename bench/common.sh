@@ -85,3 +85,22 @@ bench_args() {
   mkdir -p "$out"
   out="$(cd "$out" && pwd)"
 }
+
+# bench_resume_window RUN_DIR CHECKPOINT END DIR [armour run options...]: a
+# copy of the run folder RUN_DIR in DIR (inside --out), resumed from its
+# checkpoint CHECKPOINT (a folder name under RUN_DIR/checkpoints; the copy's
+# later ones dropped) to END s through `armour run --resume` with the run's
+# resolved scene (the fluid written at END only); armour's output in DIR.log.
+# Returns armour's status.
+bench_resume_window() {
+  local run_dir="$1" checkpoint="$2" end="$3" dir="$4" c
+  shift 4
+  rm -rf "$dir"
+  cp -r "$run_dir" "$dir"
+  for c in "$dir"/checkpoints/*; do
+    awk -v a="$(basename "$c")" -v b="$checkpoint" 'BEGIN { exit !(a + 0 > b + 0) }' && rm -rf "$c"
+  done
+  cp "$run_dir/scene.resolved.toml" "$dir.scene.toml"
+  "$build/apps/armour" run "$dir.scene.toml" --out "$dir" --set "run.duration=$end" \
+    --set "fluid.write_interval=$end" --resume "$@" >"$dir.log" 2>&1
+}

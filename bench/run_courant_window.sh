@@ -1,31 +1,32 @@
 #!/usr/bin/env bash
 # Which cells set the fluid step in waves on the armour, and what a separate
 # free-surface limit saves (issue 16; docs/stability.md, Cost). A window of
-# a coupled run is run twice from one of its checkpoints, interFoam alone
-# on copies of its case: as the run ran (its maxCo and maxAlphaCo), and with
-# every cell held to --max-courant but the free surface's cells (0.01 < alpha
-# < 0.99) to --max-interface-courant (fluid.max_courant and
-# fluid.max_interface_courant). Reported per row: fluid steps, CPU seconds
-# (interFoam's ExecutionTime), the share of steps whose largest Courant
-# number lies off the free surface (interface Courant < 0.9 x the largest);
-# between the rows: the units' fluid loads at the records of the window
-# (rms of the difference / rms of the load, largest difference in unit
-# weights) and their poses at its end (largest difference in Dn; for units
-# other than cubes, N and m). The rows
-# run one after another in one call: compare their ratios. Writes
-# OUT/summary.json (SI).
+# a coupled run is run twice from one of its checkpoints through `armour run
+# --resume`, on copies of its folder: as the run ran (its maxCo and
+# maxAlphaCo), and with every cell held to --max-courant but the free
+# surface's cells (0.01 < alpha < 0.99) to --max-interface-courant
+# (fluid.max_courant and fluid.max_interface_courant). Reported per row:
+# fluid steps, CPU seconds (interFoam's ExecutionTime), the share of steps
+# whose largest Courant number lies off the free surface (interface Courant
+# < 0.9 x the largest); between the rows: the units' fluid loads at the
+# records of the window (rms of the difference / rms of the load, largest
+# difference in unit weights) and their poses at its end (largest difference
+# in Dn; for units other than cubes, N and m). The rows run one after another
+# in one call: compare their ratios. Writes OUT/summary.json (SI) and keeps
+# each row's solver log (OUT/ROW.log.interFoam).
 # Usage: bash bench/run_courant_window.sh RUN_DIR [--checkpoint T] [--seconds S]
-#          [--max-courant C] [--max-interface-courant C] [--build DIR] [--out DIR]
-#   RUN_DIR      an `armour run` output folder with checkpoints (a serial run)
+#          [--max-courant C] [--max-interface-courant C] [--np N] [--build DIR] [--out DIR]
+#   RUN_DIR      an `armour run` output folder with checkpoints (serial or parallel)
 #   --checkpoint the checkpoint's time in s, as its folder is named (default the latest)
 #   --seconds    simulated seconds of the window (default 2)
 #   --max-courant, --max-interface-courant  the second row's limits (default 1.0 and 0.5)
+#   --np         ranks of both rows (default the checkpoint's)
 #   --out        default ${TMPDIR:-/tmp}/armour-bench/courant_window
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-bench_name=courant_window bench_targets="armourFoamCoupling armourWaves"
-bench_options="checkpoint seconds max-courant max-interface-courant"
-opt_checkpoint="" opt_seconds=2 opt_max_courant=1.0 opt_max_interface_courant=0.5
+bench_name=courant_window bench_targets="armour armourFoamCoupling armourWaves"
+bench_options="checkpoint seconds max-courant max-interface-courant np"
+opt_checkpoint="" opt_seconds=2 opt_max_courant=1.0 opt_max_interface_courant=0.5 opt_np=""
 run_dir="${1:-}"
 [ -n "$run_dir" ] && [ "${run_dir#-}" = "$run_dir" ] || {
   echo "$(basename "$0"): RUN_DIR: give an armour run output folder first (see --help)" >&2
@@ -35,42 +36,28 @@ shift
 source "$root/bench/common.sh"
 bench_args "$@"
 run_dir="$(cd "$run_dir" && pwd)"
-[ -f "$run_dir/scene.resolved.toml" ] && [ -d "$run_dir/case/constant" ] ||
-  bench_fail "$run_dir: not an armour run output folder (no scene.resolved.toml or case/)"
+[ -f "$run_dir/scene.resolved.toml" ] && [ -d "$run_dir/checkpoints" ] ||
+  bench_fail "$run_dir: not an armour run output folder with checkpoints"
 [ -n "$opt_checkpoint" ] || opt_checkpoint="$(ls "$run_dir/checkpoints" 2>/dev/null | grep -v '^\.' | sort -g | tail -1)"
-checkpoint="$run_dir/checkpoints/$opt_checkpoint"
-[ -f "$checkpoint/checkpoint.json" ] || bench_fail "--checkpoint $opt_checkpoint: no checkpoint $checkpoint"
-fields=("$checkpoint"/fluid/[0-9]*)
-[ -d "${fields[0]}" ] && [ ${#fields[@]} -eq 1 ] ||
-  bench_fail "$checkpoint/fluid: holds no single time folder (a parallel run's checkpoint is not supported)"
-start="$(basename "${fields[0]}")"
+[ -f "$run_dir/checkpoints/$opt_checkpoint/checkpoint.json" ] ||
+  bench_fail "--checkpoint $opt_checkpoint: no checkpoint in $run_dir/checkpoints"
+start="$opt_checkpoint"
 end="$(awk -v a="$start" -v b="$opt_seconds" 'BEGIN { printf "%.10g", a + b }')"
-export WM_PROJECT_DIR="${WM_PROJECT_DIR:-/usr/share/openfoam}"
+ranks=()
+[ -z "$opt_np" ] || ranks=(--np "$opt_np")
 
-# row NAME MAXCO MAXALPHACO: a copy of the run at the checkpoint, interFoam to $end.
+# row NAME [--set KEY=VALUE ...]: the run resumed to $end (its own limits unless set).
 row() {
-  local dir="$out/$1" control
-  rm -rf "$dir"
-  mkdir -p "$dir/case" "$dir/checkpoints"
-  cp -r "$checkpoint" "$dir/checkpoints/"
-  cp "$run_dir/scene.resolved.toml" "$run_dir/bodies.h5" "$dir/"
-  [ -f "$run_dir/fluid.csv" ] && cp "$run_dir/fluid.csv" "$dir/"
-  cp -r "$run_dir/case/constant" "$run_dir/case/system" "${fields[0]}" "$dir/case/"
-  sed -i "s#$run_dir#$dir#g" "$dir/case/constant/fvOptions"
-  control="$dir/case/system/controlDict"
-  sed -i -e "s#^libs .*#libs (\"$build/coupling/openfoam/libarmourFoamCoupling.so\" \"$build/coupling/openfoam/waves/libarmourWaves.so\" \"libwaveModels.so\");#" \
-    -e 's/^startFrom .*/startFrom latestTime;/' -e "s/^endTime .*/endTime $end;/" \
-    -e "s/^writeInterval .*/writeInterval $opt_seconds;/" \
-    -e "s/^maxCo .*/maxCo $2;/" -e "s/^maxAlphaCo .*/maxAlphaCo $3;/" "$control"
-  echo "courant_window: $1 (maxCo $2, maxAlphaCo $3) from t = $start s to $end s ..." >&2
-  (cd "$dir/case" && interFoam >log.interFoam 2>&1) || bench_fail "$1: interFoam failed: $dir/case/log.interFoam"
+  local name="$1"
+  shift
+  echo "courant_window: $name ($*) from t = $start s to $end s ..." >&2
+  bench_resume_window "$run_dir" "$opt_checkpoint" "$end" "$out/$name" "${ranks[@]}" "$@" ||
+    bench_fail "$name: armour run failed: $out/$name.log"
 }
 
 cut -d' ' -f1-3 /proc/loadavg >"$out/loadavg_before"
-as_run_co="$(awk '/^maxCo /{sub(";","",$2); print $2}' "$run_dir/case/system/controlDict")"
-as_run_alpha="$(awk '/^maxAlphaCo /{sub(";","",$2); print $2}' "$run_dir/case/system/controlDict")"
-row as_run "$as_run_co" "$as_run_alpha"
-row split "$opt_max_courant" "$opt_max_interface_courant"
+row as_run
+row split --set "fluid.max_courant=$opt_max_courant" --set "fluid.max_interface_courant=$opt_max_interface_courant"
 cut -d' ' -f1-3 /proc/loadavg >"$out/loadavg_after"
 
 /usr/bin/python3 - "$out" "$start" "$end" "$opt_checkpoint" <<'EOF'
@@ -130,3 +117,8 @@ with open(os.path.join(out, "summary.json.tmp"), "w") as f:
 os.replace(os.path.join(out, "summary.json.tmp"), os.path.join(out, "summary.json"))
 print(json.dumps(summary, indent=2))
 EOF
+# The copies of the run go (each as large as the run); the solver logs stay.
+for name in as_run split; do
+  cp "$out/$name/case/log.interFoam" "$out/$name.log.interFoam"
+  rm -rf "${out:?}/$name" "$out/$name.scene.toml"
+done

@@ -22,7 +22,7 @@
 #   bash bench/run_solver_memory.sh /work/runs/dn4_long --seconds 0.25 --np 1
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-bench_name=solver_memory bench_targets="armour armourFoamCoupling"
+bench_name=solver_memory bench_targets="armour armourFoamCoupling armourWaves"
 bench_options="checkpoint seconds np repeats"
 opt_checkpoint="" opt_seconds=0.25 opt_np=1 opt_repeats=2
 run_dir="${1:-}"
@@ -40,24 +40,15 @@ run_dir="$(cd "$run_dir" && pwd)"
 [ -f "$run_dir/checkpoints/$opt_checkpoint/checkpoint.json" ] ||
   bench_fail "--checkpoint $opt_checkpoint: no checkpoint in $run_dir/checkpoints"
 end="$(awk -v a="$opt_checkpoint" -v b="$opt_seconds" 'BEGIN { printf "%.10g", a + b }')"
-scene="$out/scene.toml"
-cp "$run_dir/scene.resolved.toml" "$scene"
 
-# row NAME SETTING: a copy of the run resumed to $end with SETTING (glibc or heap).
+# row NAME SETTING: the run resumed to $end with SETTING (glibc or heap).
 row() {
-  local dir="$out/$1"
-  rm -rf "$dir"
-  cp -r "$run_dir" "$dir"
-  # Later checkpoints than the chosen one would be resumed from instead.
-  for c in "$dir"/checkpoints/*; do
-    awk -v a="$(basename "$c")" -v b="$opt_checkpoint" 'BEGIN { exit !(a + 0 > b + 0) }' && rm -rf "$c"
-  done
   echo "solver_memory: $1 ($2) from t = $opt_checkpoint s to $end s on $opt_np rank(s) ..." >&2
-  local env_setting=()
-  [ "$2" = glibc ] && env_setting=(ARMOUR_SOLVER_MALLOC=glibc)
-  env -u MALLOC_MMAP_THRESHOLD_ -u MALLOC_TRIM_THRESHOLD_ "${env_setting[@]}" \
-    "$build/apps/armour" run "$scene" --out "$dir" --set "run.duration=$end" --np "$opt_np" --resume \
-    >"$dir.log" 2>&1 || bench_fail "$1: armour run failed: $dir.log"
+  (
+    unset MALLOC_MMAP_THRESHOLD_ MALLOC_TRIM_THRESHOLD_ ARMOUR_SOLVER_MALLOC
+    if [ "$2" = glibc ]; then export ARMOUR_SOLVER_MALLOC=glibc; fi
+    bench_resume_window "$run_dir" "$opt_checkpoint" "$end" "$out/$1" --np "$opt_np"
+  ) || bench_fail "$1: armour run failed: $out/$1.log"
 }
 
 cut -d' ' -f1-3 /proc/loadavg >"$out/loadavg_before"
@@ -112,4 +103,4 @@ print(f"heap / glibc per pair: {', '.join(f'{p:.3f}' for p in pairs)} (mean {np.
 if largest > 0.0:
     sys.exit("run_solver_memory.sh: the rows' records differ: the allocator changed a number")
 EOF
-for r in "${rows[@]}"; do rm -rf "${out:?}/$r"; done
+for r in "${rows[@]}"; do rm -rf "${out:?}/$r" "$out/$r.scene.toml"; done
