@@ -104,3 +104,26 @@ bench_resume_window() {
   "$build/apps/armour" run "$dir.scene.toml" --out "$dir" --set "run.duration=$end" \
     --set "fluid.write_interval=$end" --resume "$@" >"$dir.log" 2>&1
 }
+
+# bench_window_args RUN_DIR [options...], for the benches that resume windows
+# of a run: RUN_DIR (an `armour run` output folder with checkpoints) first,
+# then bench_args' options. Sets $run_dir (absolute), $opt_checkpoint (its
+# default: the latest) and $end (the checkpoint's time + $opt_seconds, s).
+bench_window_args() {
+  case "${1:-}" in
+    -h | --help) bench_usage; exit 0 ;;
+    "" | -*) bench_fail "RUN_DIR: give an armour run output folder first (see --help)" ;;
+  esac
+  run_dir="$1"
+  shift
+  bench_args "$@"
+  [ -d "$run_dir" ] || bench_fail "$run_dir: no such folder"
+  run_dir="$(cd "$run_dir" && pwd)"
+  [ -f "$run_dir/scene.resolved.toml" ] && [ -d "$run_dir/checkpoints" ] ||
+    bench_fail "$run_dir: not an armour run output folder with checkpoints"
+  [ -n "$opt_checkpoint" ] ||
+    opt_checkpoint="$(ls "$run_dir/checkpoints" 2>/dev/null | grep -v '^\.' | sort -g | tail -1)"
+  [ -f "$run_dir/checkpoints/$opt_checkpoint/checkpoint.json" ] ||
+    bench_fail "--checkpoint $opt_checkpoint: no checkpoint in $run_dir/checkpoints"
+  end="$(awk -v a="$opt_checkpoint" -v b="$opt_seconds" 'BEGIN { printf "%.10g", a + b }')"
+}

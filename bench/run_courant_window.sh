@@ -27,22 +27,9 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 bench_name=courant_window bench_targets="armour armourFoamCoupling armourWaves"
 bench_options="checkpoint seconds max-courant max-interface-courant np"
 opt_checkpoint="" opt_seconds=2 opt_max_courant=1.0 opt_max_interface_courant=0.5 opt_np=""
-run_dir="${1:-}"
-[ -n "$run_dir" ] && [ "${run_dir#-}" = "$run_dir" ] || {
-  echo "$(basename "$0"): RUN_DIR: give an armour run output folder first (see --help)" >&2
-  exit 2
-}
-shift
 source "$root/bench/common.sh"
-bench_args "$@"
-run_dir="$(cd "$run_dir" && pwd)"
-[ -f "$run_dir/scene.resolved.toml" ] && [ -d "$run_dir/checkpoints" ] ||
-  bench_fail "$run_dir: not an armour run output folder with checkpoints"
-[ -n "$opt_checkpoint" ] || opt_checkpoint="$(ls "$run_dir/checkpoints" 2>/dev/null | grep -v '^\.' | sort -g | tail -1)"
-[ -f "$run_dir/checkpoints/$opt_checkpoint/checkpoint.json" ] ||
-  bench_fail "--checkpoint $opt_checkpoint: no checkpoint in $run_dir/checkpoints"
+bench_window_args "$@"
 start="$opt_checkpoint"
-end="$(awk -v a="$start" -v b="$opt_seconds" 'BEGIN { printf "%.10g", a + b }')"
 ranks=()
 [ -z "$opt_np" ] || ranks=(--np "$opt_np")
 

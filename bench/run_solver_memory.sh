@@ -25,21 +25,8 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 bench_name=solver_memory bench_targets="armour armourFoamCoupling armourWaves"
 bench_options="checkpoint seconds np repeats"
 opt_checkpoint="" opt_seconds=0.25 opt_np=1 opt_repeats=2
-run_dir="${1:-}"
-[ -n "$run_dir" ] && [ "${run_dir#-}" = "$run_dir" ] || {
-  echo "$(basename "$0"): RUN_DIR: give an armour run output folder first (see --help)" >&2
-  exit 2
-}
-shift
 source "$root/bench/common.sh"
-bench_args "$@"
-run_dir="$(cd "$run_dir" && pwd)"
-[ -f "$run_dir/scene.resolved.toml" ] && [ -d "$run_dir/checkpoints" ] ||
-  bench_fail "$run_dir: not an armour run output folder with checkpoints"
-[ -n "$opt_checkpoint" ] || opt_checkpoint="$(ls "$run_dir/checkpoints" | grep -v '^\.' | sort -g | tail -1)"
-[ -f "$run_dir/checkpoints/$opt_checkpoint/checkpoint.json" ] ||
-  bench_fail "--checkpoint $opt_checkpoint: no checkpoint in $run_dir/checkpoints"
-end="$(awk -v a="$opt_checkpoint" -v b="$opt_seconds" 'BEGIN { printf "%.10g", a + b }')"
+bench_window_args "$@"
 
 # row NAME SETTING: the run resumed to $end with SETTING (glibc or heap).
 row() {
