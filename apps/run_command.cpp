@@ -543,6 +543,37 @@ int resume_settled(const RunRequest &r, OutputFolder &folder, const Scene &scene
 
 } // namespace
 
+std::vector<std::string> check_scene_runs(const Scene &scene, const std::string &cache_dir, int np) {
+    const SceneSetup setup = build_scene(scene, cache_dir, false);
+    if (scene.fluid)
+        return check_coupled_scene(scene, setup, np > 0 ? np : scene.fluid->np);
+    std::vector<std::string> warnings = rocking_clump_warnings(scene, setup);
+    // The engine's step, as run_dem asks it; its files (LIGGGHTS writes some
+    // on start) go to a folder of ours that goes after.
+    EngineSettings settings = setup.settings;
+    const fs::path work = fs::temp_directory_path() / ("armour-check-" + std::to_string(::getpid()));
+    settings.work_dir = work.string();
+    struct Remove {
+        fs::path dir;
+        ~Remove() {
+            std::error_code ec;
+            fs::remove_all(dir, ec);
+        }
+    } remove{work};
+    const std::unique_ptr<RigidBodyEngine> engine = make_engine(scene.engine, settings);
+    for (const auto &u : setup.units)
+        engine->add_template(u);
+    for (const auto &w : setup.walls)
+        engine->add_wall(w);
+    for (const auto &b : setup.bodies)
+        engine->add_body(b);
+    const TimeStepReport dt = engine->time_step_report();
+    if (dt.forced)
+        warnings.push_back("run.time_step " + figure_text(dt.used) +
+                           " s exceeds the engine's stability limit (run.force_time_step = true)");
+    return warnings;
+}
+
 int run_scene(const RunRequest &r) {
     const Scene scene = load_scene(r.scene, r.overrides);
     OutputFolder folder(r.out, "armour run", OutputFolder::Mode::streaming); // refused before any work

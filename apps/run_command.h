@@ -6,6 +6,8 @@
 
 namespace armour {
 
+struct Scene;
+
 struct RunRequest {
     std::string scene;
     std::string out;
@@ -18,5 +20,13 @@ struct RunRequest {
 // Returns the exit status (0 on success); throws InputError before anything
 // is written when the scene cannot run.
 int run_scene(const RunRequest &request);
+
+// What `armour run` checks before it writes anything, short of running: the
+// placed scene (units, clumps, placement), the engine's step against its
+// contact stability limit, and for a scene with [fluid] its case (template,
+// mesh, waves, gauges, OpenFOAM's tools; check_coupled_scene) on `np` ranks
+// (0: the scene's fluid.np). `armour sweep` checks every case with it before
+// any runs. Throws InputError; returns the warnings.
+std::vector<std::string> check_scene_runs(const Scene &scene, const std::string &cache_dir, int np);
 
 } // namespace armour

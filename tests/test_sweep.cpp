@@ -163,8 +163,10 @@ TEST_F(SweepTest, DryRunChecksEveryCaseAndWritesNothing) {
     EXPECT_FALSE(fs::exists(dir_ / "out"));
 }
 
-// The shipped studies as a user starts them: every case passes the scene
-// reader's checks (a case refused at its start on a cluster costs a queue).
+// The shipped studies as a user starts them: every case passes what
+// `armour run` checks before it writes (the scene reader, the placement, the
+// engine's step, the fluid case): a case refused at its start on a cluster
+// costs a queue.
 TEST_F(SweepTest, ShippedStudiesCheckEveryCase) {
     int studies = 0;
     for (const auto &entry : fs::directory_iterator(kSource + "/studies")) {
@@ -318,6 +320,10 @@ TEST_F(SweepTest, BadInputIsOneErrorLineBeforeAnythingRuns) {
          "--executor: must be local or slurm"},
         {scene + "[vary]\n\"material.0.friction\" = [0.3]\n[run]\nnp = 2\n", "",
          "key 'run.np': case friction-0.3: only for scenes with [fluid]"},
+        // Past the reader: the engine refuses the step when `armour run` builds it.
+        {scene + "[vary]\n\"run.time_step\" = [1e-5, 0.01]\n", "",
+         "case time_step-0.01: run.time_step: 0.01 s exceeds the stability limit"},
+        {scene + "[vary]\n\"body.0.position\" = [[0.0, 0.0, 0.05]]\n", "", "cuts into wall 'plate' by"},
     };
     for (const auto &c : cases) {
         write(dir_ / "bad.toml", c.sweep);
@@ -462,16 +468,18 @@ TEST_F(SlurmSweepTest, TiltSweepRunsAsOneJobArray) {
 }
 
 TEST_F(SlurmSweepTest, FailedTaskIsReportedWithSlurmStateAndLogTail) {
-    // A cube placed into the plate: the scene reads, the run refuses it.
-    const fs::path sweep = dir_ / "bad-pose.toml", out = dir_ / "out";
+    // A cube thrown up at 30 m/s: every check before the run passes, the run
+    // stops when it leaves the domain (a cube placed into the plate, the case
+    // here before, is now refused before the sweep submits anything).
+    const fs::path sweep = dir_ / "thrown-out.toml", out = dir_ / "out";
     write(sweep, "scene = \"" + kSource +
-                     "/scenes/tilt_cube.toml\"\n[vary]\n\"body.0.position\" = [[0.0, 0.0, 0.05]]\n");
+                     "/scenes/tilt_cube.toml\"\n[vary]\n\"body.0.velocity\" = [[0.0, 0.0, 30.0]]\n");
     const Result r =
         run(env() + kArmour + " sweep " + sweep.string() + " --out " + out.string() + " --executor slurm");
     EXPECT_EQ(r.status, 1) << r.output;
     EXPECT_NE(r.output.find("Slurm task"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("FAILED"), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find("cuts into wall 'plate'"), std::string::npos) << "no log tail in: " << r.output;
+    EXPECT_NE(r.output.find("left the domain"), std::string::npos) << "no log tail in: " << r.output;
     const json summary = json::parse(read_text(out / "summary.json"));
     ASSERT_EQ(summary["cases"].size(), 1u);
     EXPECT_EQ(summary["cases"][0]["status"], "failed");

@@ -3,6 +3,9 @@
 #include "executors.h"
 #include "mesh.h"
 #include "output_folder.h"
+#include "run_command.h"
+#include "scene.h"
+#include "scene_setup.h"
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -10,6 +13,7 @@
 #include <fstream>
 #include <sstream>
 #include <thread>
+#include <unistd.h>
 
 namespace armour {
 
@@ -200,6 +204,26 @@ int run_sweep(const SweepRequest &r) {
             to_run.push_back(i);
         listing << "  " << c.id << "  scene " << c.scene_hash << "  " << action << "\n";
     }
+    // Each case to run as `armour run` checks it before it writes (placement,
+    // engine step, fluid case, waves): beyond the scene reader, a case refused
+    // at its start on a cluster costs a queue, and a local sweep's hours.
+    const bool terminal = ::isatty(STDERR_FILENO) != 0;
+    for (std::size_t k = 0; k < to_run.size(); ++k) {
+        const SweepCase &c = ctx.plan.cases[to_run[k]];
+        if (terminal)
+            std::fprintf(stderr, "\rsweep: checking case %zu / %zu (%s)\033[K", k + 1, to_run.size(),
+                         c.id.c_str());
+        try {
+            const Scene scene = load_scene(ctx.plan.spec.scene, c.overrides);
+            check_scene_runs(scene, default_cache_dir(), ctx.plan.spec.np);
+        } catch (const InputError &e) {
+            if (terminal)
+                std::fprintf(stderr, "\r\033[K");
+            throw InputError(ctx.plan.spec.file + ": case " + c.id + ": " + e.what());
+        }
+    }
+    if (terminal && !to_run.empty())
+        std::fprintf(stderr, "\r\033[K");
     if (r.dry_run) {
         std::printf("sweep: %zu cases of %s, all checked; %zu would run:\n%s", ctx.plan.cases.size(),
                     ctx.plan.spec.scene.c_str(), to_run.size(), listing.str().c_str());
