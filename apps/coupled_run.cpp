@@ -536,7 +536,7 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
     };
     if (resume) {
         const RestoredCase restored = restore_case(case_dir, *resume, scene.duration);
-        set_courant_limits(case_dir, f.max_courant, f.max_interface_courant);
+        set_resumable_controls(case_dir, f.max_courant, f.max_interface_courant, f.write_interval);
         refill_paths(case_dir, source_dir() / "foam_cases" / f.case_name, paths);
         if (restored.ranks != f.np) { // the fields split anew for this run's ranks
             if (restored.ranks > 1)
@@ -738,8 +738,8 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
                     "fluid Courant number reached " + figure_text(seen) + " > fluid." + key + " " +
                     number_text(limit) + " (+10 %) in " + std::to_string(over.steps) + " of " +
                     std::to_string(solver_log.steps) + " steps: " +
-                    (over.after_capped_step
-                         ? "a step of fluid.max_time_step met a sudden flow; lower max_time_step"
+                    (2 * over.after_capped_steps >= over.steps
+                         ? "steps of fluid.max_time_step met a sudden flow; lower max_time_step"
                          : "interFoam sets each step from the one before and lags a flow that speeds up; "
                            "lower fluid." +
                                std::string(key) + " for a firm bound");

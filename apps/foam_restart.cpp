@@ -8,6 +8,7 @@
 #include <map>
 #include <optional>
 #include <regex>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -143,11 +144,26 @@ void refill_paths(const fs::path &case_dir, const fs::path &template_dir,
             if (!e.is_regular_file())
                 continue;
             std::map<std::string, std::string> values; // key -> filled value
+            std::set<std::string> other_keys;          // keys of entries without a path
             std::istringstream lines(text_of(e.path()));
             for (std::string line; std::getline(lines, line);) {
+                const bool names_path = std::any_of(tokens.begin(), tokens.end(), [&](const auto &t) {
+                    return line.find(t.first) != std::string::npos;
+                });
+                const auto code = line.find_first_not_of(" \t");
+                const bool comment = code != std::string::npos && line.compare(code, 2, "//") == 0;
                 std::smatch m;
-                if (!std::regex_match(line, m, entry))
+                if (!std::regex_match(line, m, entry)) {
+                    if (names_path && !comment)
+                        throw InputError(
+                            e.path().string() + ": '" + line +
+                            "': a path a resume sets anew must be a `key value;` line of its own");
                     continue;
+                }
+                if (!names_path) {
+                    other_keys.insert(m.str(1));
+                    continue;
+                }
                 std::string value = m.str(2);
                 bool has_token = false;
                 for (const auto &[token, path] : tokens)
@@ -163,6 +179,11 @@ void refill_paths(const fs::path &case_dir, const fs::path &template_dir,
                                      "' holds two different paths: a resume cannot set them anew");
                 values[m.str(1)] = value;
             }
+            for (const auto &[key, value] : values)
+                if (other_keys.count(key) != 0)
+                    throw InputError(e.path().string() + ": '" + key +
+                                     "' holds a path in one entry and not in another: a resume cannot tell "
+                                     "them apart");
             const fs::path target = case_dir / folder / e.path().filename();
             if (values.empty() || !fs::is_regular_file(target))
                 continue;
@@ -181,10 +202,12 @@ void refill_paths(const fs::path &case_dir, const fs::path &template_dir,
     }
 }
 
-void set_courant_limits(const fs::path &case_dir, double every_cell, double free_surface) {
+void set_resumable_controls(const fs::path &case_dir, double every_cell, double free_surface,
+                            double write_interval) {
     const fs::path control = case_dir / "system" / "controlDict";
     set_entry(control, "maxCo", number_text(every_cell));
     set_entry(control, "maxAlphaCo", number_text(free_surface));
+    set_entry(control, "writeInterval", number_text(write_interval));
 }
 
 } // namespace armour

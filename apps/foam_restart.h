@@ -51,7 +51,9 @@ void set_ranks(const std::filesystem::path &case_dir, int ranks);
 void refill_paths(const std::filesystem::path &case_dir, const std::filesystem::path &template_dir,
                   const std::map<std::string, std::string> &tokens);
 
-// The Courant limits a resume may change (controlDict maxCo, maxAlphaCo).
-void set_courant_limits(const std::filesystem::path &case_dir, double every_cell, double free_surface);
+// The fluid controls a resume may change (controlDict maxCo, maxAlphaCo:
+// fluid.max_courant, max_interface_courant; writeInterval: fluid.write_interval, s).
+void set_resumable_controls(const std::filesystem::path &case_dir, double every_cell, double free_surface,
+                            double write_interval);
 
 } // namespace armour

@@ -548,8 +548,9 @@ std::vector<std::string> check_scene_runs(const Scene &scene, const std::string 
     if (scene.fluid)
         return check_coupled_scene(scene, setup, np > 0 ? np : scene.fluid->np);
     std::vector<std::string> warnings = rocking_clump_warnings(scene, setup);
-    // The engine's step, as run_dem asks it; its files (LIGGGHTS writes some
-    // on start) go to a folder of ours that goes after.
+    // The engine's step, as run_dem asks it (from the materials and clumps;
+    // no engine starts). Should an engine write on creation, its work folder
+    // is one of ours that goes after.
     EngineSettings settings = setup.settings;
     const fs::path work = fs::temp_directory_path() / ("armour-check-" + std::to_string(::getpid()));
     settings.work_dir = work.string();

@@ -29,8 +29,8 @@ double last_solver_time(const std::string &log);
 // limit for a step; after a step at max_time_step (the cap, not the Courant
 // number, set it) the overshoot can be any size.
 struct CourantOvershoot {
-    int steps = 0;                  // steps whose Courant number passed 1.1 x the limit
-    bool after_capped_step = false; // one of them followed a step of max_time_step
+    int steps = 0;              // steps whose Courant number passed 1.1 x the limit
+    int after_capped_steps = 0; // of them, those that followed a step of max_time_step
 };
 
 // The run's limits, to count the overshoots (0: not counted).

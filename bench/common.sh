@@ -95,12 +95,15 @@ bench_args() {
 bench_resume_window() {
   local run_dir="$1" checkpoint="$2" end="$3" dir="$4" c
   shift 4
-  rm -rf "$dir"
-  cp -r "$run_dir" "$dir"
+  # Called where `set -e` does not hold (`row || bench_fail`): each step returns on failure.
+  rm -rf "$dir" || return
+  cp -r "$run_dir" "$dir" || return
   for c in "$dir"/checkpoints/*; do
-    awk -v a="$(basename "$c")" -v b="$checkpoint" 'BEGIN { exit !(a + 0 > b + 0) }' && rm -rf "$c"
+    if awk -v a="$(basename "$c")" -v b="$checkpoint" 'BEGIN { exit !(a + 0 > b + 0) }'; then
+      rm -rf "$c" || return
+    fi
   done
-  cp "$run_dir/scene.resolved.toml" "$dir.scene.toml"
+  cp "$run_dir/scene.resolved.toml" "$dir.scene.toml" || return
   "$build/apps/armour" run "$dir.scene.toml" --out "$dir" --set "run.duration=$end" \
     --set "fluid.write_interval=$end" --resume "$@" >"$dir.log" 2>&1
 }
@@ -122,7 +125,7 @@ bench_window_args() {
   [ -f "$run_dir/scene.resolved.toml" ] && [ -d "$run_dir/checkpoints" ] ||
     bench_fail "$run_dir: not an armour run output folder with checkpoints"
   [ -n "$opt_checkpoint" ] ||
-    opt_checkpoint="$(ls "$run_dir/checkpoints" 2>/dev/null | grep -v '^\.' | sort -g | tail -1)"
+    opt_checkpoint="$(ls "$run_dir/checkpoints" 2>/dev/null | { grep -v '^\.' || true; } | sort -g | tail -1)"
   [ -f "$run_dir/checkpoints/$opt_checkpoint/checkpoint.json" ] ||
     bench_fail "--checkpoint $opt_checkpoint: no checkpoint in $run_dir/checkpoints"
   end="$(awk -v a="$opt_checkpoint" -v b="$opt_seconds" 'BEGIN { printf "%.10g", a + b }')"

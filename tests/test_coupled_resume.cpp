@@ -403,8 +403,9 @@ TEST(CoupledResume, ParallelRunResumesOnAnyNumberOfRanks) {
     ASSERT_LT(second, 0.35);
     EXPECT_EQ(split_over(second), 2) << "a plain --resume goes on with the run's ranks";
     const double second_wall = wall_at(second);
-    const double third =
-        part_killed_after({"--np", "1", "--resume", "--set", "fluid.max_courant=0.8"}, second + 0.05);
+    const double third = part_killed_after(
+        {"--np", "1", "--resume", "--set", "fluid.max_courant=0.8", "--set", "fluid.write_interval=0.02"},
+        second + 0.05);
     ASSERT_GT(third, second);
     ASSERT_LT(third, 0.45);
     EXPECT_EQ(split_over(third), 0) << "the serial part's checkpoint holds the whole fields";
@@ -414,6 +415,17 @@ TEST(CoupledResume, ParallelRunResumesOnAnyNumberOfRanks) {
     control << control_file.rdbuf();
     EXPECT_NE(control.str().find("\nmaxCo 0.8;"), std::string::npos)
         << "a resume may change the Courant limit";
+    // ... and the fluid's write interval (0.6 s, the duration, before): the
+    // serial part wrote the fields in the case every 0.02 s between its
+    // checkpoints (0.1 s apart; a checkpoint's own write is at its time).
+    EXPECT_NE(control.str().find("\nwriteInterval 0.02;"), std::string::npos) << control.str();
+    int written = 0;
+    for (const auto &e : fs::directory_iterator(out / "case")) {
+        const auto t = armour::time_of_name(e.path().filename().string());
+        written += t && *t > second + 1e-9 && *t < third - 1e-9 ? 1 : 0;
+    }
+    EXPECT_GE(written, 2) << "fields written between the checkpoints at " << second << " and " << third
+                          << " s";
     const auto t1 = std::chrono::steady_clock::now();
     ASSERT_EQ(wait_for(start(args({"--np", "2", "--resume"}))), 0);
     const double last_part = since(t1);

