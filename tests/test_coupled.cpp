@@ -4,7 +4,9 @@
 // target exists only then).
 #include "bodies_file.h"
 #include "cli.h"
+#include "foam_restart.h"
 #include "openfoam_environment.h"
+#include "output_folder.h"
 #include "paraview_poses.h"
 #include "solver_log.h"
 
@@ -20,6 +22,7 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include <unistd.h>
 #include <vector>
 
 namespace fs = std::filesystem;
@@ -665,4 +668,44 @@ TEST(SolverLog, CountsStepsPastTheCourantLimitsAndWhatSetTheStep) {
     EXPECT_EQ(f.interface_courant_over.after_capped_steps, 0);
     const armour::SolverLogFigures unchecked = armour::solver_log_figures(log);
     EXPECT_EQ(unchecked.courant_over.steps + unchecked.interface_courant_over.steps, 0);
+}
+
+// A resume sets the case's paths anew from its template (a moved run folder,
+// a removed build): each `key value;` entry whose template value holds a path
+// token, indented or not, a '$' kept; a template it could not follow is an
+// error rather than a path left pointing at the old folder.
+TEST(ResumePaths, EntriesHoldingPathTokensAreSetAnew) {
+    const fs::path dir = fs::temp_directory_path() / ("armour_refill_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    for (const char *sub : {"template/system", "template/constant", "case/system", "case/constant"})
+        fs::create_directories(dir / sub);
+    const auto write = [](const fs::path &p, const std::string &text) { std::ofstream(p) << text; };
+    write(dir / "template/system/controlDict",
+          "// @ARMOUR_PLUGIN@ is filled by armour run\nlibs (\"@ARMOUR_PLUGIN@\" \"libwaveModels.so\");\n"
+          "endTime @END_TIME@;\n");
+    write(dir / "template/constant/fvOptions",
+          "armour\n{\n    type armourCoupling;\n    output      \"@OUTPUT@\";\n}\n");
+    write(dir / "case/system/controlDict",
+          "// /old/build/libarmourFoamCoupling.so is filled by armour run\n"
+          "libs (\"/old/build/libarmourFoamCoupling.so\" \"libwaveModels.so\");\nendTime 5;\n");
+    write(dir / "case/constant/fvOptions",
+          "armour\n{\n    type armourCoupling;\n    output      \"/old/run\";\n}\n");
+    armour::refill_paths(
+        dir / "case", dir / "template",
+        {{"@ARMOUR_PLUGIN@", "/new/build/libarmourFoamCoupling.so"}, {"@OUTPUT@", "/new/$run"}});
+    EXPECT_EQ(armour::read_text_file(dir / "case/system/controlDict"),
+              "// /old/build/libarmourFoamCoupling.so is filled by armour run\n"
+              "libs (\"/new/build/libarmourFoamCoupling.so\" \"libwaveModels.so\");\nendTime 5;\n");
+    EXPECT_EQ(armour::read_text_file(dir / "case/constant/fvOptions"),
+              "armour\n{\n    type armourCoupling;\n    output      \"/new/$run\";\n}\n");
+
+    // A path entry over two lines, and a key holding a path in one entry and not in another.
+    write(dir / "template/constant/fvOptions", "armour\n{\n    output\n        \"@OUTPUT@\";\n}\n");
+    EXPECT_THROW(armour::refill_paths(dir / "case", dir / "template", {{"@OUTPUT@", "/new/run"}}),
+                 armour::InputError);
+    write(dir / "template/constant/fvOptions",
+          "a\n{\n    output \"@OUTPUT@\";\n}\nb\n{\n    output none;\n}\n");
+    EXPECT_THROW(armour::refill_paths(dir / "case", dir / "template", {{"@OUTPUT@", "/new/run"}}),
+                 armour::InputError);
+    fs::remove_all(dir);
 }
