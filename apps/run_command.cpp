@@ -94,6 +94,19 @@ void set_buoyancy(RigidBodyEngine &engine, int body, const UnitTemplate &unit, c
     engine.set_external_load(body, force, arm.cross(force));
 }
 
+// The scene's engine with its units, walls and bodies, not started.
+std::unique_ptr<RigidBodyEngine> scene_engine(const Scene &scene, const SceneSetup &setup,
+                                              const EngineSettings &settings) {
+    std::unique_ptr<RigidBodyEngine> engine = make_engine(scene.engine, settings);
+    for (const auto &u : setup.units)
+        engine->add_template(u);
+    for (const auto &w : setup.walls)
+        engine->add_wall(w);
+    for (const auto &b : setup.bodies)
+        engine->add_body(b);
+    return engine;
+}
+
 // The DEM run of a scene without [fluid], dry or (`water`, a settle run)
 // under still water's buoyancy, into `folder`; `final_states` (optional)
 // receives every body's state at the end. `resume`: continue the run in
@@ -104,13 +117,7 @@ int run_dem(OutputFolder &folder, const Scene &scene, SceneSetup &setup, std::ve
     // Everything is checked before the output folder is touched.
     const fs::path out = folder.target();
     setup.settings.work_dir = (out / scene.engine).string();
-    std::unique_ptr<RigidBodyEngine> engine = make_engine(scene.engine, setup.settings);
-    for (const auto &u : setup.units)
-        engine->add_template(u);
-    for (const auto &w : setup.walls)
-        engine->add_wall(w);
-    for (const auto &b : setup.bodies)
-        engine->add_body(b);
+    std::unique_ptr<RigidBodyEngine> engine = scene_engine(scene, setup, setup.settings);
     const TimeStepReport dt = engine->time_step_report();
     if (resume)
         engine->load_state((resume->dir / "engine").string());
@@ -561,14 +568,7 @@ std::vector<std::string> check_scene_runs(const Scene &scene, const std::string 
             fs::remove_all(dir, ec);
         }
     } remove{work};
-    const std::unique_ptr<RigidBodyEngine> engine = make_engine(scene.engine, settings);
-    for (const auto &u : setup.units)
-        engine->add_template(u);
-    for (const auto &w : setup.walls)
-        engine->add_wall(w);
-    for (const auto &b : setup.bodies)
-        engine->add_body(b);
-    const TimeStepReport dt = engine->time_step_report();
+    const TimeStepReport dt = scene_engine(scene, setup, settings)->time_step_report();
     if (dt.forced)
         warnings.push_back("run.time_step " + figure_text(dt.used) +
                            " s exceeds the engine's stability limit (run.force_time_step = true)");
