@@ -164,16 +164,11 @@ void refill_paths(const fs::path &case_dir, const fs::path &template_dir,
                     other_keys.insert(m.str(1));
                     continue;
                 }
-                std::string value = m.str(2);
-                bool has_token = false;
+                std::string value = m.str(2); // holds the token: a key is letters only
                 for (const auto &[token, path] : tokens)
                     for (auto at = value.find(token); at != std::string::npos;
-                         at = value.find(token, at + path.size())) {
+                         at = value.find(token, at + path.size()))
                         value.replace(at, token.size(), path);
-                        has_token = true;
-                    }
-                if (!has_token)
-                    continue;
                 if (const auto known = values.find(m.str(1)); known != values.end() && known->second != value)
                     throw InputError(e.path().string() + ": '" + m.str(1) +
                                      "' holds two different paths: a resume cannot set them anew");

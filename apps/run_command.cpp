@@ -555,20 +555,9 @@ std::vector<std::string> check_scene_runs(const Scene &scene, const std::string 
     if (scene.fluid)
         return check_coupled_scene(scene, setup, np > 0 ? np : scene.fluid->np);
     std::vector<std::string> warnings = rocking_clump_warnings(scene, setup);
-    // The engine's step, as run_dem asks it (from the materials and clumps;
-    // no engine starts). Should an engine write on creation, its work folder
-    // is one of ours that goes after.
-    EngineSettings settings = setup.settings;
-    const fs::path work = fs::temp_directory_path() / ("armour-check-" + std::to_string(::getpid()));
-    settings.work_dir = work.string();
-    struct Remove {
-        fs::path dir;
-        ~Remove() {
-            std::error_code ec;
-            fs::remove_all(dir, ec);
-        }
-    } remove{work};
-    const TimeStepReport dt = scene_engine(scene, setup, settings)->time_step_report();
+    // The engine's step, as run_dem asks it: from the materials and clumps,
+    // before the engine starts (nothing is written, as in check_coupled_scene).
+    const TimeStepReport dt = scene_engine(scene, setup, setup.settings)->time_step_report();
     if (dt.forced)
         warnings.push_back("run.time_step " + figure_text(dt.used) +
                            " s exceeds the engine's stability limit (run.force_time_step = true)");
