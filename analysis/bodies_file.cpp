@@ -6,6 +6,7 @@
 
 #include <hdf5.h>
 
+#include <algorithm>
 #include <functional>
 
 namespace armour {
@@ -41,17 +42,19 @@ struct Reader {
         return data;
     }
 
-    // A (steps, bodies, width) dataset, each row made into an Eigen value by `make`.
+    // A (steps, bodies, width) dataset, each row made into an Eigen value by
+    // `make`: at least `steps` rows, as many as it holds (a running solver
+    // extends /time first, then each series).
     template <class T>
     BodiesFile::Series<T> series(const std::string &name, std::size_t steps, std::size_t bodies,
                                  std::size_t width, const std::function<T(const double *)> &make) const {
         std::vector<hsize_t> dims;
         const std::vector<double> data = read<double>(name, H5T_NATIVE_DOUBLE, dims);
-        if (dims.size() != 3 || dims[0] != steps || dims[1] != bodies || dims[2] != width)
+        if (dims.size() != 3 || dims[0] + 1 < steps || dims[1] != bodies || dims[2] != width)
             fail(name + " is not (" + std::to_string(steps) + ", " + std::to_string(bodies) + ", " +
                  std::to_string(width) + ")");
-        BodiesFile::Series<T> out(steps);
-        for (std::size_t s = 0; s < steps; ++s)
+        BodiesFile::Series<T> out(std::min<std::size_t>(steps, dims[0]));
+        for (std::size_t s = 0; s < out.size(); ++s)
             for (std::size_t b = 0; b < bodies; ++b)
                 out[s].push_back(make(&data[width * (s * bodies + b)]));
         return out;
@@ -101,6 +104,16 @@ BodiesFile read_bodies_file(const std::string &path) {
     rec.external_force = r.series<Eigen::Vector3d>("/bodies/external_force", steps, bodies, 3, vec);
     rec.external_torque = r.series<Eigen::Vector3d>("/bodies/external_torque", steps, bodies, 3, vec);
     rec.contact_force = r.series<Eigen::Vector3d>("/bodies/contact_force", steps, bodies, 3, vec);
+    // A record read while its solver appends a step may hold it in /time and
+    // not yet in every series: the last whole step ends it.
+    const std::size_t whole = std::min({rec.position.size(), rec.orientation.size(), rec.velocity.size(),
+                                        rec.angular_velocity.size(), rec.external_force.size(),
+                                        rec.external_torque.size(), rec.contact_force.size()});
+    rec.time.resize(whole);
+    for (auto *series : {&rec.position, &rec.velocity, &rec.angular_velocity, &rec.external_force,
+                         &rec.external_torque, &rec.contact_force})
+        series->resize(whole);
+    rec.orientation.resize(whole);
     H5Aiterate2(file.get(), H5_INDEX_NAME, H5_ITER_NATIVE, nullptr, collect_string_attribute,
                 &rec.attributes);
     return rec;

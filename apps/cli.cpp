@@ -4,6 +4,7 @@
 #include "compare_command.h"
 #include "engine_registry.h"
 #include "mesh.h"
+#include "report_command.h"
 #include "run_command.h"
 #include "sweep_command.h"
 
@@ -105,6 +106,21 @@ int armour_main(int argc, const char *const *argv) {
                       "fields are split anew); a run that settled first is not settled again "
                       "(docs/checkpoints.md)");
 
+    ReportRequest report;
+    CLI::App *report_cmd = app.add_subcommand(
+        "report",
+        "Analyse an `armour run` folder of a scene with [fluid] as it stands (ended, stopped, killed or "
+        "still "
+        "running), up to its last recorded step or --until: the scene's analysis (damage: N_od against Van "
+        "der Meer at the waves so far) and the incident-wave figures, as the run writes them at its end; "
+        "writes summary.json and the analysis' files to --out and only reads the run.");
+    report_cmd->add_option("run", report.run, "The run's folder (its --out)")->required();
+    report_cmd->add_option("--out", report.out, kOutHelp)->required();
+    report_cmd->add_option("--until", report.until, "Use the record up to this simulated time [s]")
+        ->check(CLI::PositiveNumber);
+    report_cmd->add_option("--cache", report.cache,
+                           "Clump cache folder (default $ARMOUR_CACHE or ~/.cache/armour-fsi)");
+
     CLI::App *engines_cmd = app.add_subcommand(
         "engines", "List the rigid-body engines of this build, one per line, with their capabilities.");
 
@@ -163,6 +179,8 @@ int armour_main(int argc, const char *const *argv) {
                 run.overrides.push_back("run.engine=\"" + run_engine + "\"");
             return run_scene(run);
         }
+        if (report_cmd->parsed())
+            return run_report(report);
         if (compare_cmd->parsed())
             return run_compare(compare);
         if (sweep_cmd->parsed())

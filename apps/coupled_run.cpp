@@ -11,6 +11,7 @@
 #include "foam_restart.h"
 #include "openfoam_environment.h"
 #include "output_folder.h"
+#include "report_command.h"
 #include "scene_keys.h"
 #include "solver_log.h"
 #include "stl_io.h"
@@ -186,10 +187,7 @@ void fill_tokens(const fs::path &case_dir, const std::map<std::string, std::stri
         std::string text = read_text_file(entry.path());
         if (text.find('@') == std::string::npos)
             continue;
-        for (const auto &[key, value] : tokens)
-            for (std::size_t at = text.find(key); at != std::string::npos;
-                 at = text.find(key, at + value.size()))
-                text.replace(at, key.size(), value);
+        text = filled(text, tokens);
         std::smatch m;
         if (std::regex_search(text, m, leftover))
             throw InputError("case template " + entry.path().string() + ": unknown token " + m.str() +
@@ -704,18 +702,7 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
           {"solver_log", "case/log.interFoam"}}},
         {"si_units", {{"dt", "s"}, {"wall_seconds", "s"}, {"lengths", "m"}, {"forces", "N"}}}};
 
-    // The analysis samples the record as a dry run's analysis samples the engine.
-    const std::unique_ptr<Analysis> analysis =
-        make_analysis({scene, setup, out.string(), case_dir.string(),
-                       [&](const std::string &name) { return folder.claim(name).string(); }});
-    std::vector<BodyState> states(rec.bodies());
-    for (std::size_t s = 0; s < rec.steps(); ++s) {
-        rec.states_at(s, states);
-        analysis->sample(rec.time[s], states);
-    }
-    if (makes_wave_train(scene)) // first: the damage analysis reads the incident Hm0, s_om and N
-        add_wave_summary(scene, case_dir, folder, summary);
-    const std::string result = analysis->write(summary);
+    const std::string result = analyse_coupled_record(scene, setup, rec, out, case_dir, folder, summary);
     // Cost and limits as run: interFoam's wall time per step, the largest
     // Courant numbers it printed (the step adapts to max_courant from the
     // previous step's flux, so it may overshoot; more than 10 % is reported),

@@ -135,6 +135,13 @@ void set_ranks(const fs::path &case_dir, int ranks) {
     write_text(dict, std::regex_replace(text, split, "$1(" + std::to_string(ranks) + " 1 1)"));
 }
 
+std::string filled(std::string text, const std::map<std::string, std::string> &tokens) {
+    for (const auto &[token, value] : tokens)
+        for (auto at = text.find(token); at != std::string::npos; at = text.find(token, at + value.size()))
+            text.replace(at, token.size(), value);
+    return text;
+}
+
 void refill_paths(const fs::path &case_dir, const fs::path &template_dir,
                   const std::map<std::string, std::string> &tokens) {
     const std::regex entry("^[ \\t]*([A-Za-z_]+)[ \\t]+([^;]*);[ \\t]*$");
@@ -164,11 +171,7 @@ void refill_paths(const fs::path &case_dir, const fs::path &template_dir,
                     other_keys.insert(m.str(1));
                     continue;
                 }
-                std::string value = m.str(2); // holds the token: a key is letters only
-                for (const auto &[token, path] : tokens)
-                    for (auto at = value.find(token); at != std::string::npos;
-                         at = value.find(token, at + path.size()))
-                        value.replace(at, token.size(), path);
+                const std::string value = filled(m.str(2), tokens); // holds the token: a key is letters only
                 if (const auto known = values.find(m.str(1)); known != values.end() && known->second != value)
                     throw InputError(e.path().string() + ": '" + m.str(1) +
                                      "' holds two different paths: a resume cannot set them anew");

@@ -42,6 +42,10 @@ RestoredCase restore_case(const std::filesystem::path &case_dir, const Checkpoin
 // after reconstructPar): system/decomposeParDict for `ranks` along x.
 void set_ranks(const std::filesystem::path &case_dir, int ranks);
 
+// `text` with every @TOKEN@ of `tokens` replaced by its value (a value is
+// not searched again).
+std::string filled(std::string text, const std::map<std::string, std::string> &tokens);
+
 // A resume runs with this armour's plugin and wave library and writes into
 // the folder it is given, not the run's first: the build that started a
 // long run may be gone (removed, moved, an installed copy) and the run's

@@ -169,13 +169,19 @@ void wave_tokens(const Scene &scene, const std::string &template_text,
     tokens["@WAVE_GAUGES@"] = gauges.substr(0, gauges.size() - 1) + ")";
 }
 
-void add_wave_summary(const Scene &scene, const fs::path &case_dir, OutputFolder &folder, json &summary) {
+void add_wave_summary(const Scene &scene, const fs::path &case_dir, OutputFolder &folder, json &summary,
+                      double until) {
     const SceneWaves &w = *scene.waves;
     const double depth = depth_of(scene), g = scene.gravity.norm();
     const double period = period_of(w), H = target_height(w);
     const bool regular = w.type == "regular";
     const std::vector<double> x = gauge_positions(scene);
-    const GaugeRecord rec = read_gauges(case_dir, scene.fluid->water_level, 3);
+    GaugeRecord rec = read_gauges(case_dir, scene.fluid->water_level, 3);
+    while (!rec.t.empty() && rec.t.back() > until) {
+        rec.t.pop_back();
+        for (auto &eta : rec.eta)
+            eta.pop_back();
+    }
     json out = {
         {"type", w.type}, {"target_height", H}, {"target_period", period}, {"gauge_x", x}, {"depth", depth}};
     if (regular)

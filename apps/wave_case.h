@@ -22,12 +22,13 @@
 //
 // Usage
 //     wave_tokens(scene, template_text, tokens);                   // before fill_tokens
-//     add_wave_summary(scene, case_dir, folder, summary, warnings); // after interFoam
+//     add_wave_summary(scene, case_dir, folder, summary);          // after interFoam
 #pragma once
 
 #include "output_folder.h"
 #include "scene.h"
 
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -41,7 +42,9 @@ bool makes_wave_train(const Scene &scene);
 void wave_tokens(const Scene &scene, const std::string &template_text,
                  std::map<std::string, std::string> &tokens);
 
+// The gauges' record up to `until` (s; `armour report --until`), warnings
+// into summary["warnings"].
 void add_wave_summary(const Scene &scene, const std::filesystem::path &case_dir, OutputFolder &folder,
-                      nlohmann::json &summary);
+                      nlohmann::json &summary, double until = HUGE_VAL);
 
 } // namespace armour

@@ -8,6 +8,7 @@
 #include "shapes.h"
 
 #include <gtest/gtest.h>
+#include <hdf5.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -118,6 +119,42 @@ TEST_F(Analysis, BodiesFileNamesTheFileWhenItIsNoRecord) {
     const std::string text = (dir_ / "text.h5").string();
     std::ofstream(text) << "not HDF5\n";
     EXPECT_THROW(read_bodies_file(text), InputError);
+}
+
+// A record read while its solver appends a step (`armour report` on a running
+// run): /time is extended first, then each series; the step the series do not
+// all hold yet is left out, and a series missing more than that is an error.
+TEST_F(Analysis, BodiesFileReadDuringAnAppendEndsAtTheLastWholeStep) {
+    const std::string h5 = (dir_ / "bodies.h5").string();
+    {
+        BodyRecorder recorder(h5, (dir_ / "bodies.xdmf").string(), {{"cube", make_cube_mesh(1.0)}}, {0}, {});
+        for (int step = 0; step < 3; ++step)
+            recorder.append(0.25 * step + 0.1, {state_of(step, 0)});
+    }
+    // The next step's time written, its states not yet; then a second time.
+    const auto extend = [&](const char *name, hsize_t rows) {
+        const hid_t file = H5Fopen(h5.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+        ASSERT_GE(file, 0);
+        const hid_t set = H5Dopen2(file, name, H5P_DEFAULT);
+        ASSERT_GE(set, 0);
+        const hid_t space = H5Dget_space(set);
+        std::vector<hsize_t> dims(static_cast<std::size_t>(H5Sget_simple_extent_ndims(space)));
+        H5Sget_simple_extent_dims(space, dims.data(), nullptr);
+        dims[0] = rows;
+        EXPECT_GE(H5Dset_extent(set, dims.data()), 0);
+        H5Sclose(space);
+        H5Dclose(set);
+        H5Fclose(file);
+    };
+    extend("/time", 4);
+    extend("/bodies/position", 4);
+    const BodiesFile rec = read_bodies_file(h5);
+    ASSERT_EQ(rec.steps(), 3u);
+    ASSERT_EQ(rec.position.size(), 3u);
+    EXPECT_EQ(rec.time.back(), 0.6);
+    EXPECT_EQ(rec.position.back()[0], state_of(2, 0).pose.position);
+    extend("/time", 5);
+    EXPECT_THROW(read_bodies_file(h5), InputError); // two steps short: not an append under way
 }
 
 TEST(AnalysisRegistry, HoldsExactlyTheKindsASceneMayName) {

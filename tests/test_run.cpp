@@ -17,6 +17,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <unistd.h>
@@ -325,6 +326,38 @@ TEST_F(Run, KeepsTheUsersFiles) {
                                         variant == 0 ? "run.duration=0.02" : "run.duration=0.03"});
         },
         [](const nlohmann::json &s) { return s["simulated_seconds"].get<double>() > 0.025 ? 1 : 0; });
+}
+
+// `armour report` reads coupled runs only (tests/test_stability.cpp reports
+// one); anything else is one error line, and nothing is written anywhere.
+TEST_F(Run, ReportRefusesWhatIsNotACoupledRunAndWritesNothing) {
+    ASSERT_EQ(run(scene_text("[0, 0, 0.3]")), 0) << err_;
+    std::map<std::string, std::uintmax_t> before;
+    for (const auto &e : fs::recursive_directory_iterator(dir_))
+        before[e.path().string()] = e.is_regular_file() ? e.file_size() : 0;
+    const fs::path report = dir_ / "report";
+    const auto refused = [&](const std::string &folder, const std::string &why) {
+        const std::vector<std::string> args = {"armour", "report", folder, "--out", report.string()};
+        std::vector<const char *> argv;
+        for (const auto &a : args)
+            argv.push_back(a.c_str());
+        ::testing::internal::CaptureStderr();
+        EXPECT_EQ(armour::armour_main(static_cast<int>(argv.size()), argv.data()), 2);
+        err_ = ::testing::internal::GetCapturedStderr();
+        EXPECT_NE(error_line().find(why), std::string::npos) << err_;
+        EXPECT_EQ(err_.find('\n'), err_.size() - 1) << err_; // one line
+    };
+    refused(out().string(), "no [fluid] table"); // a DEM run
+    refused((dir_ / "none").string(), "no such folder");
+    refused(dir_.string(), "not an `armour run` folder");
+    fs::remove(out() / "bodies.h5");
+    before.erase((out() / "bodies.h5").string());
+    refused(out().string(), "bodies.h5: missing");
+    EXPECT_FALSE(fs::exists(report));
+    std::map<std::string, std::uintmax_t> after;
+    for (const auto &e : fs::recursive_directory_iterator(dir_))
+        after[e.path().string()] = e.is_regular_file() ? e.file_size() : 0;
+    EXPECT_EQ(after, before);
 }
 
 // A scene with [fluid] meets the same rule before anything needs interFoam,

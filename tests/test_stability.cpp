@@ -131,6 +131,49 @@ TEST(StabilityCubes, ShortIrregularRunWritesEveryDamageFileAndKey) {
     EXPECT_NEAR(s["N_od_van_der_meer"].get<double>(), predicted, 1e-9 + 1e-9 * predicted);
     EXPECT_NEAR(s["units_displaced_van_der_meer"].get<double>(), predicted * 0.248 / kDn,
                 1e-9 + 1e-9 * predicted);
+
+    // `armour report` of the ended run repeats its figures; with --until, the
+    // damage history is the run's up to that time (a run stopped there).
+    const auto report = [&](const std::string &name, const std::string &until) {
+        const fs::path out = run.dir / name;
+        const std::string cmd = std::string("'") + ARMOUR_EXE + "' report '" + run.out.string() +
+                                "' --out '" + out.string() + "' " + until + " > '" + out.string() +
+                                ".log' 2>&1";
+        const int rc = std::system(cmd.c_str());
+        EXPECT_TRUE(WIFEXITED(rc) && WEXITSTATUS(rc) == 0) << cmd;
+        std::ifstream in(out / "summary.json");
+        return json::parse(in, nullptr, false);
+    };
+    const json whole = report("report", "");
+    ASSERT_TRUE(whole.is_object());
+    EXPECT_EQ(whole["run_ended"], true);
+    EXPECT_EQ(whole["simulated_seconds"], s["simulated_seconds"]);
+    for (const char *key : {"units", "units_displaced", "N_od", "rocking_units", "Ns", "s_om", "damage_S",
+                            "N_od_van_der_meer", "units_displaced_van_der_meer"})
+        EXPECT_EQ(whole[key], s[key]) << key;
+    for (const char *key : {"incident_height", "incident_period", "reflection_coefficient", "waves"})
+        EXPECT_EQ(whole["waves"][key], w[key]) << "waves." << key;
+    for (const char *file : {"damage.csv", "damage_history.csv", "damage.png", "waves_spectrum.png"})
+        EXPECT_TRUE(fs::is_regular_file(run.dir / "report" / file)) << file;
+    const json early = report("report5", "--until 5");
+    ASSERT_TRUE(early.is_object());
+    EXPECT_LE(early["simulated_seconds"].get<double>(), 5.0);
+    EXPECT_GT(early["simulated_seconds"].get<double>(), 5.0 - 0.051); // run.output_interval 0.05 s
+    std::ifstream full(run.out / "damage_history.csv"), part(run.dir / "report5" / "damage_history.csv");
+    std::string full_line, part_line;
+    int rows = 0;
+    while (std::getline(part, part_line)) {
+        ASSERT_TRUE(std::getline(full, full_line));
+        EXPECT_EQ(part_line, full_line);
+        ++rows;
+    }
+    EXPECT_GT(rows, 90); // 0 .. 5 s every 0.05 s, and the header
+    // The run's own folder is never a report's.
+    const std::string into = std::string("'") + ARMOUR_EXE + "' report '" + run.out.string() + "' --out '" +
+                             run.out.string() + "' > /dev/null 2>&1";
+    const int refused = std::system(into.c_str());
+    EXPECT_TRUE(WIFEXITED(refused) && WEXITSTATUS(refused) == 2);
+    EXPECT_TRUE(fs::is_regular_file(run.out / "summary.json"));
     if (!HasFailure())
         fs::remove_all(run.dir);
 }
