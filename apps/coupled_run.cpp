@@ -88,10 +88,10 @@ std::vector<Eigen::Vector3d> posed_vertices(const SceneSetup &setup, const BodyI
 }
 
 // Runs one tool in the case folder, output to log.<name>, with a progress
-// line from the solver's "Time =" lines; throws InputError on failure with
-// the tool's FOAM FATAL line.
+// line from the solver's "Time =" lines (from start_time: a resume's
+// checkpoint); throws InputError on failure with the tool's FOAM FATAL line.
 void run_tool(const std::string &name, const std::vector<std::string> &args, const fs::path &case_dir,
-              double end_time, bool show_progress) {
+              double end_time, bool show_progress, double start_time = 0.0) {
     const fs::path log = case_dir / ("log." + name);
     std::vector<char *> argv;
     for (const auto &a : args)
@@ -118,7 +118,8 @@ void run_tool(const std::string &name, const std::vector<std::string> &args, con
     }
     const bool terminal = ::isatty(STDERR_FILENO) != 0;
     const auto start = std::chrono::steady_clock::now();
-    double next_report = 0.1, solver_time = 0.0;
+    SolverProgress progress(start_time, end_time);
+    double solver_time = 0.0;
     int status = 0;
     long naps = 0;
     for (;;) {
@@ -138,16 +139,12 @@ void run_tool(const std::string &name, const std::vector<std::string> &args, con
         const double fraction = std::min(1.0, t / end_time);
         const double elapsed =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        const double eta = fraction > 0.0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
         if (terminal)
             std::fprintf(stderr, "\r[%-30s] t = %.3f / %.3f s  ETA %.0f s ",
-                         std::string(static_cast<std::size_t>(30 * fraction), '#').c_str(), t, end_time, eta);
-        else if (fraction >= next_report) {
-            std::fprintf(stderr, "run: t = %.3f / %.3f s (%3.0f %%), ETA %.0f s\n", t, end_time,
-                         100 * fraction, eta);
-            while (next_report <= fraction)
-                next_report += 0.1;
-        }
+                         std::string(static_cast<std::size_t>(30 * fraction), '#').c_str(), t, end_time,
+                         progress.seconds_left(t, elapsed).value_or(0.0));
+        else if (const std::string line = progress.line(t, elapsed); !line.empty())
+            std::fputs(line.c_str(), stderr);
     }
     if (show_progress && terminal)
         std::fputc('\n', stderr);
@@ -631,7 +628,7 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
     const std::vector<std::string> malloc_settings = keep_solver_memory();
     const auto solver_start = std::chrono::steady_clock::now();
     if (f.np == 1) {
-        run_tool("interFoam", {"interFoam"}, case_dir, scene.duration, true);
+        run_tool("interFoam", {"interFoam"}, case_dir, scene.duration, true, resume ? resume->time : 0.0);
     } else {
         std::vector<std::string> mpirun = {"mpirun", "--allow-run-as-root", "-np", std::to_string(f.np)};
         for (const auto &name : {std::string("WM_PROJECT_DIR"), std::string("LD_LIBRARY_PATH"),
@@ -640,7 +637,7 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
         for (const auto &name : malloc_settings)
             mpirun.insert(mpirun.end(), {"-x", name});
         mpirun.insert(mpirun.end(), {"interFoam", "-parallel"});
-        run_tool("interFoam", mpirun, case_dir, scene.duration, true);
+        run_tool("interFoam", mpirun, case_dir, scene.duration, true, resume ? resume->time : 0.0);
     }
     const double solver_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - solver_start).count();

@@ -1,6 +1,8 @@
 #include "solver_log.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <regex>
 #include <sstream>
@@ -27,6 +29,30 @@ std::string fatal_line(const std::string &log) {
 double last_solver_time(const std::string &log) {
     const auto at = log.rfind("\nTime = ");
     return at == std::string::npos ? 0.0 : std::atof(log.c_str() + at + 8);
+}
+
+SolverProgress::SolverProgress(double start, double end, double every_wall)
+    : start_(start), end_(end), every_wall_(every_wall) {}
+
+std::optional<double> SolverProgress::seconds_left(double t, double elapsed) const {
+    if (t <= start_ || elapsed <= 0.0)
+        return std::nullopt;
+    return std::max(0.0, end_ - t) * elapsed / (t - start_);
+}
+
+std::string SolverProgress::line(double t, double elapsed) {
+    const double part = end_ > start_ ? std::clamp((t - start_) / (end_ - start_), 0.0, 1.0) : 1.0;
+    if (part < next_fraction_ && elapsed - last_line_wall_ < every_wall_)
+        return "";
+    while (next_fraction_ <= part)
+        next_fraction_ += 0.1;
+    last_line_wall_ = elapsed;
+    const std::optional<double> left = seconds_left(t, elapsed);
+    const std::string eta = left ? "ETA " + std::to_string(std::lround(*left)) + " s" : "ETA unknown";
+    char text[160];
+    std::snprintf(text, sizeof text, "run: t = %.3f / %.3f s (%3.0f %%), %.0f s wall, %s\n", t, end_,
+                  100.0 * std::min(1.0, t / end_), elapsed, eta.c_str());
+    return text;
 }
 
 SolverLogFigures solver_log_figures(const std::string &log, const SolverLimits &limits) {

@@ -49,4 +49,23 @@ struct SolverLogFigures {
 };
 SolverLogFigures solver_log_figures(const std::string &log, const SolverLimits &limits = {});
 
+// The progress lines of a solver from `start` to `end` (s of simulated time;
+// a resume starts at its checkpoint): the wall time left is the rest of the
+// run at the pace of this part (its elapsed wall time over the simulated
+// time it made), so the earlier parts of a resumed run do not count as
+// made in this one. A line (to a log, not a terminal) is due at every
+// tenth of this part and at least every `every_wall` s.
+class SolverProgress {
+  public:
+    SolverProgress(double start, double end, double every_wall = 600.0);
+    // Wall s left at the pace so far; nullopt before the solver moved.
+    std::optional<double> seconds_left(double t, double elapsed) const;
+    // The line to write at solver time t after `elapsed` wall s, "" when none is due.
+    std::string line(double t, double elapsed);
+
+  private:
+    double start_, end_, every_wall_;
+    double next_fraction_ = 0.1, last_line_wall_ = 0.0;
+};
+
 } // namespace armour

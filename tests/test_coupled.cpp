@@ -709,3 +709,25 @@ TEST(ResumePaths, EntriesHoldingPathTokensAreSetAnew) {
                  armour::InputError);
     fs::remove_all(dir);
 }
+
+// A resumed long run's progress: the wall time left is the rest of the run at
+// this part's pace. From the whole run's fraction (as before 2026-11-26) the
+// Dn/4 run resumed at 100 of 1400 s said ETA 8 443 s after its first 10 s of
+// waves, 720 s of wall time: 11 x too soon.
+TEST(SolverProgress, ETAIsTheRestAtThisPartsPaceAndLinesComeEveryTenthOrTenMinutes) {
+    armour::SolverProgress resumed(100.0, 1400.0, 600.0);
+    EXPECT_FALSE(resumed.seconds_left(100.0, 5.0).has_value()); // the solver has not moved yet
+    EXPECT_EQ(resumed.line(100.0, 5.0), "");
+    ASSERT_TRUE(resumed.seconds_left(110.0, 720.0).has_value());
+    EXPECT_NEAR(*resumed.seconds_left(110.0, 720.0), 1290.0 * 720.0 / 10.0, 1e-6);
+    const std::string ten_minutes = resumed.line(110.0, 720.0); // 600 s of wall time since the start
+    EXPECT_NE(ten_minutes.find("t = 110.000 / 1400.000 s"), std::string::npos) << ten_minutes;
+    EXPECT_NE(ten_minutes.find("ETA 92880 s"), std::string::npos) << ten_minutes;
+    EXPECT_EQ(resumed.line(111.0, 800.0), ""); // 80 s later, 0.85 % of this part
+    EXPECT_NE(resumed.line(230.0, 900.0).find(" 16 %)"), std::string::npos); // a tenth of this part
+    EXPECT_EQ(resumed.line(231.0, 905.0), "");
+    armour::SolverProgress fresh(0.0, 10.0, 600.0);
+    EXPECT_EQ(fresh.line(0.5, 1.0), "");
+    EXPECT_NE(fresh.line(1.0, 2.0).find("ETA 18 s"), std::string::npos);
+    EXPECT_NE(fresh.line(10.0, 20.0).find("(100 %)"), std::string::npos);
+}
