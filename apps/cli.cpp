@@ -17,6 +17,7 @@ namespace armour {
 // The output-folder rule (output_folder.h, docs/outputs.md), the same for every command.
 const char *const kOutHelp = "Output folder: new, empty, or an earlier result of the same command (whose "
                              "files alone are replaced); any other folder is refused";
+const char *const kCacheHelp = "Clump cache folder (default $ARMOUR_CACHE or ~/.cache/armour-fsi)";
 
 int armour_main(int argc, const char *const *argv) {
     CLI::App app{"armour-fsi: breakwater armour units as sphere clumps, DEM and coupled with waves.\n"
@@ -89,8 +90,7 @@ int armour_main(int argc, const char *const *argv) {
     run_cmd->add_option("--out", run.out, kOutHelp)->required();
     run_cmd->add_option("--set", run.overrides,
                         "Override a scene key, TOML syntax: --set run.duration=0.5 --set unit.0.spheres=20");
-    run_cmd->add_option("--cache", run.cache,
-                        "Clump cache folder (default $ARMOUR_CACHE or ~/.cache/armour-fsi)");
+    run_cmd->add_option("--cache", run.cache, kCacheHelp);
     run_cmd
         ->add_option("--np", run.np,
                      "Scenes with [fluid]: MPI ranks of interFoam (overrides fluid.np; every rank runs "
@@ -110,16 +110,15 @@ int armour_main(int argc, const char *const *argv) {
     CLI::App *report_cmd = app.add_subcommand(
         "report",
         "Analyse an `armour run` folder of a scene with [fluid] as it stands (ended, stopped, killed or "
-        "still "
-        "running), up to its last recorded step or --until: the scene's analysis (damage: N_od against Van "
-        "der Meer at the waves so far) and the incident-wave figures, as the run writes them at its end; "
-        "writes summary.json and the analysis' files to --out and only reads the run.");
+        "still running), up to its last recorded step or --until: the scene's analysis (damage: N_od "
+        "against Van der Meer at the waves so far) and the incident-wave figures, as the run writes them "
+        "at its end (SI units); writes summary.json and the analysis' files to --out and only reads the "
+        "run (docs/analysis.md).");
     report_cmd->add_option("run", report.run, "The run's folder (its --out)")->required();
     report_cmd->add_option("--out", report.out, kOutHelp)->required();
     report_cmd->add_option("--until", report.until, "Use the record up to this simulated time [s]")
         ->check(CLI::PositiveNumber);
-    report_cmd->add_option("--cache", report.cache,
-                           "Clump cache folder (default $ARMOUR_CACHE or ~/.cache/armour-fsi)");
+    report_cmd->add_option("--cache", report.cache, kCacheHelp);
 
     CLI::App *engines_cmd = app.add_subcommand(
         "engines", "List the rigid-body engines of this build, one per line, with their capabilities.");
@@ -157,7 +156,7 @@ int armour_main(int argc, const char *const *argv) {
                      "Energy gain (E_max - E_0) / sum(m g Dn) [-] above which a run counts as blown up")
         ->capture_default_str();
     compare_cmd->add_option("--set", compare.overrides, "Override a scene key for every run (TOML syntax)");
-    compare_cmd->add_option("--cache", compare.cache, "Clump cache folder");
+    compare_cmd->add_option("--cache", compare.cache, kCacheHelp);
 
     SweepRequest sweep;
     CLI::App *sweep_cmd = add_sweep_command(app, sweep);
