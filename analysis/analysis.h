@@ -56,6 +56,9 @@ struct AnalysisContext {
     // The path of a top-level entry the analysis writes into the output
     // folder, listed as the run's own (OutputFolder::claim); unset: out_dir/name.
     std::function<std::string(const std::string &)> claim = {};
+    // s: the end of what the analysis reads besides the samples (a coupled
+    // run's gauges), for `armour report --until` and a record still being written.
+    double until = HUGE_VAL;
 };
 
 class Analysis {

@@ -106,17 +106,22 @@ BodiesFile read_bodies_file(const std::string &path) {
     rec.contact_force = r.series<Eigen::Vector3d>("/bodies/contact_force", steps, bodies, 3, vec);
     // A record read while its solver appends a step may hold it in /time and
     // not yet in every series: the last whole step ends it.
-    const std::size_t whole = std::min({rec.position.size(), rec.orientation.size(), rec.velocity.size(),
-                                        rec.angular_velocity.size(), rec.external_force.size(),
-                                        rec.external_torque.size(), rec.contact_force.size()});
-    rec.time.resize(whole);
-    for (auto *series : {&rec.position, &rec.velocity, &rec.angular_velocity, &rec.external_force,
-                         &rec.external_torque, &rec.contact_force})
-        series->resize(whole);
-    rec.orientation.resize(whole);
+    rec.keep_steps(std::min({rec.position.size(), rec.orientation.size(), rec.velocity.size(),
+                             rec.angular_velocity.size(), rec.external_force.size(),
+                             rec.external_torque.size(), rec.contact_force.size()}));
     H5Aiterate2(file.get(), H5_INDEX_NAME, H5_ITER_NATIVE, nullptr, collect_string_attribute,
                 &rec.attributes);
     return rec;
+}
+
+void BodiesFile::keep_steps(std::size_t steps) {
+    if (steps >= time.size())
+        return;
+    time.resize(steps);
+    for (auto *series :
+         {&position, &velocity, &angular_velocity, &external_force, &external_torque, &contact_force})
+        series->resize(steps);
+    orientation.resize(steps);
 }
 
 void BodiesFile::states_at(std::size_t step, std::vector<BodyState> &states) const {

@@ -46,6 +46,8 @@ struct BodiesFile {
     std::size_t bodies() const { return unit.size(); }
     // The root attribute `name`, or "" when the file has none.
     std::string attribute(const std::string &name) const;
+    // Keeps the first `steps` steps (all of them when there are fewer).
+    void keep_steps(std::size_t steps);
     // The recorded state of every body at `step` (what the analyses sample).
     void states_at(std::size_t step, std::vector<BodyState> &states) const;
 };

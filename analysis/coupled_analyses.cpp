@@ -23,7 +23,7 @@ using nlohmann::json;
 class History : public Analysis {
   public:
     explicit History(const AnalysisContext &c)
-        : scene_(c.scene), setup_(c.setup), out_dir_(c.out_dir), case_dir_(c.case_dir) {
+        : scene_(c.scene), setup_(c.setup), out_dir_(c.out_dir), case_dir_(c.case_dir), until_(c.until) {
         if (!c.scene.fluid)
             throw InputError(c.scene.file + ": analysis.kind: '" + c.scene.analysis +
                              "' needs a [fluid] table");
@@ -45,6 +45,7 @@ class History : public Analysis {
     const Scene &scene_;
     const SceneSetup &setup_;
     const fs::path out_dir_, case_dir_;
+    const double until_;                         // s, the gauges' rows read
     std::vector<double> time_;                   // s
     std::vector<std::vector<BodyState>> states_; // [step][body]
 };
@@ -271,11 +272,11 @@ class DamBreakAnalysis : public UnitMotionAnalysis {
 };
 
 // Surface height at the first gauge of an armourWaveGauges function object
-// (gauge_rows.h): (time, z) rows.
-std::vector<std::pair<double, double>> gauge_series(const fs::path &case_dir) {
+// (gauge_rows.h): (time, z) rows up to `until` (s).
+std::vector<std::pair<double, double>> gauge_series(const fs::path &case_dir, double until) {
     std::vector<std::pair<double, double>> rows;
     for (const std::vector<double> &row : gauge_rows(case_dir))
-        if (row.size() >= 2)
+        if (row.size() >= 2 && row[0] <= until)
             rows.emplace_back(row[0], row[1]);
     return rows;
 }
@@ -292,7 +293,7 @@ class WaveAnalysis : public UnitMotionAnalysis {
     std::string flow(json &summary, const Motion &m) const override {
         const SceneFluid &f = fluid();
         const std::size_t n = time_.size(), bodies = setup_.bodies.size();
-        const auto gauge = gauge_series(case_dir_);
+        const auto gauge = gauge_series(case_dir_, until_);
         double crest = -HUGE_VAL, arrival = -1.0;
         for (const auto &[t, z] : gauge) {
             crest = std::max(crest, z - f.water_level);

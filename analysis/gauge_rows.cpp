@@ -32,7 +32,8 @@ std::vector<std::vector<double>> gauge_rows(const fs::path &case_dir) {
         const double until = k + 1 < parts.size() ? parts[k + 1].first : HUGE_VAL;
         std::ifstream in(parts[k].second);
         for (std::string line; std::getline(in, line);) {
-            if (line.empty() || line[0] == '#')
+            // A line without its newline is one the solver is still writing.
+            if (line.empty() || line[0] == '#' || in.eof())
                 continue;
             std::istringstream s(line);
             std::vector<double> row;

@@ -9,6 +9,7 @@
 #include "sweep_command.h"
 
 #include <CLI/CLI.hpp>
+#include <cstdlib>
 #include <exception>
 #include <iostream>
 
@@ -117,7 +118,12 @@ int armour_main(int argc, const char *const *argv) {
     report_cmd->add_option("run", report.run, "The run's folder (its --out)")->required();
     report_cmd->add_option("--out", report.out, kOutHelp)->required();
     report_cmd->add_option("--until", report.until, "Use the record up to this simulated time [s]")
-        ->check(CLI::PositiveNumber);
+        ->check(CLI::Validator(
+            [](const std::string &text) {
+                return std::strtod(text.c_str(), nullptr) > 0.0 ? std::string()
+                                                                : "a simulated time > 0 s, got " + text;
+            },
+            "S>0"));
     report_cmd->add_option("--cache", report.cache, kCacheHelp);
 
     CLI::App *engines_cmd = app.add_subcommand(

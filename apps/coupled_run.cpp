@@ -119,7 +119,7 @@ void run_tool(const std::string &name, const std::vector<std::string> &args, con
     const bool terminal = ::isatty(STDERR_FILENO) != 0;
     const auto start = std::chrono::steady_clock::now();
     SolverProgress progress(start_time, end_time);
-    double solver_time = 0.0;
+    double solver_time = start_time; // until the solver's first "Time =" line
     int status = 0;
     long naps = 0;
     for (;;) {

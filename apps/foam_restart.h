@@ -42,8 +42,8 @@ RestoredCase restore_case(const std::filesystem::path &case_dir, const Checkpoin
 // after reconstructPar): system/decomposeParDict for `ranks` along x.
 void set_ranks(const std::filesystem::path &case_dir, int ranks);
 
-// `text` with every @TOKEN@ of `tokens` replaced by its value (a value is
-// not searched again).
+// `text` with every @TOKEN@ of `tokens` replaced by its value, token by
+// token in the map's order (a value put in is not searched for its own token).
 std::string filled(std::string text, const std::map<std::string, std::string> &tokens);
 
 // A resume runs with this armour's plugin and wave library and writes into

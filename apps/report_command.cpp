@@ -8,9 +8,12 @@
 #include "scene_setup.h"
 #include "wave_case.h"
 
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <thread>
 
 namespace armour {
 
@@ -21,9 +24,10 @@ std::string analyse_coupled_record(const Scene &scene, const SceneSetup &setup, 
                                    const fs::path &run_dir, const fs::path &case_dir, OutputFolder &folder,
                                    json &summary, double until) {
     // The analysis samples the record as a dry run's analysis samples the engine.
-    const std::unique_ptr<Analysis> analysis =
-        make_analysis({scene, setup, run_dir.string(), case_dir.string(),
-                       [&](const std::string &name) { return folder.claim(name).string(); }});
+    AnalysisContext context{scene, setup, run_dir.string(), case_dir.string(),
+                            [&](const std::string &name) { return folder.claim(name).string(); }};
+    context.until = until;
+    const std::unique_ptr<Analysis> analysis = make_analysis(context);
     std::vector<BodyState> states(record.bodies());
     for (std::size_t s = 0; s < record.steps() && record.time[s] <= until; ++s) {
         record.states_at(s, states);
@@ -33,6 +37,44 @@ std::string analyse_coupled_record(const Scene &scene, const SceneSetup &setup, 
         add_wave_summary(scene, case_dir, folder, summary, until);
     return analysis->write(summary);
 }
+
+namespace {
+
+// The steps bodies.xdmf lists: the recorder writes it after each step is
+// flushed to bodies.h5, so a step it lists is whole on disk.
+std::size_t listed_steps(const fs::path &xdmf) {
+    std::ifstream in(xdmf);
+    std::size_t steps = 0;
+    for (std::string line; std::getline(in, line);)
+        steps += line.find("<Time ") != std::string::npos ? 1 : 0;
+    return steps;
+}
+
+// The record as far as it is whole: a running solver's bodies.h5 may hold a
+// step being appended (extended, not yet written or flushed).
+BodiesFile whole_record(const fs::path &run, bool ended) {
+    const fs::path h5 = run / "bodies.h5";
+    for (int attempt = 1;; ++attempt) {
+        try {
+            BodiesFile record = read_bodies_file(h5.string());
+            if (!ended)
+                record.keep_steps(listed_steps(run / "bodies.xdmf"));
+            return record;
+        } catch (const InputError &) {
+            if (ended || attempt == 3) // a running solver's append takes milliseconds
+                throw;
+            std::this_thread::sleep_for(std::chrono::seconds(1));
+        }
+    }
+}
+
+bool inside(const fs::path &path, const fs::path &folder) {
+    const fs::path p = fs::weakly_canonical(path), f = fs::weakly_canonical(folder);
+    const auto [end, rest] = std::mismatch(f.begin(), f.end(), p.begin(), p.end());
+    return end == f.end();
+}
+
+} // namespace
 
 int run_report(const ReportRequest &r) {
     const fs::path run = fs::absolute(r.run).lexically_normal();
@@ -45,27 +87,37 @@ int run_report(const ReportRequest &r) {
             throw InputError(r.run +
                              ": not an `armour run` folder (no .armour-output naming \"armour run\")");
     }
-    const fs::path scene_file = run / "scene.resolved.toml", bodies_file = run / "bodies.h5";
-    for (const fs::path &p : {scene_file, bodies_file})
-        if (!fs::is_regular_file(p))
-            throw InputError(p.string() + ": missing: the run stopped before it started recording");
+    if (inside(r.out, run)) // an entry its marker does not list would stop its resume
+        throw InputError("--out: " + r.out + " is inside the run's folder " + run.string() +
+                         ": a report goes beside the run");
+    const fs::path scene_file = run / "scene.resolved.toml";
+    if (!fs::is_regular_file(scene_file))
+        throw InputError(scene_file.string() + ": missing: the run stopped before its coupled part started");
     const Scene scene = load_scene(scene_file.string());
     if (!scene.fluid)
         throw InputError(scene_file.string() +
                          ": no [fluid] table: a DEM run's analysis samples its engine as it runs and is in "
                          "its summary.json when it ends; `armour report` reads coupled runs");
-    const BodiesFile record = read_bodies_file(bodies_file.string());
+    const SceneSetup setup = build_scene(scene, r.cache.empty() ? default_cache_dir() : r.cache, false);
+    if (setup.bodies.empty())
+        throw InputError(scene_file.string() +
+                         ": no bodies (an empty wave flume): its wave figures are in its summary.json when "
+                         "it ends; `armour report` reads runs with units");
+    const bool ended = fs::is_regular_file(run / "summary.json");
+    if (!fs::is_regular_file(run / "bodies.h5"))
+        throw InputError((run / "bodies.h5").string() +
+                         ": missing: the run stopped before it started recording");
+    const BodiesFile record = whole_record(run, ended);
     if (record.steps() == 0)
-        throw InputError(bodies_file.string() + ": no step recorded yet");
-    if (r.until < record.time.front())
+        throw InputError((run / "bodies.h5").string() + ": no step recorded yet");
+    if (!(r.until >= record.time.front())) // NaN too
         throw InputError("--until: " + number_text(r.until) + " s is before the run's first record (" +
                          number_text(record.time.front()) + " s)");
-    OutputFolder folder(r.out, "armour report", OutputFolder::Mode::staged); // refused before any work
-    const SceneSetup setup = build_scene(scene, r.cache.empty() ? default_cache_dir() : r.cache, false);
     if (record.bodies() != setup.bodies.size())
-        throw InputError(bodies_file.string() + ": " + std::to_string(record.bodies()) +
+        throw InputError((run / "bodies.h5").string() + ": " + std::to_string(record.bodies()) +
                          " bodies, its scene " + scene_file.string() + " " +
                          std::to_string(setup.bodies.size()));
+    OutputFolder folder(r.out, "armour report", OutputFolder::Mode::staged);
     folder.open();
 
     std::size_t steps = 0;
@@ -81,11 +133,14 @@ int run_report(const ReportRequest &r) {
                     {"simulated_seconds", last},
                     {"until", std::isfinite(r.until) ? json(r.until) : json(nullptr)},
                     // An ended run has its own summary.json; a stopped or running one none.
-                    {"run_ended", fs::is_regular_file(run / "summary.json")},
+                    {"run_ended", ended},
                     {"warnings", json::array()},
                     {"si_units", {{"simulated_seconds", "s"}, {"until", "s"}, {"lengths", "m"}}}};
+    // A running or stopped run's gauges go on past its last whole step: the
+    // figures end where the record does (an ended run's, as the run took them).
+    const double until = ended ? r.until : std::min(r.until, last);
     const std::string result =
-        analyse_coupled_record(scene, setup, record, run, run / "case", folder, summary, r.until);
+        analyse_coupled_record(scene, setup, record, run, run / "case", folder, summary, until);
     write_text_file(folder.claim("summary.json"), summary.dump(2) + "\n");
     folder.commit();
     std::printf("%s: %d units, record to t = %.6g s%s%s -> %s\n", scene.name.c_str(),

@@ -4,6 +4,7 @@
 #include "analysis.h"
 #include "bodies_file.h"
 #include "body_recorder.h"
+#include "gauge_rows.h"
 #include "scene_keys.h"
 #include "shapes.h"
 
@@ -155,6 +156,24 @@ TEST_F(Analysis, BodiesFileReadDuringAnAppendEndsAtTheLastWholeStep) {
     EXPECT_EQ(rec.position.back()[0], state_of(2, 0).pose.position);
     extend("/time", 5);
     EXPECT_THROW(read_bodies_file(h5), InputError); // two steps short: not an append under way
+}
+
+// The gauges of a running solver: its last line may be half written (a
+// number cut short reads as another number); a line without its newline is
+// left out.
+TEST_F(Analysis, GaugeRowsLeaveOutALineTheSolverIsStillWriting) {
+    const fs::path part = dir_ / "postProcessing" / "gauges" / "0";
+    fs::create_directories(part);
+    std::ofstream(part / "surfaceElevation.dat") << "# Time gauge0 gauge1 gauge2\n"
+                                                 << "0 0.40 0.40 0.40\n"
+                                                 << "0.1 0.41 0.40 0.39\n"
+                                                 << "0.2 0.42 0.40 0.3";
+    const std::vector<std::vector<double>> rows = armour::gauge_rows(dir_);
+    ASSERT_EQ(rows.size(), 2u);
+    EXPECT_EQ(rows.back(), (std::vector<double>{0.1, 0.41, 0.40, 0.39}));
+    std::ofstream(part / "surfaceElevation.dat", std::ios::app) << "85\n"; // the line ends
+    ASSERT_EQ(armour::gauge_rows(dir_).size(), 3u);
+    EXPECT_EQ(armour::gauge_rows(dir_).back()[3], 0.385);
 }
 
 TEST(AnalysisRegistry, HoldsExactlyTheKindsASceneMayName) {

@@ -348,11 +348,20 @@ TEST_F(Run, ReportRefusesWhatIsNotACoupledRunAndWritesNothing) {
         EXPECT_EQ(err_.find('\n'), err_.size() - 1) << err_; // one line
     };
     refused(out().string(), "no [fluid] table"); // a DEM run
+    const std::vector<std::string> into = {"armour", "report", out().string(), "--out",
+                                           (out() / "r").string()};
+    std::vector<const char *> argv;
+    for (const auto &a : into)
+        argv.push_back(a.c_str());
+    ::testing::internal::CaptureStderr();
+    EXPECT_EQ(armour::armour_main(static_cast<int>(argv.size()), argv.data()), 2);
+    err_ = ::testing::internal::GetCapturedStderr();
+    EXPECT_NE(error_line().find("is inside the run's folder"), std::string::npos) << err_;
     refused((dir_ / "none").string(), "no such folder");
     refused(dir_.string(), "not an `armour run` folder");
-    fs::remove(out() / "bodies.h5");
-    before.erase((out() / "bodies.h5").string());
-    refused(out().string(), "bodies.h5: missing");
+    fs::remove(out() / "scene.resolved.toml");
+    before.erase((out() / "scene.resolved.toml").string());
+    refused(out().string(), "scene.resolved.toml: missing");
     EXPECT_FALSE(fs::exists(report));
     std::map<std::string, std::uintmax_t> after;
     for (const auto &e : fs::recursive_directory_iterator(dir_))

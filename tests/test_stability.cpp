@@ -11,13 +11,16 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <sys/wait.h>
@@ -40,6 +43,11 @@ using armour_test::SceneRun;
 SceneRun run_stability(const std::string &name, const std::string &sets) {
     return armour_test::run_scene(ARMOUR_EXE, std::string(ARMOUR_SOURCE_DIR) + "/scenes/stability_cubes.toml",
                                   "stability_" + name, kSmall + sets);
+}
+
+std::string read_text(const fs::path &file) {
+    std::ifstream in(file);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 // damage.csv: one row per unit, the columns by their header names.
@@ -168,6 +176,32 @@ TEST(StabilityCubes, ShortIrregularRunWritesEveryDamageFileAndKey) {
         ++rows;
     }
     EXPECT_GT(rows, 90); // 0 .. 5 s every 0.05 s, and the header
+    // The gauges end there too: 5 s holds less than 4 Tp after the front, no incident-wave analysis.
+    EXPECT_FALSE(early["waves"].contains("incident_height")) << early["waves"].dump();
+    // A record whose scene does not match, and an --until before the record or
+    // not a number: one error line, exit 2, no report folder.
+    const fs::path copy = run.dir / "copy";
+    fs::copy(run.out, copy, fs::copy_options::recursive);
+    {
+        std::string scene = read_text(copy / "scene.resolved.toml");
+        scene.erase(scene.rfind("[[body]]"));
+        std::ofstream(copy / "scene.resolved.toml", std::ios::trunc) << scene;
+    }
+    for (const auto &[folder, until, why] :
+         {std::tuple(copy, std::string(), std::string("bodies.h5: 45 bodies, its scene")),
+          std::tuple(run.out, std::string("--until nan"), std::string("--until"))}) {
+        const fs::path out = run.dir / "refused";
+        const std::string cmd = std::string("'") + ARMOUR_EXE + "' report '" + folder.string() + "' --out '" +
+                                out.string() + "' " + until + " > '" + out.string() + ".log' 2>&1";
+        const int rc = std::system(cmd.c_str());
+        EXPECT_TRUE(WIFEXITED(rc) && WEXITSTATUS(rc) != 0) << cmd;
+        const std::string err = read_text(out.string() + ".log");
+        EXPECT_NE(err.find(why), std::string::npos) << err;
+        if (until.empty()) { // the command line's own errors add a line on --help
+            EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+        }
+        EXPECT_FALSE(fs::exists(out));
+    }
     // The run's own folder is never a report's.
     const std::string into = std::string("'") + ARMOUR_EXE + "' report '" + run.out.string() + "' --out '" +
                              run.out.string() + "' > /dev/null 2>&1";
