@@ -185,10 +185,13 @@ double eroded_area(const ArmourProfile &before, const ArmourProfile &after) {
     if (before.ny == 0)
         return 0.0;
     double sum = 0.0;
-    for (int i = 0; i < before.ns; ++i)
+    for (int i = 0; i < before.ns; ++i) {
+        double lowered = 0.0; // summed across y
         for (int j = 0; j < before.ny; ++j)
-            sum += std::max(0.0, before.at(i, j) - after.at(i, j)) * before.ds;
-    return sum / before.ny;
+            lowered += before.at(i, j) - after.at(i, j);
+        sum += std::max(0.0, lowered / before.ny) * before.ds;
+    }
+    return sum;
 }
 
 SettleWatch::SettleWatch(const Scene &scene, const SceneSetup &setup)

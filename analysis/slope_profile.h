@@ -111,7 +111,10 @@ class SettleWatch {
 };
 
 // m²: the area between two profiles over the same grid where `after` lies
-// below `before` (eroded), per line of constant y, averaged across y.
+// below `before` (eroded), each profile first averaged across y (as a flume's
+// profile lines are averaged: a unit that shifts across the slope erodes
+// nothing). Until 2026-11-26 each line's eroded area was averaged instead,
+// which counts such a shift as erosion.
 double eroded_area(const ArmourProfile &before, const ArmourProfile &after);
 
 } // namespace armour

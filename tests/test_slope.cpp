@@ -136,6 +136,31 @@ TEST(SlopeProfile, HolesReadTheUnderlayer) {
     EXPECT_EQ(armour::eroded_area(q, p), 0.0); // nothing below the first profile
 }
 
+// S from the profiles averaged across the slope: a cube that shifts across
+// it (half a cube, staying on the layer) erodes nothing, though each line it
+// left reads a cube's height lost.
+TEST(SlopeProfile, AUnitShiftedAcrossTheSlopeErodesNothing) {
+    CubeSlope c;
+    c.place(0.5 * kA, -1.5 * kA, 0.5 * kA);
+    c.place(0.5 * kA, 1.5 * kA, 0.5 * kA);
+    const armour::LayerRegion region = armour::layer_region(c.frame, c.setup, c.states);
+    const armour::ArmourProfile p = armour::armour_profile(c.frame, c.setup, c.states, region);
+    std::vector<BodyState> after = c.states;
+    after[1].pose.position -= 0.5 * kA * c.frame.across;
+    const armour::ArmourProfile q = armour::armour_profile(c.frame, c.setup, after, region);
+    double per_line = 0.0; // the lines' own eroded areas, averaged (the former S)
+    for (int i = 0; i < p.ns; ++i)
+        for (int j = 0; j < p.ny; ++j)
+            per_line += std::max(0.0, p.at(i, j) - q.at(i, j)) * p.ds / p.ny;
+    EXPECT_GT(per_line, 0.05 * kA * kA);
+    EXPECT_EQ(armour::eroded_area(p, q), 0.0);
+    // Taken away instead, its whole section is eroded: a cube of 4 a across.
+    after[1].pose.position += 5.0 * c.frame.across;
+    const armour::ArmourProfile gone = armour::armour_profile(c.frame, c.setup, after, region);
+    const double r = 0.25 * kA, section = kA * kA + (kA - r) * r + 0.25 * M_PI * r * r;
+    EXPECT_NEAR(armour::eroded_area(p, gone), section / 4.0, 0.1 * section / 4.0);
+}
+
 TEST(SlopeAnalysis, ReportsTheLayerAndWhetherThePileSettled) {
     CubeSlope c;
     c.layer(4, 10, 1.1 * kA, 0.5 * kA);
