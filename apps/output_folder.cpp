@@ -254,6 +254,13 @@ OutputFolder::Earlier OutputFolder::check() const {
     return earlier;
 }
 
+std::string result_of(const fs::path &dir) {
+    std::ifstream marker(dir / kMarker);
+    std::string owner;
+    std::getline(marker, owner);
+    return owner;
+}
+
 void OutputFolder::open() {
     if (opened_)
         return;

@@ -95,6 +95,10 @@ class OutputFolder {
     int lock_fd_ = -1;                           // DIR/.armour-lock, held until destruction
 };
 
+// The command whose result `dir` is, as its marker names it ("armour run");
+// "" when it has no marker.
+std::string result_of(const std::filesystem::path &dir);
+
 // Writes text to path through a temporary file and a rename.
 void write_text_file(const std::filesystem::path &path, const std::string &text);
 

@@ -80,13 +80,8 @@ int run_report(const ReportRequest &r) {
     const fs::path run = fs::absolute(r.run).lexically_normal();
     if (!fs::is_directory(run))
         throw InputError(r.run + ": no such folder");
-    {
-        std::ifstream marker(run / ".armour-output");
-        std::string owner;
-        if (!marker || !std::getline(marker, owner) || owner != "armour run")
-            throw InputError(r.run +
-                             ": not an `armour run` folder (no .armour-output naming \"armour run\")");
-    }
+    if (result_of(run) != "armour run")
+        throw InputError(r.run + ": not an `armour run` folder (no .armour-output naming \"armour run\")");
     if (inside(r.out, run)) // an entry its marker does not list would stop its resume
         throw InputError("--out: " + r.out + " is inside the run's folder " + run.string() +
                          ": a report goes beside the run");
