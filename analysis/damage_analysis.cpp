@@ -38,6 +38,39 @@ void write_file(const std::string &path, const std::string &text) {
         throw InputError(path + ": cannot write");
 }
 
+// The layer's width across the slope (m), N_od's strips: its units' centres
+// and half a Dn beyond, out to a side wall where no unit fits between (a gap
+// under one Dn), so a layer laid wall to wall spans the wall.
+double layer_width(const SlopeFrame &frame, const LayerRegion &region) {
+    if (region.bodies.empty())
+        return frame.width;
+    const double half = 0.5 * frame.width;
+    const double lo = region.y_lo + half < region.Dn ? -half : region.y_lo;
+    const double hi = half - region.y_hi < region.Dn ? half : region.y_hi;
+    return hi - lo;
+}
+
+// Van der Meer's (1988) cube tests: a 1:1.5 slope, N up to 7500, s_om
+// 0.005-0.07. The limits a run lies outside, as text.
+std::vector<std::string> van_der_meer_range(double cot, std::optional<double> waves,
+                                            std::optional<double> s_om) {
+    std::vector<std::string> outside;
+    char text[64];
+    if (std::abs(cot - 1.5) > 0.05) {
+        std::snprintf(text, sizeof text, "slope 1:%.3g (tested on 1:1.5 only)", cot);
+        outside.emplace_back(text);
+    }
+    if (waves && *waves > 7500.0) {
+        std::snprintf(text, sizeof text, "N %.0f > 7500", *waves);
+        outside.emplace_back(text);
+    }
+    if (s_om && (*s_om < 0.005 || *s_om > 0.07)) {
+        std::snprintf(text, sizeof text, "s_om %.3g outside 0.005-0.07", *s_om);
+        outside.emplace_back(text);
+    }
+    return outside;
+}
+
 class DamageAnalysis : public Analysis {
   public:
     explicit DamageAnalysis(const AnalysisContext &c)
@@ -68,7 +101,7 @@ class DamageAnalysis : public Analysis {
             largest = std::max(largest, units_[i].displacement());
         }
         history_ += num(t) + "," + std::to_string(displaced) + "," +
-                    num(n_od(displaced, frame_.width, Dn())) + "," + num(largest) + "\n";
+                    num(n_od(displaced, layer_width_, Dn())) + "," + num(largest) + "\n";
     }
 
     std::string write(json &summary) const override {
@@ -88,7 +121,7 @@ class DamageAnalysis : public Analysis {
                     num(u.max_rotation_deg()) + "," + std::to_string(u.rocking_events()) + "," +
                     (is_displaced ? "1" : "0") + "\n";
         }
-        const double N_od = n_od(displaced, frame_.width, Dn);
+        const double N_od = n_od(displaced, layer_width_, Dn);
         // S from the profiles at the reference and at the end, over the
         // layer the reference covered.
         std::vector<BodyState> reference(units_.size());
@@ -118,10 +151,11 @@ class DamageAnalysis : public Analysis {
             vdm = van_der_meer_cubes_ns(N_od, *w.waves, *w.s_om);
             if (Ns) {
                 vdm_n_od = van_der_meer_cubes_n_od(*Ns, *w.waves, *w.s_om);
-                vdm_units = *vdm_n_od * frame_.width / Dn;
+                vdm_units = *vdm_n_od * layer_width_ / Dn;
             }
         }
 
+        const std::vector<std::string> outside = van_der_meer_range(frame_.cot, w.waves, w.s_om);
         summary["units"] = units_.size();
         summary["units_displaced"] = displaced;
         summary["N_od"] = N_od;
@@ -136,19 +170,26 @@ class DamageAnalysis : public Analysis {
         summary["units_displaced_van_der_meer"] = nullable(vdm_units);
         summary["Ns_hudson_breaking"] = hudson_ns(6.5, frame_.cot);
         summary["Ns_hudson_nonbreaking"] = hudson_ns(7.5, frame_.cot);
-        summary["damage"] = {
-            {"Hs", nullable(w.Hs)},
-            {"wave_source", w.source},
-            {"delta", rho_s / rho_w - 1.0},
-            {"Dn", Dn},
-            {"slope_width", frame_.width},
-            {"displaced_threshold", scene_.displaced_threshold},
-            {"rocking_threshold_deg", scene_.rocking_threshold_deg},
-            {"reference_time", start_},
-            {"settled", wait_for_settle_ ? json(settled_) : json(nullptr)},
-            {"settled_layer", settled_layer},
-            {"files", {"damage.csv", "damage_history.csv", "damage.png"}},
-            {"si_units", {{"Hs", "m"}, {"Dn", "m"}, {"reference_time", "s"}, {"layer_thickness", "m"}}}};
+        summary["damage"] = {{"Hs", nullable(w.Hs)},
+                             {"wave_source", w.source},
+                             {"delta", rho_s / rho_w - 1.0},
+                             {"Dn", Dn},
+                             {"slope_width", frame_.width},
+                             {"layer_width", layer_width_},
+                             {"van_der_meer_outside", outside},
+                             {"displaced_threshold", scene_.displaced_threshold},
+                             {"rocking_threshold_deg", scene_.rocking_threshold_deg},
+                             {"reference_time", start_},
+                             {"settled", wait_for_settle_ ? json(settled_) : json(nullptr)},
+                             {"settled_layer", settled_layer},
+                             {"files", {"damage.csv", "damage_history.csv", "damage.png"}},
+                             {"si_units",
+                              {{"Hs", "m"},
+                               {"Dn", "m"},
+                               {"slope_width", "m"},
+                               {"layer_width", "m"},
+                               {"reference_time", "s"},
+                               {"layer_thickness", "m"}}}};
         write_file(path("damage.csv"), rows);
         write_file(path("damage_history.csv"), "# units displaced (>= displaced_threshold Dn) against time\n"
                                                "time_s,units_displaced,N_od,max_displacement_over_Dn\n" +
@@ -160,6 +201,11 @@ class DamageAnalysis : public Analysis {
         std::string line = std::to_string(displaced) + " of " + std::to_string(units_.size()) +
                            " units displaced, N_od " + num(N_od) + ", " + std::to_string(rocking) +
                            " rocking";
+        if (!outside.empty() && vdm) {
+            line += "; outside Van der Meer's tested range:";
+            for (const std::string &o : outside)
+                line += " " + o + (&o == &outside.back() ? "" : ",");
+        }
         if (std::system(command.c_str()) != 0)
             line += "; no damage.png: analysis/damage_chart.py failed (needs python3-matplotlib)";
         return line;
@@ -188,6 +234,7 @@ class DamageAnalysis : public Analysis {
             units_.emplace_back(states[i].pose, setup_.unit_Dn[unit(i)], scene_.rocking_threshold_deg);
         history_.clear();
         start_ = t;
+        layer_width_ = layer_width(frame_, layer_region(frame_, setup_, states));
     }
 
     const Scene &scene_;
@@ -201,6 +248,7 @@ class DamageAnalysis : public Analysis {
     std::vector<BodyState> last_;
     std::string history_;
     double start_ = 0.0, end_ = 0.0;
+    double layer_width_ = 0.0; // m, across the slope at the reference
 };
 
 } // namespace

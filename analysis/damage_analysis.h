@@ -12,7 +12,7 @@
 //     choice: no published threshold exists, stability.md). Headline figures
 //     (docs/analysis.md): units displaced (final displacement >=
 //     analysis.displaced_threshold Dn, 1 Dn as in physical-model practice),
-//     N_od = displaced / (slope width / Dn), rocking units, Ns = Hs/(Δ Dn) with
+//     N_od = displaced / (layer width / Dn), rocking units, Ns = Hs/(Δ Dn) with
 //     Δ = ρs/ρw − 1, s_om, the number of waves, the damage S = eroded area /
 //     Dn² between the before and after profiles (slope_profile.h), and where
 //     the run sits against Van der Meer (1988, double-layer cubes) and

@@ -28,9 +28,9 @@ std::string num(double v) {
 // How much of the run the gauges saw waves in (a short run ends before the front comes).
 std::string after_front(double end, double front) {
     if (end <= front)
-        return "waves: the run ends at " + figure_text(end) +
+        return "waves: the record ends at " + figure_text(end) +
                " s, before the wave front reaches the gauges (" + figure_text(front) + " s)";
-    return "waves: the run leaves " + figure_text(end - front) +
+    return "waves: the record leaves " + figure_text(end - front) +
            " s after the wave front reaches the gauges (" + figure_text(front) + " s)";
 }
 
@@ -232,7 +232,8 @@ void add_wave_summary(const Scene &scene, const fs::path &case_dir, OutputFolder
     if (end - span < steady)
         warn("waves: the analysis window starts at " + figure_text(end - span) +
              " s, before the outlet's reflection is back at the gauges (" + figure_text(steady) +
-             " s): the reflection coefficient is underestimated; lengthen run.duration");
+             " s): the reflection coefficient is underestimated; a longer record (run.duration) moves the "
+             "window past it");
     // Uniform samples, a whole number per window: 64 per period.
     const auto n = static_cast<std::size_t>(std::lround(span / period * 64.0));
     const double dt = span / static_cast<double>(n), t0 = end - span;

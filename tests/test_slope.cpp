@@ -406,8 +406,10 @@ TEST(Damage, SyntheticTrajectoriesGiveTheirKnownFigures) {
                 1e-3);
     const double predicted = armour::van_der_meer_cubes_n_od(0.28 / (1.4 * kA), 1.25, s_om);
     EXPECT_NEAR(summary["N_od_van_der_meer"].get<double>(), predicted, 1e-3 * predicted + 1e-12);
+    EXPECT_DOUBLE_EQ(summary["damage"]["layer_width"].get<double>(), 1.0); // wall to wall
+    EXPECT_TRUE(summary["damage"]["van_der_meer_outside"].empty());        // 1:1.5, s_om 0.045
     EXPECT_NEAR(summary["units_displaced_van_der_meer"].get<double>() /
-                    summary["damage"]["slope_width"].get<double>() * kA,
+                    summary["damage"]["layer_width"].get<double>() * kA,
                 predicted, 1e-3 * predicted + 1e-12);
     EXPECT_NEAR(summary["Ns_hudson_breaking"].get<double>(), std::cbrt(6.5 * 1.5), 1e-12);
     EXPECT_NEAR(summary["Ns_hudson_nonbreaking"].get<double>(), std::cbrt(7.5 * 1.5), 1e-12);
@@ -422,6 +424,58 @@ TEST(Damage, SyntheticTrajectoriesGiveTheirKnownFigures) {
     EXPECT_TRUE(std::filesystem::is_regular_file(out / "damage_history.csv"));
     EXPECT_GT(std::filesystem::file_size(out / "damage.png"), 1000u);
     std::filesystem::remove_all(out);
+}
+
+// N_od counts the strips of Dn the layer has, not the wall's: a layer two
+// cubes wide in the middle of a 1 m wall (0.3 m to either side, more than a
+// Dn) has 2 strips, and one cube washed off is N_od = 0.5 (the wall's 5
+// strips would read 0.2); four cubes wide (0.1 m gaps, no room for a unit)
+// the layer reaches the walls: 5 strips. A run past Van der Meer's tested
+// range (s_om 0.18 on a 1:2 slope) says which limits it is outside.
+TEST(Damage, NodCountsTheLayersStripsAndVanDerMeersRangeIsStated) {
+    for (const int columns : {2, 4}) {
+        CubeSlope c;
+        c.scene.walls[0].width = 1.0;
+        c.scene.analysis = "damage";
+        c.scene.fluid = armour::SceneFluid();
+        armour::SceneUnit unit;
+        unit.name = c.setup.units[0].name;
+        unit.density = 2400.0;
+        c.scene.units.push_back(unit);
+        c.scene.wave_height = 0.28;
+        c.scene.wave_period = columns == 2 ? 2.0 : 1.0;
+        if (columns == 4) {
+            c.scene.walls[0].cot = 2.0;
+            c.frame = *armour::slope_frame(c.scene);
+            c.turn = Eigen::AngleAxisd(-std::atan2(1.0, 2.0), Vector3d::UnitY());
+        }
+        c.layer(3, columns, kA, 0.5 * kA);
+        const std::filesystem::path out = temporary("armour_test_damage_strips");
+        std::filesystem::remove_all(out);
+        std::filesystem::create_directories(out);
+        const auto analysis = armour::make_analysis({c.scene, c.setup, out.string(), ""});
+        std::vector<BodyState> now = c.states;
+        analysis->sample(0.0, now);
+        now[1].pose.position += 10.0 * c.frame.across; // washed off the slope
+        analysis->sample(1.0, now);
+        nlohmann::json summary = nlohmann::json::object();
+        const std::string line = analysis->write(summary);
+        EXPECT_EQ(summary["units_displaced"].get<int>(), 1);
+        const double width = columns == 2 ? 2 * kA : 1.0;
+        EXPECT_NEAR(summary["damage"]["layer_width"].get<double>(), width, 1e-12);
+        EXPECT_DOUBLE_EQ(summary["damage"]["slope_width"].get<double>(), 1.0);
+        EXPECT_NEAR(summary["N_od"].get<double>(), 1.0 / (width / kA), 1e-12);
+        const nlohmann::json &outside = summary["damage"]["van_der_meer_outside"];
+        if (columns == 2) {
+            EXPECT_TRUE(outside.empty()) << outside.dump();
+        } else {
+            ASSERT_EQ(outside.size(), 2u) << outside.dump();
+            EXPECT_NE(outside[0].get<std::string>().find("1:1.5"), std::string::npos) << outside.dump();
+            EXPECT_NE(outside[1].get<std::string>().find("s_om 0.179"), std::string::npos) << outside.dump();
+            EXPECT_NE(line.find("outside Van der Meer's tested range"), std::string::npos) << line;
+        }
+        std::filesystem::remove_all(out);
+    }
 }
 
 TEST(Damage, ASceneWithoutASlopeIsRefusedNamingTheKey) {

@@ -128,7 +128,8 @@ TEST(StabilityCubes, ShortIrregularRunWritesEveryDamageFileAndKey) {
     // Hudson at cot 1.5: (K_D 1.5)^(1/3), K_D 6.5 and 7.5 (stability.md: 2.14, 2.24).
     EXPECT_NEAR(s["Ns_hudson_breaking"].get<double>(), std::cbrt(6.5 * 1.5), 1e-9);
     EXPECT_NEAR(s["Ns_hudson_nonbreaking"].get<double>(), std::cbrt(7.5 * 1.5), 1e-9);
-    // N_od counts displaced units per Dn of the 0.248 m wide slope.
+    // N_od counts displaced units per Dn of the layer, laid wall to wall: the 0.248 m wide slope.
+    EXPECT_DOUBLE_EQ(s["damage"]["layer_width"].get<double>(), 0.248);
     EXPECT_NEAR(s["N_od"].get<double>(), s["units_displaced"].get<double>() / (0.248 / kDn), 1e-9);
     EXPECT_TRUE(s["Ns_van_der_meer"].is_number());
     // The damage Van der Meer predicts at this run's Ns, N and s_om, as N_od and as units on this slope.
