@@ -71,6 +71,36 @@ std::vector<std::string> van_der_meer_range(double cot, std::optional<double> wa
     return outside;
 }
 
+double density_of(const Scene &scene, const std::string &unit) {
+    for (const SceneUnit &u : scene.units)
+        if (u.name == unit)
+            return u.density;
+    return scene.units.empty() ? 0.0 : scene.units[0].density;
+}
+
+// N_od counts strips of one Dn and Ns takes one Δ: the figures mean nothing
+// for a layer of mixed units, so such a scene is refused, not averaged.
+std::string damage_refusal(const Scene &scene, const SceneSetup &setup) {
+    if (setup.bodies.empty())
+        return "needs a body";
+    const auto first = static_cast<std::size_t>(setup.bodies[0].unit);
+    const double Dn = setup.unit_Dn[first], rho = density_of(scene, setup.units[first].name);
+    for (const BodyInit &b : setup.bodies) {
+        const auto u = static_cast<std::size_t>(b.unit);
+        const double other_rho = density_of(scene, setup.units[u].name);
+        if (std::abs(setup.unit_Dn[u] - Dn) <= 1e-6 * Dn && other_rho == rho)
+            continue;
+        char text[320];
+        std::snprintf(text, sizeof text,
+                      "\"damage\" counts units of one size and density (N_od in strips of Dn, Ns with one "
+                      "delta): units '%s' (Dn %.4g m, %.4g kg/m^3) and '%s' (Dn %.4g m, %.4g kg/m^3) differ",
+                      setup.units[first].name.c_str(), Dn, rho, setup.units[u].name.c_str(), setup.unit_Dn[u],
+                      other_rho);
+        return text;
+    }
+    return "";
+}
+
 class DamageAnalysis : public Analysis {
   public:
     explicit DamageAnalysis(const AnalysisContext &c)
@@ -142,7 +172,7 @@ class DamageAnalysis : public Analysis {
         }
 
         const WaveConditions w = wave_conditions(summary, scene_, std::max(0.0, end_ - start_));
-        const double rho_s = scene_.units.empty() ? 0.0 : unit_density();
+        const double rho_s = unit_density();
         const double rho_w = scene_.fluid ? scene_.fluid->fluid_density : kFreshWaterDensity;
         std::optional<double> Ns, vdm, vdm_n_od, vdm_units;
         if (w.Hs)
@@ -219,13 +249,7 @@ class DamageAnalysis : public Analysis {
     }
     std::size_t unit(std::size_t body) const { return static_cast<std::size_t>(setup_.bodies[body].unit); }
     double Dn() const { return setup_.unit_Dn[unit(0)]; }
-    double unit_density() const {
-        const std::string &name = setup_.units[unit(0)].name;
-        for (const SceneUnit &u : scene_.units)
-            if (u.name == name)
-                return u.density;
-        return scene_.units[0].density;
-    }
+    double unit_density() const { return density_of(scene_, setup_.units[unit(0)].name); }
     std::string path(const std::string &name) const { return claim_ ? claim_(name) : out_dir_ + "/" + name; }
 
     void start(double t, const std::vector<BodyState> &states) {
@@ -335,7 +359,8 @@ AnalysisStyle damage_analysis_style() {
         {"units_displaced", "N_od", "rocking_units", "damage_S"},
         {{"units_displaced", "units_displaced_van_der_meer"}, {"N_od", "N_od_van_der_meer"}},
         false,
-        [](const AnalysisContext &c) { return std::make_unique<DamageAnalysis>(c); }};
+        [](const AnalysisContext &c) { return std::make_unique<DamageAnalysis>(c); },
+        damage_refusal};
 }
 
 } // namespace armour

@@ -573,6 +573,8 @@ int run_scene(const RunRequest &r) {
         resume = checked_resume(r, scene, folder.target());
     SceneSetup setup = build_scene(scene, r.cache.empty() ? default_cache_dir() : r.cache, true);
     if (!scene.fluid) {
+        if (const std::string why = analysis_refusal(scene, setup); !why.empty())
+            throw InputError(r.scene + ": key 'analysis.kind': " + why);
         if (r.np != 0)
             throw InputError("--np: only for scenes with a [fluid] table (MPI ranks of interFoam)");
         for (const std::string &w : rocking_clump_warnings(scene, setup))

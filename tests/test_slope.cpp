@@ -478,6 +478,35 @@ TEST(Damage, NodCountsTheLayersStripsAndVanDerMeersRangeIsStated) {
     }
 }
 
+// A layer of two sizes, or of two densities, has no one Dn for N_od's strips
+// and no one delta for Ns: refused before any tool runs, naming both units.
+TEST(Damage, MixedUnitsAreRefusedNamingBoth) {
+    CubeSlope c;
+    c.scene.analysis = "damage";
+    for (const char *name : {"cube", "big"}) {
+        armour::SceneUnit unit;
+        unit.name = name;
+        unit.density = 2400.0;
+        c.scene.units.push_back(unit);
+    }
+    c.setup.units[0].name = "cube";
+    c.layer(1, 2, kA, 0.5 * kA);
+    EXPECT_EQ(armour::analysis_refusal(c.scene, c.setup), "");
+    c.setup.units.push_back(c.setup.units[0]);
+    c.setup.units[1].name = "big";
+    c.setup.unit_Dn.push_back(1.5 * kA);
+    c.setup.bodies[1].unit = 1;
+    const std::string why = armour::analysis_refusal(c.scene, c.setup);
+    EXPECT_NE(why.find("one size and density"), std::string::npos) << why;
+    EXPECT_NE(why.find("'cube' (Dn 0.2 m, 2400 kg/m^3) and 'big' (Dn 0.3 m, 2400 kg/m^3)"), std::string::npos)
+        << why;
+    c.setup.unit_Dn[1] = kA; // the same size, a lighter concrete
+    c.scene.units[1].density = 2300.0;
+    EXPECT_NE(armour::analysis_refusal(c.scene, c.setup).find("'big' (Dn 0.2 m, 2300 kg/m^3) differ"),
+              std::string::npos);
+    EXPECT_EQ(armour::analysis_refusal(c.scene, armour::SceneSetup()), "needs a body");
+}
+
 TEST(Damage, ASceneWithoutASlopeIsRefusedNamingTheKey) {
     const std::string text = "name = \"flat\"\n[analysis]\nkind = \"damage\"\n[[material]]\nname = \"m\"\n"
                              "[[unit]]\nname = \"u\"\nshape = \"cube\"\nsize = 0.2\n"
