@@ -126,7 +126,7 @@ class DamageAnalysis : public Analysis {
         int displaced = 0;
         double largest = 0.0;
         for (std::size_t i = 0; i < states.size(); ++i) {
-            units_[i].sample(states[i].pose);
+            units_[i].sample(t, states[i].pose);
             displaced += units_[i].displacement() >= scene_.displaced_threshold ? 1 : 0;
             largest = std::max(largest, units_[i].displacement());
         }
@@ -278,13 +278,25 @@ class DamageAnalysis : public Analysis {
 } // namespace
 
 UnitDamageTracker::UnitDamageTracker(const Pose &reference, double Dn, double rocking_threshold_deg)
-    : reference_(reference), Dn_(Dn), threshold_(rocking_threshold_deg) {}
+    : reference_(reference), seat_(reference), still_at_(reference), Dn_(Dn),
+      threshold_(rocking_threshold_deg) {}
 
-void UnitDamageTracker::sample(const Pose &pose) {
+void UnitDamageTracker::sample(double t, const Pose &pose) {
     displacement_ = (pose.position - reference_.position).norm() / Dn_;
     max_displacement_ = std::max(max_displacement_, displacement_);
-    const double turned = rotation_between_deg(reference_.orientation, pose.orientation);
-    max_rotation_ = std::max(max_rotation_, turned);
+    max_rotation_ = std::max(max_rotation_, rotation_between_deg(reference_.orientation, pose.orientation));
+    // A unit that rests somewhere new has a new seat: it rocks about that one.
+    if (std::isnan(still_since_))
+        still_since_ = t;
+    if (rotation_between_deg(still_at_.orientation, pose.orientation) > 0.1 * threshold_ ||
+        (pose.position - still_at_.position).norm() > 0.02 * Dn_) {
+        still_at_ = pose;
+        still_since_ = t;
+    } else if (t - still_since_ >= kRestTime) {
+        seat_ = still_at_;
+        turned_ = false;
+    }
+    const double turned = rotation_between_deg(seat_.orientation, pose.orientation);
     if (!turned_ && turned > threshold_)
         turned_ = true;
     else if (turned_ && turned < 0.5 * threshold_) {

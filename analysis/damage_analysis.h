@@ -7,7 +7,8 @@
 //     poses at which the pile first met the settle criterion
 //     (slope_profile.h; the first record when it never did). Per unit: the
 //     largest and final displacement of its centre (in Dn), the largest
-//     rotation (deg) and the rocking events: turns past
+//     rotation (deg) and the rocking events: turns from the unit's seat (its
+//     settled pose, or where it last came to rest) past
 //     analysis.rocking_threshold_deg that come back below half of it (a
 //     choice: no published threshold exists, stability.md). Headline figures
 //     (docs/analysis.md): units displaced (final displacement >=
@@ -26,7 +27,7 @@
 //
 // Usage
 //     UnitDamageTracker unit(reference_pose, Dn, 5.0);
-//     unit.sample(pose);                            // every recorded step
+//     unit.sample(t, pose);                         // every recorded step
 //     double ns = van_der_meer_cubes_ns(0.5, 1000, 0.03); // 2.33
 //     double n_od = van_der_meer_cubes_n_od(2.33, 1000, 0.03); // 0.5
 #pragma once
@@ -36,16 +37,23 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include <cmath>
 #include <optional>
 #include <string>
 
 namespace armour {
 
-// One unit's motion from its reference pose.
+// One unit's motion from its reference pose. Displacement and rotation are
+// measured from the reference; rocking from the unit's seat: the reference,
+// or where it last rested (stayed within a tenth of the threshold and 0.02 Dn
+// of one pose for kRestTime). A rocking event is a turn from the seat past the
+// threshold that comes back below half of it; a unit that comes to rest tilted
+// has moved to a new seat, not rocked.
 class UnitDamageTracker {
   public:
+    static constexpr double kRestTime = 2.0; // s: over half the period of flume waves (Tp 1.5-3 s)
     UnitDamageTracker(const Pose &reference, double Dn, double rocking_threshold_deg);
-    void sample(const Pose &pose);
+    void sample(double t, const Pose &pose);                      // t in s, increasing
     double displacement() const { return displacement_; }         // Dn, now
     double max_displacement() const { return max_displacement_; } // Dn
     double max_rotation_deg() const { return max_rotation_; }
@@ -53,8 +61,9 @@ class UnitDamageTracker {
     const Pose &reference() const { return reference_; }
 
   private:
-    Pose reference_;
+    Pose reference_, seat_, still_at_;
     double Dn_, threshold_;
+    double still_since_ = std::nan(""); // s, set by the first sample
     double displacement_ = 0.0, max_displacement_ = 0.0, max_rotation_ = 0.0;
     bool turned_ = false;
     int rocking_events_ = 0;

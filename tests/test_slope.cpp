@@ -324,13 +324,32 @@ TEST(Damage, RockingIsAnExcursionThatComesBack) {
         p.orientation = Eigen::AngleAxisd(deg * M_PI / 180.0, Vector3d::UnitX());
         return p;
     };
+    double t = 0.0;
     for (const double deg : {0.0, 3.0, 6.0, 4.0, 2.0, 7.0, 1.0, 4.9, 2.6, 9.0, 8.0})
-        unit.sample(turned(deg));
+        unit.sample(t += 0.1, turned(deg));
     // 6 -> 2 and 7 -> 1 return below half the threshold; 4.9 never passed
     // it; 9 -> 8 has not come back.
     EXPECT_EQ(unit.rocking_events(), 2);
     EXPECT_NEAR(unit.max_rotation_deg(), 9.0, 1e-9);
     EXPECT_EQ(unit.max_displacement(), 0.0);
+
+    // It comes to rest at 8 degrees (within a tenth of the threshold for
+    // kRestTime): a new seat, not an event. It then rocks about that seat
+    // twice (past 5 degrees from it and back below 2.5), which counted from
+    // the settled pose, never back below 2.5 degrees, would be no event.
+    for (const double deg : {8.2, 7.9, 8.0})
+        unit.sample(t += 0.75, turned(deg));
+    EXPECT_EQ(unit.rocking_events(), 2);
+    for (const double deg : {10.0, 14.0, 9.0, 8.1, 12.0, 13.5, 10.0, 7.5, 8.0})
+        unit.sample(t += 0.1, turned(deg));
+    EXPECT_EQ(unit.rocking_events(), 4);
+    EXPECT_NEAR(unit.max_rotation_deg(), 14.0, 1e-9);
+    // Resting less than kRestTime is no new seat: 13.5 -> 8 is one more
+    // event about the 8-degree seat.
+    for (const double deg : {13.5, 13.6, 13.5})
+        unit.sample(t += 0.5, turned(deg));
+    unit.sample(t += 0.1, turned(8.0));
+    EXPECT_EQ(unit.rocking_events(), 5);
 }
 
 TEST(Damage, WaveConditionsPreferTheMeasuredIncidentWave) {
