@@ -40,14 +40,15 @@ void write_file(const std::string &path, const std::string &text) {
 
 // The layer's width across the slope (m), N_od's strips: its units' centres
 // and half a Dn beyond, out to a side wall where no unit fits between (a gap
-// under one Dn), so a layer laid wall to wall spans the wall.
+// under one Dn), so a layer laid wall to wall spans the wall; the wall's
+// width when no unit is on the face.
 double layer_width(const SlopeFrame &frame, const LayerRegion &region) {
     if (region.bodies.empty())
         return frame.width;
     const double half = 0.5 * frame.width;
     const double lo = region.y_lo + half < region.Dn ? -half : region.y_lo;
     const double hi = half - region.y_hi < region.Dn ? half : region.y_hi;
-    return hi - lo;
+    return std::clamp(hi - lo, region.Dn, frame.width); // a layer is at least one strip wide
 }
 
 // Van der Meer's (1988) cube tests: a 1:1.5 slope, N up to 7500, s_om
@@ -90,13 +91,14 @@ std::string damage_refusal(const Scene &scene, const SceneSetup &setup) {
         const double other_rho = density_of(scene, setup.units[u].name);
         if (std::abs(setup.unit_Dn[u] - Dn) <= 1e-6 * Dn && other_rho == rho)
             continue;
-        char text[320];
-        std::snprintf(text, sizeof text,
-                      "\"damage\" counts units of one size and density (N_od in strips of Dn, Ns with one "
-                      "delta): units '%s' (Dn %.4g m, %.4g kg/m^3) and '%s' (Dn %.4g m, %.4g kg/m^3) differ",
-                      setup.units[first].name.c_str(), Dn, rho, setup.units[u].name.c_str(), setup.unit_Dn[u],
-                      other_rho);
-        return text;
+        const auto figures = [&](std::size_t unit, double rho_unit) {
+            char text[64];
+            std::snprintf(text, sizeof text, " (Dn %.4g m, %.4g kg/m^3)", setup.unit_Dn[unit], rho_unit);
+            return "'" + setup.units[unit].name + "'" + text;
+        };
+        return "\"damage\" counts units of one size and density (N_od in strips of Dn, Ns with one delta): "
+               "units " +
+               figures(first, rho) + " and " + figures(u, other_rho) + " differ";
     }
     return "";
 }
@@ -255,7 +257,8 @@ class DamageAnalysis : public Analysis {
     void start(double t, const std::vector<BodyState> &states) {
         units_.clear();
         for (std::size_t i = 0; i < states.size(); ++i)
-            units_.emplace_back(states[i].pose, setup_.unit_Dn[unit(i)], scene_.rocking_threshold_deg);
+            units_.emplace_back(states[i].pose, setup_.unit_Dn[unit(i)], scene_.rocking_threshold_deg,
+                                rest_time(scene_));
         history_.clear();
         start_ = t;
         layer_width_ = layer_width(frame_, layer_region(frame_, setup_, states));
@@ -277,22 +280,23 @@ class DamageAnalysis : public Analysis {
 
 } // namespace
 
-UnitDamageTracker::UnitDamageTracker(const Pose &reference, double Dn, double rocking_threshold_deg)
+UnitDamageTracker::UnitDamageTracker(const Pose &reference, double Dn, double rocking_threshold_deg,
+                                     double rest_time)
     : reference_(reference), seat_(reference), still_at_(reference), Dn_(Dn),
-      threshold_(rocking_threshold_deg) {}
+      threshold_(rocking_threshold_deg), rest_time_(rest_time) {}
 
 void UnitDamageTracker::sample(double t, const Pose &pose) {
     displacement_ = (pose.position - reference_.position).norm() / Dn_;
     max_displacement_ = std::max(max_displacement_, displacement_);
     max_rotation_ = std::max(max_rotation_, rotation_between_deg(reference_.orientation, pose.orientation));
     // A unit that rests somewhere new has a new seat: it rocks about that one.
-    if (std::isnan(still_since_))
-        still_since_ = t;
-    if (rotation_between_deg(still_at_.orientation, pose.orientation) > 0.1 * threshold_ ||
+    if (std::isnan(still_since_) ||
+        rotation_between_deg(still_at_.orientation, pose.orientation) > 0.1 * threshold_ ||
         (pose.position - still_at_.position).norm() > 0.02 * Dn_) {
         still_at_ = pose;
         still_since_ = t;
-    } else if (t - still_since_ >= kRestTime) {
+        still_samples_ = 1;
+    } else if (++still_samples_ >= kRestSamples && t - still_since_ >= rest_time_) {
         seat_ = still_at_;
         turned_ = false;
     }
@@ -305,12 +309,21 @@ void UnitDamageTracker::sample(double t, const Pose &pose) {
     }
 }
 
+double rest_time(const Scene &scene) {
+    double period = scene.wave_period;
+    if (scene.waves)
+        period = scene.waves->type == "irregular" ? scene.waves->tp
+                 : scene.waves->type == "regular" ? scene.waves->period
+                                                  : period;
+    return std::max(2.0, period);
+}
+
 double rotation_between_deg(const Eigen::Quaterniond &a, const Eigen::Quaterniond &b) {
     return 2.0 * std::acos(std::min(1.0, std::abs(a.normalized().dot(b.normalized())))) * 180.0 / kPi;
 }
 
-double n_od(int displaced, double slope_width, double Dn) {
-    return displaced / (slope_width / Dn);
+double n_od(int displaced, double layer_width, double Dn) {
+    return displaced / (layer_width / Dn);
 }
 
 double stability_number(double Hs, double unit_density, double water_density, double Dn) {

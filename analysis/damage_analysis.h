@@ -26,7 +26,7 @@
 //     no source is null.
 //
 // Usage
-//     UnitDamageTracker unit(reference_pose, Dn, 5.0);
+//     UnitDamageTracker unit(reference_pose, Dn, 5.0, rest_time(scene));
 //     unit.sample(t, pose);                         // every recorded step
 //     double ns = van_der_meer_cubes_ns(0.5, 1000, 0.03); // 2.33
 //     double n_od = van_der_meer_cubes_n_od(2.33, 1000, 0.03); // 0.5
@@ -46,13 +46,13 @@ namespace armour {
 // One unit's motion from its reference pose. Displacement and rotation are
 // measured from the reference; rocking from the unit's seat: the reference,
 // or where it last rested (stayed within a tenth of the threshold and 0.02 Dn
-// of one pose for kRestTime). A rocking event is a turn from the seat past the
-// threshold that comes back below half of it; a unit that comes to rest tilted
-// has moved to a new seat, not rocked.
+// of one pose for rest_time, over at least kRestSamples records). A rocking
+// event is a turn from the seat past the threshold that comes back below half
+// of it; a unit that comes to rest tilted has moved to a new seat, not rocked.
 class UnitDamageTracker {
   public:
-    static constexpr double kRestTime = 2.0; // s: over half the period of flume waves (Tp 1.5-3 s)
-    UnitDamageTracker(const Pose &reference, double Dn, double rocking_threshold_deg);
+    static constexpr int kRestSamples = 4;
+    UnitDamageTracker(const Pose &reference, double Dn, double rocking_threshold_deg, double rest_time);
     void sample(double t, const Pose &pose);                      // t in s, increasing
     double displacement() const { return displacement_; }         // Dn, now
     double max_displacement() const { return max_displacement_; } // Dn
@@ -62,18 +62,24 @@ class UnitDamageTracker {
 
   private:
     Pose reference_, seat_, still_at_;
-    double Dn_, threshold_;
+    double Dn_, threshold_, rest_time_;
     double still_since_ = std::nan(""); // s, set by the first sample
+    int still_samples_ = 0;
     double displacement_ = 0.0, max_displacement_ = 0.0, max_rotation_ = 0.0;
     bool turned_ = false;
     int rocking_events_ = 0;
 };
 
+// s: how long a unit stays put to have a new seat: a wave period (the scene's
+// [waves] T or Tp, else analysis.wave_period), so a unit rocking once a wave
+// never rests at the far end of its swing; at least 2 s.
+double rest_time(const Scene &scene);
+
 // deg: the angle of the rotation taking orientation a to b.
 double rotation_between_deg(const Eigen::Quaterniond &a, const Eigen::Quaterniond &b);
 
-// N_od: units displaced per strip of width Dn across the slope.
-double n_od(int displaced, double slope_width, double Dn);
+// N_od: units displaced per strip of width Dn across the layer (layer_width m).
+double n_od(int displaced, double layer_width, double Dn);
 // Ns = Hs / (Δ Dn), Δ = ρs/ρw − 1.
 double stability_number(double Hs, double unit_density, double water_density, double Dn);
 // Van der Meer (1988), double-layer cubes: Ns = (6.7 N_od^0.4 / N^0.3 + 1.0) s_om^−0.1.

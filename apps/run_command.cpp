@@ -554,6 +554,8 @@ std::vector<std::string> check_scene_runs(const Scene &scene, const std::string 
     const SceneSetup setup = build_scene(scene, cache_dir, false);
     if (scene.fluid)
         return check_coupled_scene(scene, setup, np > 0 ? np : scene.fluid->np);
+    if (const std::string why = analysis_refusal(scene, setup); !why.empty())
+        throw InputError(scene.file + ": key 'analysis.kind': " + why);
     std::vector<std::string> warnings = rocking_clump_warnings(scene, setup);
     // The engine's step, as run_dem asks it: from the materials and clumps,
     // before the engine starts (nothing is written, as in check_coupled_scene).

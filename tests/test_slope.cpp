@@ -318,7 +318,7 @@ TEST(Damage, FormulasGiveThePublishedNumbers) {
 
 TEST(Damage, RockingIsAnExcursionThatComesBack) {
     armour::Pose rest;
-    armour::UnitDamageTracker unit(rest, 0.2, 5.0);
+    armour::UnitDamageTracker unit(rest, 0.2, 5.0, 2.0);
     const auto turned = [&](double deg) {
         armour::Pose p = rest;
         p.orientation = Eigen::AngleAxisd(deg * M_PI / 180.0, Vector3d::UnitX());
@@ -350,6 +350,24 @@ TEST(Damage, RockingIsAnExcursionThatComesBack) {
         unit.sample(t += 0.5, turned(deg));
     unit.sample(t += 0.1, turned(8.0));
     EXPECT_EQ(unit.rocking_events(), 5);
+
+    // Records 2.5 s apart: two alike are no rest (kRestSamples), so 8 -> 8 -> 1
+    // is an excursion that came back.
+    armour::UnitDamageTracker coarse(rest, 0.2, 5.0, 2.0);
+    t = 0.0;
+    for (const double deg : {0.0, 8.0, 8.0, 1.0})
+        coarse.sample(t += 2.5, turned(deg));
+    EXPECT_EQ(coarse.rocking_events(), 1);
+
+    // The rest time is a wave period, at least 2 s.
+    armour::Scene scene;
+    EXPECT_EQ(armour::rest_time(scene), 2.0);
+    scene.wave_period = 2.6;
+    EXPECT_EQ(armour::rest_time(scene), 2.6);
+    scene.waves = armour::SceneWaves();
+    scene.waves->type = "irregular";
+    scene.waves->tp = 3.1;
+    EXPECT_EQ(armour::rest_time(scene), 3.1);
 }
 
 TEST(Damage, WaveConditionsPreferTheMeasuredIncidentWave) {
