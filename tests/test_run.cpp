@@ -6,6 +6,7 @@
 #include "engine_registry.h"
 #include "output_folder_rule.h"
 #include "paraview_poses.h"
+#include "run_command.h"
 #include "scene.h"
 #include "scene_setup.h"
 
@@ -128,6 +129,30 @@ TEST_F(Run, RefusesAnUnstableTimeStepUnlessForced) {
 TEST_F(Run, RefusesAnUnknownUnitAndNamesTheKey) {
     EXPECT_EQ(run(scene_text("[0, 0, 0.3]", "[[body]]\nunit = \"dolos\"\nposition = [0.5, 0, 0.3]\n")), 2);
     EXPECT_NE(error_line().find("body.1.unit"), std::string::npos) << err_;
+}
+
+// A damage analysis of a layer of two sizes has no one Dn to count N_od in:
+// the run and a sweep's check of its cases refuse it, naming both units,
+// before anything is written.
+TEST_F(Run, RefusesADamageAnalysisOfMixedUnits) {
+    const std::string scene =
+        "name = \"mixed\"\n[run]\nduration = 0.02\ndomain_min = [-1.6, -0.6, -0.1]\n"
+        "domain_max = [2, 0.6, 1.5]\n[analysis]\nkind = \"damage\"\n[[material]]\nname = \"concrete\"\n"
+        "[[unit]]\nname = \"small\"\nshape = \"cube\"\nsize = 0.1\nspheres = 8\n"
+        "[[unit]]\nname = \"large\"\nshape = \"cube\"\nsize = 0.15\nspheres = 8\n"
+        "[[wall]]\nname = \"slope\"\ntype = \"slope\"\ntoe_x = 0.0\nfloor_z = 0.0\ncot = 1.5\n"
+        "height = 1.0\nwidth = 1.0\nmaterial = \"concrete\"\n"
+        "[[body]]\nunit = \"small\"\nposition = [0.6, -0.2, 0.6]\n"
+        "[[body]]\nunit = \"large\"\nposition = [0.6, 0.2, 0.6]\n";
+    EXPECT_EQ(run(scene), 2);
+    EXPECT_NE(error_line().find("key 'analysis.kind': \"damage\" counts units of one size and density"),
+              std::string::npos)
+        << err_;
+    EXPECT_NE(error_line().find("'small' (Dn 0.1 m"), std::string::npos) << err_;
+    EXPECT_NE(error_line().find("'large' (Dn 0.15 m"), std::string::npos) << err_;
+    EXPECT_FALSE(fs::exists(out()));
+    const armour::Scene loaded = armour::load_scene((dir_ / "scene.toml").string());
+    EXPECT_THROW(armour::check_scene_runs(loaded, cache_, 0), armour::InputError);
 }
 
 TEST_F(Run, ABodyLeavingTheDomainStopsTheRunAndKeepsItsRecord) {
