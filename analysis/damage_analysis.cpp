@@ -1,6 +1,7 @@
 #include "damage_analysis.h"
 
 #include "analysis.h"
+#include "jonswap.h"
 #include "slope_profile.h"
 #include "standard_conditions.h"
 
@@ -360,6 +361,27 @@ WaveConditions wave_conditions(const json &summary, const Scene &scene, double d
             return w;
         }
     }
+    const double g = scene.gravity.norm();
+    const SceneWaves *train = scene.waves && scene.waves->type != "solitary" ? &*scene.waves : nullptr;
+    if (scene.wave_height <= 0.0 && train) {
+        const bool regular = train->type == "regular";
+        double tm = train->period;
+        if (!regular) {
+            const IrregularWaves c =
+                jonswap_components(train->hs, train->tp, train->gamma, train->components, train->seed);
+            double m0 = 0.0, m2 = 0.0;
+            for (std::size_t j = 0; j < c.frequency.size(); ++j) {
+                m0 += 0.5 * c.amplitude[j] * c.amplitude[j];
+                m2 += 0.5 * c.amplitude[j] * c.amplitude[j] * c.frequency[j] * c.frequency[j];
+            }
+            tm = std::sqrt(m0 / m2);
+        }
+        w.Hs = regular ? train->height : train->hs;
+        w.s_om = 2.0 * kPi * *w.Hs / (g * tm * tm);
+        w.waves = duration / tm;
+        w.source = "target";
+        return w;
+    }
     const double H = scene.wave_height > 0.0 ? scene.wave_height
                      : scene.fluid           ? scene.fluid->wave_height
                                              : 0.0;
@@ -370,7 +392,7 @@ WaveConditions wave_conditions(const json &summary, const Scene &scene, double d
     w.Hs = H;
     w.source = "scene";
     if (scene.wave_period > 0.0) {
-        w.s_om = 2.0 * kPi * H / (scene.gravity.norm() * scene.wave_period * scene.wave_period);
+        w.s_om = 2.0 * kPi * H / (g * scene.wave_period * scene.wave_period);
         w.waves = duration / scene.wave_period;
     }
     return w;

@@ -95,11 +95,14 @@ struct WaveConditions {
     std::optional<double> Hs;    // m, the incident Hm0 (H of a regular or solitary wave)
     std::optional<double> s_om;  // -, 2 pi Hs / (g Tm^2)
     std::optional<double> waves; // -, N
-    std::string source;          // "measured" | "scene" | "none"
+    std::string source;          // "measured" | "scene" | "target" | "none"
 };
 
-// From the run's summary `waves` object when it has one (measured), else
-// from the scene's target (`duration` s of record after the reference).
+// From the run's summary `waves` object when it has one ("measured"), else
+// analysis.wave_height and wave_period ("scene"), else the [waves] train's
+// target at the maker ("target": H and T, or Hs and the Tm0,2 of its
+// JONSWAP components), else fluid.wave_height ("scene"); `duration` s of
+// record after the reference give N.
 WaveConditions wave_conditions(const nlohmann::json &summary, const Scene &scene, double duration);
 
 } // namespace armour

@@ -387,6 +387,35 @@ TEST(Damage, WaveConditionsPreferTheMeasuredIncidentWave) {
     EXPECT_DOUBLE_EQ(*m.waves, 480.0);
     scene.wave_height = 0.0;
     EXPECT_EQ(armour::wave_conditions(nlohmann::json::object(), scene, 100.0).source, "none");
+
+    // No measured waves and no analysis.wave_height: the [waves] train's target.
+    scene.waves = armour::SceneWaves();
+    scene.waves->height = 0.1;
+    scene.waves->period = 2.0;
+    const armour::WaveConditions regular = armour::wave_conditions(nlohmann::json::object(), scene, 100.0);
+    EXPECT_EQ(regular.source, "target");
+    EXPECT_DOUBLE_EQ(*regular.Hs, 0.1);
+    EXPECT_NEAR(*regular.s_om, 2 * M_PI * 0.1 / (9.81 * 4.0), 1e-3 * *regular.s_om);
+    EXPECT_DOUBLE_EQ(*regular.waves, 50.0);
+    // Irregular: Hs and the mean period Tm0,2 of the generated JONSWAP band
+    // (0.5-2.5 fp, gamma 3.3; 0.84 Tp): above the ~0.78 Tp of the untruncated
+    // spectrum (its tail adds to m2), below the 0.885 Tp measured in the flume.
+    scene.waves->type = "irregular";
+    scene.waves->hs = 0.12;
+    scene.waves->tp = 1.8;
+    scene.waves->components = 200;
+    const armour::WaveConditions irregular = armour::wave_conditions(nlohmann::json::object(), scene, 100.0);
+    EXPECT_EQ(irregular.source, "target");
+    EXPECT_DOUBLE_EQ(*irregular.Hs, 0.12);
+    const double tm = 100.0 / *irregular.waves;
+    EXPECT_GT(tm / 1.8, 0.78);
+    EXPECT_LT(tm / 1.8, 0.92);
+    EXPECT_NEAR(*irregular.s_om, 2 * M_PI * 0.12 / (9.81 * tm * tm), 1e-12);
+    // analysis.wave_height, when set, is the user's figure and comes first.
+    scene.wave_height = 0.3;
+    EXPECT_EQ(armour::wave_conditions(nlohmann::json::object(), scene, 100.0).source, "scene");
+    // The measured incident wave comes before both.
+    EXPECT_EQ(armour::wave_conditions(measured, scene, 100.0).source, "measured");
 }
 
 // A layer of 4 rows x 5 touching cubes across a 1 m slope (5 strips of Dn):

@@ -179,8 +179,11 @@ TEST(StabilityCubes, ShortIrregularRunWritesEveryDamageFileAndKey) {
     EXPECT_GT(rows, 90); // 0 .. 5 s every 0.05 s, and the header
     // The gauges end there too: 5 s holds less than 4 Tp after the front, no incident-wave analysis.
     EXPECT_FALSE(early["waves"].contains("incident_height")) << early["waves"].dump();
-    EXPECT_EQ(early["damage"]["wave_source"], "none"); // the scene gives no analysis.wave_height
-    EXPECT_EQ(early["Ns"], json(nullptr));
+    // No analysis.wave_height either: Ns from the train's target Hs at the maker.
+    EXPECT_EQ(early["damage"]["wave_source"], "target");
+    EXPECT_DOUBLE_EQ(early["damage"]["Hs"].get<double>(), w["target_height"].get<double>());
+    EXPECT_NEAR(early["Ns"].get<double>(),
+                w["target_height"].get<double>() / (early["damage"]["delta"].get<double>() * kDn), 1e-9);
     // A record whose scene does not match, and an --until before the record or
     // not a number: one error line, exit 2, no report folder.
     const fs::path copy = run.dir / "copy";
