@@ -168,7 +168,7 @@ TEST_F(Run, TiltSceneSlidesAtTheFrictionAngle) {
     // The example scene as shipped: a 20-sphere cube lands on the plate from
     // 3 cm, settles, and gravity turns at 5 deg/s. It must slide, not topple,
     // within 0.5 deg of atan(mu) (the engine-level bracket in test_liggghts).
-    std::ifstream in(fs::path(__FILE__).parent_path().parent_path() / "scenes" / "tilt_cube.toml");
+    std::ifstream in(fs::path(ARMOUR_SOURCE_DIR) / "scenes" / "tilt_cube.toml");
     std::stringstream scene;
     scene << in.rdbuf();
     ASSERT_EQ(run(scene.str()), 0) << err_;
@@ -184,7 +184,7 @@ TEST_F(Run, TiltSceneTopplesAtFortyFiveDegreesWhenFrictionHolds) {
     // downhill edge at atan(1) = 45 deg (sliding would need 50.2 deg). The
     // 20-sphere clump stands on its corner spheres (clump_support.h):
     // geometric topple angle 44.50 deg. Before them it toppled at 29.5 deg.
-    std::ifstream in(fs::path(__FILE__).parent_path().parent_path() / "scenes" / "tilt_cube.toml");
+    std::ifstream in(fs::path(ARMOUR_SOURCE_DIR) / "scenes" / "tilt_cube.toml");
     std::stringstream scene;
     scene << in.rdbuf();
     ASSERT_EQ(run(scene.str(), {"--set", "material.0.friction=1.2"}), 0) << err_;
@@ -434,7 +434,7 @@ TEST_F(Run, ExactHullsSlideAndToppleAtTheAnalyticAnglesInTheTiltScene) {
         [](const armour::EngineCapabilities &c) { return c.shape == armour::ShapeModel::convex_hulls; });
     if (!hulls)
         GTEST_SKIP() << "no exact-hull engine in this build";
-    std::ifstream in(fs::path(__FILE__).parent_path().parent_path() / "scenes" / "tilt_cube.toml");
+    std::ifstream in(fs::path(ARMOUR_SOURCE_DIR) / "scenes" / "tilt_cube.toml");
     std::stringstream scene;
     scene << in.rdbuf();
     for (const char *mu : {"0.3", "0.5", "1.2"}) {

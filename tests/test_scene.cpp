@@ -646,7 +646,7 @@ TEST_F(SceneFile, ResolvedSceneRoundTrips) {
 
 // The shipped examples load and say what their comments say.
 TEST(ExampleScenes, CoupledScenesLoadAsDescribed) {
-    const fs::path dir = fs::path(__FILE__).parent_path().parent_path() / "scenes";
+    const fs::path dir = fs::path(ARMOUR_SOURCE_DIR) / "scenes";
     const Scene b = load_scene((dir / "buoyancy_cube.toml").string());
     ASSERT_TRUE(b.fluid.has_value());
     EXPECT_EQ(b.analysis, "buoyancy");
@@ -673,7 +673,7 @@ TEST(ExampleScenes, CoupledScenesLoadAsDescribed) {
 // their loading and layout are checked here (the dam break also runs, made
 // short, in test_coupled).
 TEST(ExampleScenes, ReferenceCasesLoadAsDescribed) {
-    const fs::path dir = fs::path(__FILE__).parent_path().parent_path() / "scenes";
+    const fs::path dir = fs::path(ARMOUR_SOURCE_DIR) / "scenes";
     const Scene d = load_scene((dir / "dambreak_two_cubes.toml").string());
     EXPECT_EQ(d.analysis, "dambreak");
     ASSERT_TRUE(d.fluid.has_value());
@@ -712,7 +712,7 @@ TEST(ExampleScenes, ReferenceCasesLoadAsDescribed) {
 }
 
 TEST(ExampleScenes, LoadAsDescribed) {
-    const fs::path dir = fs::path(__FILE__).parent_path().parent_path() / "scenes";
+    const fs::path dir = fs::path(ARMOUR_SOURCE_DIR) / "scenes";
     const Scene drop = load_scene((dir / "drop_bounce.toml").string());
     EXPECT_EQ(drop.analysis, "bounce");
     ASSERT_EQ(drop.bodies.size(), 1u);
@@ -866,7 +866,7 @@ TEST_F(SceneFile, FluidRoundTripsAndOverrides) {
 
 namespace {
 
-const fs::path kSourceDir = fs::path(__FILE__).parent_path().parent_path();
+const fs::path kSourceDir = fs::path(ARMOUR_SOURCE_DIR);
 
 std::string file_text(const fs::path &p) {
     std::ifstream in(p, std::ios::binary);

@@ -594,8 +594,7 @@ TEST(Damage, ADrySlopeRunWritesEveryFileAndKey) {
     const std::filesystem::path dir = temporary("armour_test_damage_run");
     std::filesystem::remove_all(dir);
     const std::string scene =
-        (std::filesystem::path(__FILE__).parent_path().parent_path() / "scenes" / "slope_cubes.toml")
-            .string();
+        (std::filesystem::path(ARMOUR_SOURCE_DIR) / "scenes" / "slope_cubes.toml").string();
     const std::vector<std::string> args = {"armour",
                                            "run",
                                            scene,
