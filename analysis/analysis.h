@@ -29,7 +29,7 @@
 //     const double span = a->before_advance(engine.time(), engine);
 //     ...
 //     const std::string line = a->write(summary);
-//     if (const std::string why = analysis_refusal(scene, setup); !why.empty()) ...
+//     check_analysis_fits(scene, setup); // or analysis_refusal(scene, setup): the reason
 //     for (const auto &key : analysis_style(scene.analysis).headline_keys) ...
 #pragma once
 
@@ -96,6 +96,9 @@ const AnalysisStyle &analysis_style(const std::string &name);
 
 // Why scene.analysis cannot watch the scene's bodies; "" when it can.
 std::string analysis_refusal(const Scene &scene, const SceneSetup &setup);
+// Throws that refusal as an InputError naming the scene file and the key
+// `analysis.kind`, before any tool runs.
+void check_analysis_fits(const Scene &scene, const SceneSetup &setup);
 
 // The analysis for context.scene.analysis.
 std::unique_ptr<Analysis> make_analysis(const AnalysisContext &context);

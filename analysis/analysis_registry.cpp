@@ -33,6 +33,11 @@ std::string analysis_refusal(const Scene &scene, const SceneSetup &setup) {
     return style.refusal ? style.refusal(scene, setup) : std::string();
 }
 
+void check_analysis_fits(const Scene &scene, const SceneSetup &setup) {
+    if (const std::string why = analysis_refusal(scene, setup); !why.empty())
+        throw InputError(scene.file + ": key 'analysis.kind': " + why);
+}
+
 std::unique_ptr<Analysis> make_analysis(const AnalysisContext &context) {
     return analysis_style(context.scene.analysis).make(context);
 }

@@ -4,6 +4,7 @@
 #include "jonswap.h"
 #include "slope_profile.h"
 #include "standard_conditions.h"
+#include "wave_separation.h"
 
 #include <nlohmann/json.hpp>
 
@@ -160,13 +161,12 @@ class DamageAnalysis : public Analysis {
         std::vector<BodyState> reference(units_.size());
         for (std::size_t i = 0; i < units_.size(); ++i)
             reference[i].pose = units_[i].reference();
-        const LayerRegion region = layer_region(frame_, setup_, reference);
         std::optional<double> S;
         json settled_layer = nullptr; // the layer the waves met, as a profiler measures it
-        if (!region.bodies.empty()) {
-            const ArmourProfile before = armour_profile(frame_, setup_, reference, region);
-            S = eroded_area(before, armour_profile(frame_, setup_, last_, region)) / (Dn * Dn);
-            const LayerFigures f = layer_figures(setup_, region, before, scene_.layers);
+        if (!region_.bodies.empty()) {
+            const ArmourProfile before = armour_profile(frame_, setup_, reference, region_);
+            S = eroded_area(before, armour_profile(frame_, setup_, last_, region_)) / (Dn * Dn);
+            const LayerFigures f = layer_figures(setup_, region_, before, scene_.layers);
             settled_layer = {{"units_on_slope", f.units},
                              {"packing_density", f.packing_density},
                              {"porosity", f.porosity},
@@ -262,7 +262,8 @@ class DamageAnalysis : public Analysis {
                                 rest_time(scene_));
         history_.clear();
         start_ = t;
-        layer_width_ = layer_width(frame_, layer_region(frame_, setup_, states));
+        region_ = layer_region(frame_, setup_, states);
+        layer_width_ = layer_width(frame_, region_);
     }
 
     const Scene &scene_;
@@ -276,6 +277,7 @@ class DamageAnalysis : public Analysis {
     std::vector<BodyState> last_;
     std::string history_;
     double start_ = 0.0, end_ = 0.0;
+    LayerRegion region_;       // the face the layer covers at the reference
     double layer_width_ = 0.0; // m, across the slope at the reference
 };
 
@@ -369,12 +371,10 @@ WaveConditions wave_conditions(const json &summary, const Scene &scene, double d
         if (!regular) {
             const IrregularWaves c =
                 jonswap_components(train->hs, train->tp, train->gamma, train->components, train->seed);
-            double m0 = 0.0, m2 = 0.0;
-            for (std::size_t j = 0; j < c.frequency.size(); ++j) {
-                m0 += 0.5 * c.amplitude[j] * c.amplitude[j];
-                m2 += 0.5 * c.amplitude[j] * c.amplitude[j] * c.frequency[j] * c.frequency[j];
-            }
-            tm = std::sqrt(m0 / m2);
+            std::vector<double> density; // m^2/Hz, each component's a^2/2 over its bin
+            for (const double a : c.amplitude)
+                density.push_back(0.5 * a * a / c.frequency_step);
+            tm = spectral_parameters(c.frequency, density, c.frequency.front(), c.frequency.back()).tm02;
         }
         w.Hs = regular ? train->height : train->hs;
         w.s_om = 2.0 * kPi * *w.Hs / (g * tm * tm);

@@ -472,8 +472,7 @@ std::vector<std::string> check_coupled_scene(const Scene &scene, const SceneSetu
                                number_text(f.max_time_step) +
                                " s: fluid steps shorter than it run no engine step");
     }
-    if (const std::string why = analysis_refusal(scene, setup); !why.empty())
-        throw InputError(file + ": key 'analysis.kind': " + why);
+    check_analysis_fits(scene, setup);
     return warnings;
 }
 

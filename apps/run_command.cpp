@@ -554,8 +554,7 @@ std::vector<std::string> check_scene_runs(const Scene &scene, const std::string 
     const SceneSetup setup = build_scene(scene, cache_dir, false);
     if (scene.fluid)
         return check_coupled_scene(scene, setup, np > 0 ? np : scene.fluid->np);
-    if (const std::string why = analysis_refusal(scene, setup); !why.empty())
-        throw InputError(scene.file + ": key 'analysis.kind': " + why);
+    check_analysis_fits(scene, setup);
     std::vector<std::string> warnings = rocking_clump_warnings(scene, setup);
     // The engine's step, as run_dem asks it: from the materials and clumps,
     // before the engine starts (nothing is written, as in check_coupled_scene).
@@ -575,8 +574,7 @@ int run_scene(const RunRequest &r) {
         resume = checked_resume(r, scene, folder.target());
     SceneSetup setup = build_scene(scene, r.cache.empty() ? default_cache_dir() : r.cache, true);
     if (!scene.fluid) {
-        if (const std::string why = analysis_refusal(scene, setup); !why.empty())
-            throw InputError(r.scene + ": key 'analysis.kind': " + why);
+        check_analysis_fits(scene, setup);
         if (r.np != 0)
             throw InputError("--np: only for scenes with a [fluid] table (MPI ranks of interFoam)");
         for (const std::string &w : rocking_clump_warnings(scene, setup))
