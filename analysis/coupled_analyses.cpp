@@ -40,6 +40,10 @@ class History : public Analysis {
     double Dn(std::size_t body) const {
         return setup_.unit_Dn[static_cast<std::size_t>(setup_.bodies[body].unit)];
     }
+    // As the damage analysis counts it: analysis.displaced_threshold Dn or more.
+    bool displaced(double final_displacement, std::size_t body) const {
+        return final_displacement >= scene_.displaced_threshold * Dn(body);
+    }
     const SceneFluid &fluid() const { return *scene_.fluid; }
 
     const Scene &scene_;
@@ -230,7 +234,7 @@ class UnitMotionAnalysis : public History {
                              {"peak_force_x", m.peak_fx[b]},
                              {"first_move_time", first_move >= 0.0 ? json(first_move) : json(nullptr)},
                              {"moved", m.max_disp[b] > 0.1 * Dn(b)},
-                             {"displaced", m.final_disp[b] > Dn(b)},
+                             {"displaced", displaced(m.final_disp[b], b)},
                              {"Dn", Dn(b)},
                              {"left_domain", outside}});
         }
@@ -310,16 +314,16 @@ class WaveAnalysis : public UnitMotionAnalysis {
             for (std::size_t b = 0; b < bodies; ++b)
                 before = std::max(before, (position(s, b) - position(0, b)).norm());
         summary["max_displacement_before_wave"] = before;
-        int moved = 0, displaced = 0;
+        int moved = 0, displaced_units = 0;
         for (std::size_t b = 0; b < bodies; ++b) {
             moved += m.max_disp[b] > 0.1 * Dn(b) ? 1 : 0;
-            displaced += m.final_disp[b] > Dn(b) ? 1 : 0;
+            displaced_units += displaced(m.final_disp[b], b) ? 1 : 0;
         }
-        summary["units_moved"] = moved;         // largest displacement > 0.1 Dn
-        summary["units_displaced"] = displaced; // final displacement > Dn
+        summary["units_moved"] = moved;               // largest displacement > 0.1 Dn
+        summary["units_displaced"] = displaced_units; // final displacement >= displaced_threshold Dn
         char text[160];
         std::snprintf(text, sizeof text, "wave %.3g m at the gauge, %d of %zu units moved, %d displaced",
-                      gauge.empty() ? 0.0 : crest, moved, bodies, displaced);
+                      gauge.empty() ? 0.0 : crest, moved, bodies, displaced_units);
         return text;
     }
 };

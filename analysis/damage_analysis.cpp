@@ -5,6 +5,7 @@
 #include "slope_profile.h"
 #include "standard_conditions.h"
 #include "wave_separation.h"
+#include "wave_theory.h"
 
 #include <nlohmann/json.hpp>
 
@@ -50,7 +51,8 @@ double layer_width(const SlopeFrame &frame, const LayerRegion &region) {
     const double half = 0.5 * frame.width;
     const double lo = region.y_lo + half < region.Dn ? -half : region.y_lo;
     const double hi = half - region.y_hi < region.Dn ? half : region.y_hi;
-    return std::clamp(hi - lo, region.Dn, frame.width); // a layer is at least one strip wide
+    // A layer is at least one strip wide (a wall narrower than a Dn: the wall).
+    return std::min(frame.width, std::max(region.Dn, hi - lo));
 }
 
 // Van der Meer's (1988) cube tests: a 1:1.5 slope, N up to 7500, s_om
@@ -174,7 +176,8 @@ class DamageAnalysis : public Analysis {
                              {"layer_coefficient", f.layer_coefficient}};
         }
 
-        const WaveConditions w = wave_conditions(summary, scene_, std::max(0.0, end_ - start_));
+        const WaveConditions w =
+            wave_conditions(summary, scene_, acting_seconds(scene_, frame_.origin.x(), start_, end_));
         const double rho_s = unit_density();
         const double rho_w = scene_.fluid ? scene_.fluid->fluid_density : kFreshWaterDensity;
         std::optional<double> Ns, vdm, vdm_n_od, vdm_units;
@@ -196,7 +199,7 @@ class DamageAnalysis : public Analysis {
         summary["Ns"] = nullable(Ns);
         summary["s_om"] = nullable(w.s_om);
         if (!summary.contains("waves") || !summary["waves"].is_object())
-            summary["waves"] = nullable(w.waves); // else the incident-wave analysis's object holds N
+            summary["waves"] = nullable(w.waves); // else the incident-wave analysis's object
         summary["damage_S"] = nullable(S);
         summary["Ns_van_der_meer"] = nullable(vdm);
         summary["N_od_van_der_meer"] = nullable(vdm_n_od);
@@ -205,6 +208,7 @@ class DamageAnalysis : public Analysis {
         summary["Ns_hudson_nonbreaking"] = hudson_ns(7.5, frame_.cot);
         summary["damage"] = {{"Hs", nullable(w.Hs)},
                              {"wave_source", w.source},
+                             {"waves", nullable(w.waves)},
                              {"delta", rho_s / rho_w - 1.0},
                              {"Dn", Dn},
                              {"slope_width", frame_.width},
@@ -289,11 +293,15 @@ UnitDamageTracker::UnitDamageTracker(const Pose &reference, double Dn, double ro
       threshold_(rocking_threshold_deg), rest_time_(rest_time) {}
 
 void UnitDamageTracker::sample(double t, const Pose &pose) {
+    // A record coarser than a quarter of the rest time cannot tell a rest from
+    // a rocking unit caught at one phase of its swing: it never rests.
+    const bool coarse = !std::isnan(last_t_) && t - last_t_ > rest_time_ / kRestSamples;
+    last_t_ = t;
     displacement_ = (pose.position - reference_.position).norm() / Dn_;
     max_displacement_ = std::max(max_displacement_, displacement_);
     max_rotation_ = std::max(max_rotation_, rotation_between_deg(reference_.orientation, pose.orientation));
     // A unit that rests somewhere new has a new seat: it rocks about that one.
-    if (std::isnan(still_since_) ||
+    if (std::isnan(still_since_) || coarse ||
         rotation_between_deg(still_at_.orientation, pose.orientation) > 0.1 * threshold_ ||
         (pose.position - still_at_.position).norm() > 0.02 * Dn_) {
         still_at_ = pose;
@@ -319,6 +327,17 @@ double rest_time(const Scene &scene) {
                  : scene.waves->type == "regular" ? scene.waves->period
                                                   : period;
     return std::max(2.0, period);
+}
+
+double acting_seconds(const Scene &scene, double toe_x, double start, double end) {
+    double arrival = start;
+    if (scene.fluid && scene.waves && scene.waves->type != "solitary") {
+        const SceneWaves &w = *scene.waves;
+        const double depth = scene.fluid->water_level - scene.domain_min.z();
+        const double cg = group_velocity(w.type == "regular" ? w.period : w.tp, depth, scene.gravity.norm());
+        arrival = std::max(start, std::max(0.0, toe_x - scene.domain_min.x()) / cg);
+    }
+    return std::max(0.0, end - arrival);
 }
 
 double rotation_between_deg(const Eigen::Quaterniond &a, const Eigen::Quaterniond &b) {
@@ -355,10 +374,10 @@ WaveConditions wave_conditions(const json &summary, const Scene &scene, double d
     };
     if (summary.contains("waves") && summary["waves"].is_object()) {
         const json &m = summary["waves"];
-        w.Hs = number(m, "incident_height");
-        w.s_om = number(m, "s_om");
-        w.waves = number(m, "waves");
-        if (w.Hs) {
+        if (const std::optional<double> Hs = number(m, "incident_height")) {
+            w.Hs = Hs;
+            w.s_om = number(m, "s_om");
+            w.waves = number(m, "waves");
             w.source = "measured";
             return w;
         }

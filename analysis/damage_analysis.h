@@ -21,9 +21,10 @@
 //
 //     The wave figures come from WaveConditions: measured ones when the run
 //     reports an incident-wave analysis (summary `waves`: incident_height,
-//     s_om, waves), else the scene's target (analysis.wave_height, else
-//     fluid.wave_height; analysis.wave_period for s_om and N); a figure with
-//     no source is null.
+//     s_om, waves), else analysis.wave_height (analysis.wave_period for s_om
+//     and N), else the [waves] train's target, else fluid.wave_height; a
+//     figure with no source is null. `damage.waves` is the N the figures
+//     used, whatever its source.
 //
 // Usage
 //     UnitDamageTracker unit(reference_pose, Dn, 5.0, rest_time(scene));
@@ -46,7 +47,8 @@ namespace armour {
 // One unit's motion from its reference pose. Displacement and rotation are
 // measured from the reference; rocking from the unit's seat: the reference,
 // or where it last rested (stayed within a tenth of the threshold and 0.02 Dn
-// of one pose for rest_time, over at least kRestSamples records). A rocking
+// of one pose for rest_time, over at least kRestSamples records no more than
+// rest_time / kRestSamples apart: a coarser record never rests). A rocking
 // event is a turn from the seat past the threshold that comes back below half
 // of it; a unit that comes to rest tilted has moved to a new seat, not rocked.
 class UnitDamageTracker {
@@ -64,6 +66,7 @@ class UnitDamageTracker {
     Pose reference_, seat_, still_at_;
     double Dn_, threshold_, rest_time_;
     double still_since_ = std::nan(""); // s, set by the first sample
+    double last_t_ = std::nan("");      // s, the previous sample
     int still_samples_ = 0;
     double displacement_ = 0.0, max_displacement_ = 0.0, max_rotation_ = 0.0;
     bool turned_ = false;
@@ -102,7 +105,13 @@ struct WaveConditions {
 // analysis.wave_height and wave_period ("scene"), else the [waves] train's
 // target at the maker ("target": H and T, or Hs and the Tm0,2 of its
 // JONSWAP components), else fluid.wave_height ("scene"); `duration` s of
-// record after the reference give N.
+// waves at the structure give N (acting_seconds).
 WaveConditions wave_conditions(const nlohmann::json &summary, const Scene &scene, double duration);
+
+// s: how long the waves have acted on a structure whose toe is at toe_x (m)
+// over a record from `start` to `end` (s): from the front's arrival at the
+// toe (the wave maker's train at the group velocity of T or Tp over the
+// still-water depth), or from `start` when there is no [waves] train.
+double acting_seconds(const Scene &scene, double toe_x, double start, double end);
 
 } // namespace armour

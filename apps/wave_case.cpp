@@ -46,11 +46,6 @@ double target_height(const SceneWaves &w) {
     return w.type == "regular" ? w.height : w.hs;
 }
 
-double group_velocity(double period, double depth, double g) {
-    const double k = wave_number(period, depth, g), kh2 = 2.0 * k * depth;
-    return 0.5 * (2.0 * M_PI / period / k) * (1.0 + kh2 / std::sinh(kh2));
-}
-
 // The Mansard-Funke array (x, x + L/10, x + L/4), each moved to the centre
 // of its column of cells (a point on a face would sit in two columns).
 std::vector<double> gauge_positions(const Scene &scene) {

@@ -91,7 +91,9 @@ bench_args() {
 # checkpoint CHECKPOINT (a folder name under RUN_DIR/checkpoints; the copy's
 # later ones dropped) to END s through `armour run --resume` with the run's
 # resolved scene (the fluid written at END only); armour's output in DIR.log.
-# Returns armour's status.
+# $bench_case_edit, when set, runs (eval) in the copy's case folder before the
+# resume: a resume keeps the case's system/ files, so a window can try a solver
+# setting no scene key holds. Returns armour's status.
 bench_resume_window() {
   local run_dir="$1" checkpoint="$2" end="$3" dir="$4" c
   shift 4
@@ -104,6 +106,9 @@ bench_resume_window() {
     fi
   done
   cp "$run_dir/scene.resolved.toml" "$dir.scene.toml" || return
+  if [ -n "${bench_case_edit:-}" ]; then
+    (cd "$dir/case" && eval "$bench_case_edit") || return
+  fi
   "$build/apps/armour" run "$dir.scene.toml" --out "$dir" --set "run.duration=$end" \
     --set "fluid.write_interval=$end" --resume "$@" >"$dir.log" 2>&1
 }

@@ -94,19 +94,20 @@ const std::vector<Key<Scene>> &analysis_keys() {
             "slope, damage: both held this long; slope then stops the run, else reports settled = false")
             .in(Range::above(0)),
         key("displaced_threshold", &Scene::displaced_threshold, "",
-            "damage: a unit is displaced when it ends at least this many Dn from its settled position "
-            "(1 Dn is physical-model practice)")
+            "damage (and platform, slope_waves): a unit is displaced when it ends at least this many Dn "
+            "from its settled (first recorded) position (1 Dn is physical-model practice)")
             .in(Range::above(0)),
         key("rocking_threshold_deg", &Scene::rocking_threshold_deg, "deg",
-            "damage: a rocking event turns a unit past this from its settled pose and back below "
-            "half of it (a choice: no published threshold)")
+            "damage: a rocking event turns a unit past this from its seat (its settled pose, or where "
+            "it last came to rest) and back below half of it (a choice: no published threshold)")
             .in(Range::open(0, 180)),
         key("wave_height", &Scene::wave_height, "m",
-            "damage: Hs of Ns when the run measures no incident wave; 0 = fluid.wave_height")
+            "damage: Hs of Ns when the run measures no incident wave; 0 = the [waves] train's target, "
+            "else fluid.wave_height")
             .in(Range::at_least(0)),
         key("wave_period", &Scene::wave_period, "s",
-            "damage: Tm of s_om = 2 pi Hs/(g Tm^2) and of N = duration/Tm when the run measures none; "
-            "0 = none")
+            "damage: Tm of s_om = 2 pi Hs/(g Tm^2) and of N = (seconds of waves at the toe)/Tm with "
+            "wave_height; 0 = none")
             .in(Range::at_least(0)),
     };
     return keys;

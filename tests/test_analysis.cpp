@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -278,6 +279,29 @@ TEST(AnalysisRegistry, StillReportsTheLargestDriftOfAnyUnit) {
     EXPECT_NE(analysis->write(summary).find("max displacement"), std::string::npos);
     EXPECT_NEAR(summary["max_displacement"].get<double>(), 0.003, 1e-15);
     EXPECT_NEAR(summary["max_displacement_over_Dn"].get<double>(), 0.015, 1e-15);
+}
+
+// The reference-case kinds count a unit displaced as the damage analysis
+// does: a final displacement of analysis.displaced_threshold Dn or more
+// (Dn 0.2 m here: 0.19, 0.20 and 0.25 m).
+TEST(AnalysisRegistry, WaveKindsCountDisplacedUnitsAtTheScenesThreshold) {
+    for (const auto &[threshold, expected] : {std::pair(1.0, 2), std::pair(1.2, 1), std::pair(0.5, 3)}) {
+        BallScene b;
+        b.scene.analysis = "slope_waves";
+        b.scene.fluid = armour::SceneFluid();
+        b.scene.displaced_threshold = threshold;
+        b.setup.bodies.resize(3, b.setup.bodies[0]);
+        const auto analysis = armour::make_analysis({b.scene, b.setup, "", ""});
+        std::vector<BodyState> states(3, ball_at(0.05, 0, 0));
+        analysis->sample(0.0, states);
+        for (std::size_t k = 0; k < 3; ++k)
+            states[k].pose.position.x() += std::array{0.19, 0.2, 0.25}[k];
+        analysis->sample(1.0, states);
+        nlohmann::json summary = nlohmann::json::object();
+        analysis->write(summary);
+        EXPECT_EQ(summary["units_displaced"].get<int>(), expected) << threshold;
+        EXPECT_EQ(summary["per_unit"][1]["displaced"].get<bool>(), threshold <= 1.0) << threshold;
+    }
 }
 
 TEST(AnalysisRegistry, CoupledKindsRefuseADryScene) {

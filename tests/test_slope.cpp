@@ -333,21 +333,22 @@ TEST(Damage, RockingIsAnExcursionThatComesBack) {
     EXPECT_NEAR(unit.max_rotation_deg(), 9.0, 1e-9);
     EXPECT_EQ(unit.max_displacement(), 0.0);
 
-    // It comes to rest at 8 degrees (within a tenth of the threshold for
-    // kRestTime): a new seat, not an event. It then rocks about that seat
-    // twice (past 5 degrees from it and back below 2.5), which counted from
-    // the settled pose, never back below 2.5 degrees, would be no event.
-    for (const double deg : {8.2, 7.9, 8.0})
-        unit.sample(t += 0.75, turned(deg));
+    // It comes to rest at 8 degrees (within a tenth of the threshold for the
+    // rest time, 2 s, in records 0.4 s apart: under a quarter of it): a new
+    // seat, not an event. It then rocks about that seat twice (past 5
+    // degrees from it and back below 2.5), which counted from the settled
+    // pose, never back below 2.5 degrees, would be no event.
+    for (const double deg : {8.2, 7.9, 8.0, 8.1, 7.95, 8.0, 8.05})
+        unit.sample(t += 0.4, turned(deg));
     EXPECT_EQ(unit.rocking_events(), 2);
     for (const double deg : {10.0, 14.0, 9.0, 8.1, 12.0, 13.5, 10.0, 7.5, 8.0})
         unit.sample(t += 0.1, turned(deg));
     EXPECT_EQ(unit.rocking_events(), 4);
     EXPECT_NEAR(unit.max_rotation_deg(), 14.0, 1e-9);
-    // Resting less than kRestTime is no new seat: 13.5 -> 8 is one more
+    // Resting less than the rest time is no new seat: 13.5 -> 8 is one more
     // event about the 8-degree seat.
     for (const double deg : {13.5, 13.6, 13.5})
-        unit.sample(t += 0.5, turned(deg));
+        unit.sample(t += 0.4, turned(deg));
     unit.sample(t += 0.1, turned(8.0));
     EXPECT_EQ(unit.rocking_events(), 5);
 
@@ -358,6 +359,13 @@ TEST(Damage, RockingIsAnExcursionThatComesBack) {
     for (const double deg : {0.0, 8.0, 8.0, 1.0})
         coarse.sample(t += 2.5, turned(deg));
     EXPECT_EQ(coarse.rocking_events(), 1);
+    // However long it holds a pose: records 2.5 s apart may catch a unit
+    // rocking once a wave at one phase of its swing, so they never rest.
+    armour::UnitDamageTracker held(rest, 0.2, 5.0, 2.0);
+    t = 0.0;
+    for (const double deg : {0.0, 8.0, 8.0, 8.0, 8.0, 8.0, 1.0})
+        held.sample(t += 2.5, turned(deg));
+    EXPECT_EQ(held.rocking_events(), 1);
 
     // The rest time is a wave period, at least 2 s.
     armour::Scene scene;
@@ -387,6 +395,12 @@ TEST(Damage, WaveConditionsPreferTheMeasuredIncidentWave) {
     EXPECT_DOUBLE_EQ(*m.waves, 480.0);
     scene.wave_height = 0.0;
     EXPECT_EQ(armour::wave_conditions(nlohmann::json::object(), scene, 100.0).source, "none");
+    // A waves object without a measured height (a record too short for the
+    // analysis) lends none of its figures.
+    const nlohmann::json unmeasured = {{"waves", {{"s_om", 0.03}, {"waves", 480}}}};
+    const armour::WaveConditions none = armour::wave_conditions(unmeasured, scene, 100.0);
+    EXPECT_EQ(none.source, "none");
+    EXPECT_FALSE(none.s_om || none.waves || none.Hs);
 
     // No measured waves and no analysis.wave_height: the [waves] train's target.
     scene.waves = armour::SceneWaves();
@@ -416,6 +430,27 @@ TEST(Damage, WaveConditionsPreferTheMeasuredIncidentWave) {
     EXPECT_EQ(armour::wave_conditions(nlohmann::json::object(), scene, 100.0).source, "scene");
     // The measured incident wave comes before both.
     EXPECT_EQ(armour::wave_conditions(measured, scene, 100.0).source, "measured");
+}
+
+// N counts the waves at the structure: from the front's arrival at the toe,
+// at the group velocity; deep water (T = 1 s, h = 10 m, kh = 40): g T / (4 pi).
+TEST(Damage, WavesActFromTheFrontsArrivalAtTheToe) {
+    armour::Scene scene;
+    scene.domain_min = Eigen::Vector3d(-2.0, 0.0, 0.0);
+    scene.gravity = Eigen::Vector3d(0.0, 0.0, -9.81);
+    EXPECT_DOUBLE_EQ(armour::acting_seconds(scene, 5.0, 1.0, 30.0), 29.0); // no train: the record
+    scene.fluid = armour::SceneFluid();
+    scene.fluid->water_level = 10.0;
+    scene.waves = armour::SceneWaves();
+    scene.waves->type = "regular";
+    scene.waves->period = 1.0;
+    const double cg = 9.81 / (4.0 * M_PI);
+    const double toe_x = 10.0 * cg - 2.0; // 10 s from the maker at x = -2 m
+    EXPECT_NEAR(armour::acting_seconds(scene, toe_x, 0.0, 30.0), 20.0, 1e-6);
+    EXPECT_NEAR(armour::acting_seconds(scene, toe_x, 12.0, 30.0), 18.0, 1e-12); // a record after it
+    EXPECT_EQ(armour::acting_seconds(scene, toe_x, 0.0, 8.0), 0.0);             // before it
+    scene.waves->type = "solitary";
+    EXPECT_DOUBLE_EQ(armour::acting_seconds(scene, toe_x, 0.0, 30.0), 30.0);
 }
 
 // A layer of 4 rows x 5 touching cubes across a 1 m slope (5 strips of Dn):

@@ -184,6 +184,16 @@ TEST(StabilityCubes, ShortIrregularRunWritesEveryDamageFileAndKey) {
     EXPECT_DOUBLE_EQ(early["damage"]["Hs"].get<double>(), w["target_height"].get<double>());
     EXPECT_NEAR(early["Ns"].get<double>(),
                 w["target_height"].get<double>() / (early["damage"]["delta"].get<double>() * kDn), 1e-9);
+    // N (in damage.waves, the summary's waves object holds no count) is the
+    // waves since the front reached the toe (x = 1.40 m; linear theory's
+    // group velocity at Tp in h = 0.40 m: 1.57 m/s, between 1 m/s and the
+    // shallow-water sqrt(g h)), at the target's Tm0,2 from s_om.
+    ASSERT_TRUE(early["damage"]["waves"].is_number()) << early["damage"].dump();
+    const double tm =
+        std::sqrt(2 * M_PI * early["damage"]["Hs"].get<double>() / (9.81 * early["s_om"].get<double>()));
+    const double acting = early["damage"]["waves"].get<double>() * tm, end = early["simulated_seconds"];
+    EXPECT_LT(acting, end - 1.40 / std::sqrt(9.81 * 0.40));
+    EXPECT_GT(acting, end - 1.40 / 1.0);
     // A record whose scene does not match, and an --until before the record or
     // not a number: one error line, exit 2, no report folder.
     const fs::path copy = run.dir / "copy";

@@ -27,6 +27,11 @@ double wavelength(double period, double depth, double g) {
     return 2.0 * M_PI / wave_number(period, depth, g);
 }
 
+double group_velocity(double period, double depth, double g) {
+    const double k = wave_number(period, depth, g), kh2 = 2.0 * k * depth;
+    return 0.5 * (2.0 * M_PI / period / k) * (1.0 + kh2 / std::sinh(kh2));
+}
+
 double ursell_number(double height, double period, double depth, double g) {
     const double L = wavelength(period, depth, g);
     return height * L * L / (depth * depth * depth);

@@ -45,6 +45,8 @@ constexpr double kStockWavelengthMinKh = 0.34;
 // k (1/m) of a wave of `period` (s) in `depth` (m): omega^2 = g k tanh(k h), Newton to 1e-14.
 double wave_number(double period, double depth, double g);
 double wavelength(double period, double depth, double g);
+// m/s: linear theory's group velocity, c/2 (1 + 2kh / sinh 2kh).
+double group_velocity(double period, double depth, double g);
 // H L^2 / h^3.
 double ursell_number(double height, double period, double depth, double g);
 // Miche: the steepest wave of this period in this depth, m.
