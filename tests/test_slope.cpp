@@ -644,7 +644,9 @@ TEST(Damage, ADrySlopeRunWritesEveryFileAndKey) {
                                            "--set",
                                            "drop.0.count=6",
                                            "--set",
-                                           "analysis.wave_height=0.3"};
+                                           "analysis.wave_height=0.3",
+                                           "--set",
+                                           "analysis.wave_period=2.0"};
     std::vector<const char *> argv;
     for (const auto &a : args)
         argv.push_back(a.c_str());
@@ -653,12 +655,15 @@ TEST(Damage, ADrySlopeRunWritesEveryFileAndKey) {
         EXPECT_TRUE(std::filesystem::is_regular_file(dir / "out" / file)) << file;
     std::ifstream in(dir / "out" / "summary.json");
     const nlohmann::json summary = nlohmann::json::parse(in);
-    for (const char *key :
-         {"units", "units_displaced", "N_od", "rocking_units", "Ns", "s_om", "waves", "damage_S",
-          "Ns_van_der_meer", "N_od_van_der_meer", "units_displaced_van_der_meer", "Ns_hudson_breaking",
-          "Ns_hudson_nonbreaking", "damage"})
-        EXPECT_TRUE(summary.contains(key)) << key;
+    // With analysis.wave_height and wave_period every figure has a source: a number.
+    for (const char *key : {"units", "units_displaced", "N_od", "rocking_units", "Ns", "s_om", "waves",
+                            "damage_S", "Ns_van_der_meer", "N_od_van_der_meer",
+                            "units_displaced_van_der_meer", "Ns_hudson_breaking", "Ns_hudson_nonbreaking"})
+        EXPECT_TRUE(summary.contains(key) && summary[key].is_number()) << key;
+    EXPECT_TRUE(summary["damage"].is_object());
     EXPECT_EQ(summary["units"].get<int>(), 6);
     EXPECT_NEAR(summary["Ns"].get<double>(), 0.3 / (1.4 * 0.2), 1e-9);
+    EXPECT_NEAR(summary["s_om"].get<double>(), 2 * M_PI * 0.3 / (9.81 * 4.0),
+                1e-3 * summary["s_om"].get<double>());
     std::filesystem::remove_all(dir);
 }

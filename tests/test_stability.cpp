@@ -100,7 +100,7 @@ TEST(StabilityCubes, ShortIrregularRunWritesEveryDamageFileAndKey) {
     for (const char *key : {"units", "units_displaced", "N_od", "rocking_units", "Ns", "s_om", "waves",
                             "damage_S", "Ns_van_der_meer", "N_od_van_der_meer",
                             "units_displaced_van_der_meer", "Ns_hudson_breaking", "Ns_hudson_nonbreaking"})
-        EXPECT_TRUE(s.contains(key)) << key;
+        EXPECT_TRUE(s.contains(key) && (std::string(key) == "waves" || s[key].is_number())) << key;
     ASSERT_TRUE(s["waves"].is_object()) << run.output;
     const json &w = s["waves"];
     for (const char *key : {"target_height", "target_period", "incident_height", "incident_period",
