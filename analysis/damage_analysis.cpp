@@ -121,6 +121,8 @@ class DamageAnalysis : public Analysis {
     }
 
     void sample(double t, const std::vector<BodyState> &states) override {
+        if (!units_.empty())
+            largest_gap_ = std::max(largest_gap_, t - end_);
         last_ = states;
         end_ = t;
         if (units_.empty() || (wait_for_settle_ && !settled_)) {
@@ -243,6 +245,16 @@ class DamageAnalysis : public Analysis {
             for (const std::string &o : outside)
                 line += " " + o + (&o == &outside.back() ? "" : ",");
         }
+        const double rest = rest_time(scene_);
+        if (largest_gap_ > rest / UnitDamageTracker::kRestSamples) {
+            const std::string coarse =
+                "damage: records up to " + num(largest_gap_) + " s apart, over a quarter of the rest time " +
+                num(rest) +
+                " s: no unit finds a new seat, rocking is counted from the settled pose (a "
+                "finer run.output_interval)";
+            summary["warnings"].push_back(coarse);
+            line += "; " + coarse.substr(8);
+        }
         if (std::system(command.c_str()) != 0)
             line += "; no damage.png: analysis/damage_chart.py failed (needs python3-matplotlib)";
         return line;
@@ -266,6 +278,7 @@ class DamageAnalysis : public Analysis {
                                 rest_time(scene_));
         history_.clear();
         start_ = t;
+        largest_gap_ = 0.0;
         region_ = layer_region(frame_, setup_, states);
         layer_width_ = layer_width(frame_, region_);
     }
@@ -281,6 +294,7 @@ class DamageAnalysis : public Analysis {
     std::vector<BodyState> last_;
     std::string history_;
     double start_ = 0.0, end_ = 0.0;
+    double largest_gap_ = 0.0; // s, between records since the reference
     LayerRegion region_;       // the face the layer covers at the reference
     double layer_width_ = 0.0; // m, across the slope at the reference
 };

@@ -493,6 +493,8 @@ TEST(Damage, SyntheticTrajectoriesGiveTheirKnownFigures) {
     analysis->sample(t += 0.5, now);
     nlohmann::json summary = nlohmann::json::object();
     analysis->write(summary);
+    EXPECT_FALSE(summary.contains("warnings"))
+        << summary["warnings"].dump(); // records a quarter of 2 s apart
     EXPECT_EQ(summary["units"].get<int>(), 20);
     EXPECT_EQ(summary["units_displaced"].get<int>(), 5);
     EXPECT_DOUBLE_EQ(summary["N_od"].get<double>(), 1.0);
@@ -566,6 +568,11 @@ TEST(Damage, NodCountsTheLayersStripsAndVanDerMeersRangeIsStated) {
         EXPECT_NEAR(summary["damage"]["layer_width"].get<double>(), width, 1e-12);
         EXPECT_DOUBLE_EQ(summary["damage"]["slope_width"].get<double>(), 1.0);
         EXPECT_NEAR(summary["N_od"].get<double>(), 1.0 / (width / kA), 1e-12);
+        // Records 1 s apart, over a quarter of the rest time (2 s): said so.
+        ASSERT_EQ(summary["warnings"].size(), 1u) << summary.dump();
+        EXPECT_NE(summary["warnings"][0].get<std::string>().find("records up to 1 s apart"),
+                  std::string::npos);
+        EXPECT_NE(line.find("no unit finds a new seat"), std::string::npos) << line;
         const nlohmann::json &outside = summary["damage"]["van_der_meer_outside"];
         if (columns == 2) {
             EXPECT_TRUE(outside.empty()) << outside.dump();
