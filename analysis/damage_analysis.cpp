@@ -121,8 +121,6 @@ class DamageAnalysis : public Analysis {
     }
 
     void sample(double t, const std::vector<BodyState> &states) override {
-        if (!units_.empty())
-            largest_gap_ = std::max(largest_gap_, t - end_);
         last_ = states;
         end_ = t;
         if (units_.empty() || (wait_for_settle_ && !settled_)) {
@@ -245,15 +243,14 @@ class DamageAnalysis : public Analysis {
             for (const std::string &o : outside)
                 line += " " + o + (&o == &outside.back() ? "" : ",");
         }
-        const double rest = rest_time(scene_);
-        if (largest_gap_ > rest / UnitDamageTracker::kRestSamples) {
+        const double gap = units_.empty() ? 0.0 : units_.front().largest_record_gap(); // all alike
+        if (const double rest = rest_time(scene_); gap > rest / UnitDamageTracker::kRestSamples) {
             const std::string coarse =
-                "damage: records up to " + num(largest_gap_) + " s apart, over a quarter of the rest time " +
-                num(rest) +
-                " s: no unit finds a new seat, rocking is counted from the settled pose (a "
-                "finer run.output_interval)";
-            summary["warnings"].push_back(coarse);
-            line += "; " + coarse.substr(8);
+                "records up to " + num(gap) + " s apart, over a quarter of the rest time " + num(rest) +
+                " s: no unit finds a new seat, rocking is counted from the settled pose "
+                "(a finer run.output_interval)";
+            summary["warnings"].push_back("damage: " + coarse);
+            line += "; " + coarse;
         }
         if (std::system(command.c_str()) != 0)
             line += "; no damage.png: analysis/damage_chart.py failed (needs python3-matplotlib)";
@@ -278,7 +275,6 @@ class DamageAnalysis : public Analysis {
                                 rest_time(scene_));
         history_.clear();
         start_ = t;
-        largest_gap_ = 0.0;
         region_ = layer_region(frame_, setup_, states);
         layer_width_ = layer_width(frame_, region_);
     }
@@ -294,7 +290,6 @@ class DamageAnalysis : public Analysis {
     std::vector<BodyState> last_;
     std::string history_;
     double start_ = 0.0, end_ = 0.0;
-    double largest_gap_ = 0.0; // s, between records since the reference
     LayerRegion region_;       // the face the layer covers at the reference
     double layer_width_ = 0.0; // m, across the slope at the reference
 };
@@ -309,7 +304,9 @@ UnitDamageTracker::UnitDamageTracker(const Pose &reference, double Dn, double ro
 void UnitDamageTracker::sample(double t, const Pose &pose) {
     // A record coarser than a quarter of the rest time cannot tell a rest from
     // a rocking unit caught at one phase of its swing: it never rests.
-    const bool coarse = !std::isnan(last_t_) && t - last_t_ > rest_time_ / kRestSamples;
+    const double gap = std::isnan(last_t_) ? 0.0 : t - last_t_;
+    const bool coarse = gap > rest_time_ / kRestSamples;
+    largest_gap_ = std::max(largest_gap_, gap);
     last_t_ = t;
     displacement_ = (pose.position - reference_.position).norm() / Dn_;
     max_displacement_ = std::max(max_displacement_, displacement_);

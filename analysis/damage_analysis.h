@@ -60,6 +60,7 @@ class UnitDamageTracker {
     double max_displacement() const { return max_displacement_; } // Dn
     double max_rotation_deg() const { return max_rotation_; }
     int rocking_events() const { return rocking_events_; }
+    double largest_record_gap() const { return largest_gap_; } // s, between samples
     const Pose &reference() const { return reference_; }
 
   private:
@@ -67,6 +68,7 @@ class UnitDamageTracker {
     double Dn_, threshold_, rest_time_;
     double still_since_ = std::nan(""); // s, set by the first sample
     double last_t_ = std::nan("");      // s, the previous sample
+    double largest_gap_ = 0.0;          // s
     int still_samples_ = 0;
     double displacement_ = 0.0, max_displacement_ = 0.0, max_rotation_ = 0.0;
     bool turned_ = false;
