@@ -48,9 +48,8 @@ TEST(WaveFlume, RegularWaveHeightPeriodAndReflection) {
     // Height at each of the three gauges (mean zero-crossing height over the
     // window): within 5 % of H (the brief's bound). The gauges see the
     // incident wave and the outlet's reflection together, so each may differ
-    // from H by up to the reflection coefficient. Measured +2.7, +2.9, +0.5 %
-    // (incident first harmonic +0.5 %, Kr 1.6 %; with p_rgh's tolerances of
-    // before 2026-11-26, 1e-7 and 0.01: +3.9, +3.0, +0.2 %, +0.8 %, 2.0 %).
+    // from H by up to the reflection coefficient. Measured +3.9, +3.0, +0.2 %
+    // (incident first harmonic +0.8 %, Kr 2.0 %).
     for (const double h : w["gauge_heights"])
         EXPECT_NEAR(h / H, 1.0, 0.05) << "gauge height " << h << " m";
     for (const double t : w["gauge_periods"])
@@ -79,8 +78,7 @@ TEST(WaveFlume, RegularWaveHeightPeriodAndReflection) {
 // needs the deterministic train (a random one would need ~1000 s, 750
 // waves, for sigma = 2.5 %). What is left is the flume's: measured Hm0
 // 0.0492 m (-1.5 %), Tp 1.600 s, Kr 6.8 % (docs/waves.md; with Euler in
-// time it was -11.4 %; measured with p_rgh's tolerances of before
-// 2026-11-26, not re-measured with today's). 5 % on Hm0 and Tp is the brief's bound.
+// time it was -11.4 %). 5 % on Hm0 and Tp is the brief's bound.
 TEST(WaveFlume, IrregularHm0AndTp) {
     const SceneRun run = run_flume("irregular", "--set waves.type='\"irregular\"' --set run.duration=35");
     ASSERT_EQ(run.status, 0) << run.output;
@@ -107,8 +105,7 @@ TEST(WaveFlume, IrregularHm0AndTp) {
 // flume's; and blockMesh's points are the node lines the gauges were centred
 // with. Measured: heights +2.9, +2.5, +0.4 %, periods within 0.2 %, Kr 1.9 %,
 // incident H +0.3 % (with 0.5 for every cell: +1.6, +2.8, +1.8 %, Kr 1.7 %,
-// +0.5 %; both with p_rgh's tolerances of before 2026-11-26, not re-measured);
-// 302 x 1 x 48 = 14 496 cells (the uniform 2.5 cm mesh: 24 000).
+// +0.5 %); 302 x 1 x 48 = 14 496 cells (the uniform 2.5 cm mesh: 24 000).
 TEST(WaveFlume, GradedMeshKeepsTheRegularWaveAndIsTheMeshTheGaugesAssume) {
     const std::vector<std::string> grading = {"fluid.cells=[400, 1, 60]",
                                               "fluid.refine_min=[5.0, 0.0, 0.25]",
