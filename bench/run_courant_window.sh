@@ -24,8 +24,8 @@
 #   --seconds    simulated seconds of the window (default 2)
 #   --max-courant, --max-interface-courant  the second row's limits (default 1.0 and 0.5)
 #   --pressure-tolerance, --pressure-rel-tol  the second row's p_rgh tolerance
-#                and relTol (default: as the run's case has them; the template since
-#                2026-11-26: 1e-6 and 0.05, before: 1e-7 and 0.01)
+#                and relTol (default: as the run's case has them; the template's
+#                1e-7 and 0.01)
 #   --np         ranks of both rows (default the checkpoint's)
 #   --out        default ${TMPDIR:-/tmp}/armour-bench/courant_window
 set -euo pipefail
