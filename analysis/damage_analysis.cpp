@@ -332,20 +332,15 @@ void UnitDamageTracker::sample(double t, const Pose &pose) {
 }
 
 double rest_time(const Scene &scene) {
-    double period = scene.wave_period;
-    if (scene.waves)
-        period = scene.waves->type == "irregular" ? scene.waves->tp
-                 : scene.waves->type == "regular" ? scene.waves->period
-                                                  : period;
-    return std::max(2.0, period);
+    const bool train = scene.waves && scene.waves->type != "solitary";
+    return std::max(2.0, train ? scene.waves->target_period() : scene.wave_period);
 }
 
 double acting_seconds(const Scene &scene, double toe_x, double start, double end) {
     double arrival = start;
     if (scene.fluid && scene.waves && scene.waves->type != "solitary") {
-        const SceneWaves &w = *scene.waves;
-        const double depth = scene.fluid->water_level - scene.domain_min.z();
-        const double cg = group_velocity(w.type == "regular" ? w.period : w.tp, depth, scene.gravity.norm());
+        const double cg =
+            group_velocity(scene.waves->target_period(), scene.still_water_depth(), scene.gravity.norm());
         arrival = std::max(start, std::max(0.0, toe_x - scene.domain_min.x()) / cg);
     }
     return std::max(0.0, end - arrival);

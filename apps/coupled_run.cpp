@@ -9,6 +9,7 @@
 #include "fluid_models.h"
 #include "flume_mesh.h"
 #include "foam_restart.h"
+#include "foam_tool.h"
 #include "openfoam_environment.h"
 #include "output_folder.h"
 #include "report_command.h"
@@ -29,6 +30,7 @@
 #include <fcntl.h>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <regex>
@@ -85,93 +87,6 @@ std::vector<Eigen::Vector3d> posed_vertices(const SceneSetup &setup, const BodyI
     for (const auto &v : setup.units[b.unit].mesh.vertices)
         out.push_back(b.pose.position + b.pose.orientation * v);
     return out;
-}
-
-// Runs one tool in the case folder, output to log.<name>, with a progress
-// line from the solver's "Time =" lines (from start_time: a resume's
-// checkpoint); throws InputError on failure with the tool's FOAM FATAL line.
-void run_tool(const std::string &name, const std::vector<std::string> &args, const fs::path &case_dir,
-              double end_time, bool show_progress, double start_time = 0.0) {
-    const fs::path log = case_dir / ("log." + name);
-    std::vector<char *> argv;
-    for (const auto &a : args)
-        argv.push_back(const_cast<char *>(a.c_str()));
-    argv.push_back(nullptr);
-    const std::string dir = case_dir.string(), log_path = log.string();
-    const pid_t armour = ::getpid();
-    const pid_t pid = ::fork();
-    if (pid < 0)
-        throw InputError(name + ": cannot start: " + std::strerror(errno));
-    if (pid == 0) {
-        // interFoam is the run (the engine lives in its plugin): killed alone,
-        // `armour run` must not leave it going on to the end in the background
-        // (mpirun passes the signal to its ranks).
-        if (::prctl(PR_SET_PDEATHSIG, SIGTERM) != 0 || ::getppid() != armour)
-            ::_exit(127);
-        const int fd = ::open(log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        if (fd < 0 || ::chdir(dir.c_str()) != 0)
-            ::_exit(127);
-        ::dup2(fd, STDOUT_FILENO);
-        ::dup2(fd, STDERR_FILENO);
-        ::execvp(argv[0], argv.data());
-        ::_exit(127);
-    }
-    const bool terminal = ::isatty(STDERR_FILENO) != 0;
-    const auto start = std::chrono::steady_clock::now();
-    SolverProgress progress(start_time, end_time);
-    double solver_time = start_time; // until the solver's first "Time =" line
-    int status = 0;
-    long naps = 0;
-    for (;;) {
-        const pid_t done = ::waitpid(pid, &status, WNOHANG);
-        if (done == pid)
-            break;
-        if (done < 0 && errno != EINTR)
-            throw InputError(name + ": lost the process: " + std::strerror(errno));
-        // Short naps, so that the wall time measured around a tool is good to
-        // ~10 ms; the log is read for progress every 250 ms only.
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-        if (!show_progress || ++naps % 25 != 0)
-            continue;
-        // The tail: reading all of a long run's log (100 MB) took a sixth of a core.
-        const double t = solver_time =
-            std::max(solver_time, last_solver_time(read_text_file_tail(log, 1 << 16)));
-        const double fraction = std::min(1.0, t / end_time);
-        const double elapsed =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        if (terminal)
-            std::fprintf(stderr, "\r[%-30s] t = %.3f / %.3f s  ETA %.0f s ",
-                         std::string(static_cast<std::size_t>(30 * fraction), '#').c_str(), t, end_time,
-                         progress.seconds_left(t, elapsed).value_or(0.0));
-        else if (const std::string line = progress.line(t, elapsed); !line.empty())
-            std::fputs(line.c_str(), stderr);
-    }
-    if (show_progress && terminal)
-        std::fputc('\n', stderr);
-    const std::string text = read_text_file(log);
-    const std::string fatal = fatal_line(text);
-    const bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
-    // mpirun may exit 0 although a rank reported FOAM FATAL.
-    if (!ok || !fatal.empty()) {
-        std::string why = fatal;
-        if (why.empty()) {
-            if (WIFEXITED(status) && WEXITSTATUS(status) == 127)
-                why = "could not run " + args[0];
-            else {
-                std::istringstream in(text);
-                std::vector<std::string> lines;
-                for (std::string l; std::getline(in, l);)
-                    if (!l.empty())
-                        lines.push_back(l);
-                for (std::size_t i = lines.size() > 3 ? lines.size() - 3 : 0; i < lines.size(); ++i)
-                    why += (why.empty() ? "" : " | ") + lines[i];
-                if (WIFSIGNALED(status))
-                    why = "killed by signal " + std::to_string(WTERMSIG(status)) +
-                          (why.empty() ? "" : ": " + why);
-            }
-        }
-        throw InputError(name + " failed (see " + log.string() + "): " + why);
-    }
 }
 
 // Fills @TOKENS@ in every file of the copied case; a token left over is a
@@ -625,9 +540,11 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
             run_tool("decomposePar", {"decomposePar", "-force"}, case_dir, scene.duration, false);
     }
     const std::vector<std::string> malloc_settings = keep_solver_memory();
+    const StepFloor step_floor{f.min_time_step, scene.file};
     const auto solver_start = std::chrono::steady_clock::now();
     if (f.np == 1) {
-        run_tool("interFoam", {"interFoam"}, case_dir, scene.duration, true, resume ? resume->time : 0.0);
+        run_tool("interFoam", {"interFoam"}, case_dir, scene.duration, true, resume ? resume->time : 0.0,
+                 step_floor);
     } else {
         std::vector<std::string> mpirun = {"mpirun", "--allow-run-as-root", "-np", std::to_string(f.np)};
         for (const auto &name : {std::string("WM_PROJECT_DIR"), std::string("LD_LIBRARY_PATH"),
@@ -636,7 +553,8 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
         for (const auto &name : malloc_settings)
             mpirun.insert(mpirun.end(), {"-x", name});
         mpirun.insert(mpirun.end(), {"interFoam", "-parallel"});
-        run_tool("interFoam", mpirun, case_dir, scene.duration, true, resume ? resume->time : 0.0);
+        run_tool("interFoam", mpirun, case_dir, scene.duration, true, resume ? resume->time : 0.0,
+                 step_floor);
     }
     const double solver_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - solver_start).count();
@@ -682,6 +600,7 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
           // A resumed run's coupling steps go on from its checkpoint; its log starts there.
           {"steps", resume ? coupling_steps(out) : solver_log.steps},
           {"max_time_step", f.max_time_step},
+          {"min_time_step", f.min_time_step},
           {"max_courant", f.max_courant},
           {"max_interface_courant", f.max_interface_courant},
           {"water_level", f.water_level},

@@ -175,7 +175,7 @@ TurbulenceStart turbulence_start(const Scene &scene) {
     const SceneFluid &f = *scene.fluid;
     // The reference speed: the shallow-water celerity at the still-water depth
     // (the mesh's height for a dry start, a dam break's column).
-    double depth = f.water_level - scene.domain_min.z();
+    double depth = scene.still_water_depth();
     if (depth <= 0.0)
         depth = scene.domain_max.z() - scene.domain_min.z();
     const double speed = std::sqrt(scene.gravity.norm() * depth);
@@ -187,7 +187,24 @@ TurbulenceStart turbulence_start(const Scene &scene) {
     return s;
 }
 
+// p_rghFinal copied p_rgh ($p_rgh) when the template was read, so it takes
+// the absolute tolerance again; its relTol stays the template's 0.
+void write_pressure_solve(const SceneFluid &f, const fs::path &case_dir) {
+    std::string p_rgh, final;
+    if (f.pressure_tolerance) {
+        p_rgh += "        tolerance       " + number_text(*f.pressure_tolerance) + ";\n";
+        final = p_rgh;
+    }
+    if (f.pressure_relative_tolerance)
+        p_rgh += "        relTol          " + number_text(*f.pressure_relative_tolerance) + ";\n";
+    append(case_dir / "system" / "fvSolution",
+           "solvers\n{\n    p_rgh\n    {\n" + p_rgh + "    }\n" +
+               (final.empty() ? "" : "    p_rghFinal\n    {\n" + final + "    }\n") + "}\n");
+}
+
 void write_fluid_models(const Scene &scene, const fs::path &case_dir) {
+    if (scene.fluid->pressure_tolerance || scene.fluid->pressure_relative_tolerance)
+        write_pressure_solve(*scene.fluid, case_dir);
     if (scene.fluid->turbulence != "laminar")
         write_turbulence(scene, case_dir);
     if (needs_porous_zones(scene))
@@ -209,6 +226,10 @@ void add_fluid_models_summary(const Scene &scene, json &summary) {
         turbulence["nut0_over_nu"] = s.nut / f.viscosity;
     }
     summary["fluid"]["turbulence"] = turbulence;
+    // null: the template's own (its system/fvSolution).
+    summary["fluid"]["pressure_tolerance"] = f.pressure_tolerance ? json(*f.pressure_tolerance) : json(nullptr);
+    summary["fluid"]["pressure_relative_tolerance"] =
+        f.pressure_relative_tolerance ? json(*f.pressure_relative_tolerance) : json(nullptr);
     if (scene.porous.empty())
         return;
     json regions = json::array();

@@ -482,6 +482,7 @@ std::string resumable_form(Scene s, bool resumable_keys = true) {
             // anew for other ranks).
             s.fluid->np = 1;
             s.fluid->max_courant = s.fluid->max_interface_courant = 1.0;
+            s.fluid->min_time_step = 0.0; // a watch on the solver; its default follows the limits
         }
     }
     std::istringstream text(resolved_scene_toml(s));
@@ -500,9 +501,11 @@ void refuse_if_differs(const std::string &scene_file, const std::string &now, co
     std::string la, lb;
     while (std::getline(a, la) && std::getline(b, lb) && la == lb) {
     }
-    throw InputError(scene_file + ": differs from the scene that " + where + " ('" + la + "' against '" + lb +
-                     "'); a resume may change only run.duration, run.checkpoint_interval, "
-                     "fluid.write_interval, fluid.max_courant, fluid.max_interface_courant and --np");
+    throw InputError(
+        scene_file + ": differs from the scene that " + where + " ('" + la + "' against '" + lb +
+        "'); a resume may change only run.duration, run.checkpoint_interval, "
+        "fluid.write_interval, fluid.max_courant, fluid.max_interface_courant, fluid.min_time_step and "
+        "--np");
 }
 
 // The checkpoint `armour run --resume` continues from, after checking that

@@ -31,6 +31,25 @@ double last_solver_time(const std::string &log) {
     return at == std::string::npos ? 0.0 : std::atof(log.c_str() + at + 8);
 }
 
+SolverStep smallest_time_step(const std::string &lines) {
+    SolverStep smallest;
+    bool reached = true; // the smallest step's "Time =" line was read
+    std::istringstream in(lines);
+    for (std::string line; std::getline(in, line);) {
+        if (line.rfind("deltaT = ", 0) == 0) {
+            const double dt = std::atof(line.c_str() + 9);
+            if (dt > 0.0 && (smallest.time_step == 0.0 || dt < smallest.time_step)) {
+                smallest = {dt, 0.0};
+                reached = false;
+            }
+        } else if (!reached && line.rfind("Time = ", 0) == 0) {
+            smallest.time = std::atof(line.c_str() + 7);
+            reached = true;
+        }
+    }
+    return smallest;
+}
+
 SolverProgress::SolverProgress(double start, double end, double every_wall)
     : start_(start), end_(end), every_wall_(every_wall) {}
 

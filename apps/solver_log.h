@@ -5,7 +5,8 @@
 //     failed tool's one line), the time of the step being solved (progress),
 //     the number of steps, its CPU clock per step and the largest Courant
 //     numbers it reported, every cell's and the free surface's (0.01 < alpha
-//     < 0.99), and the steps that passed the run's Courant limits. Times in s.
+//     < 0.99), the steps that passed the run's Courant limits, and the
+//     smallest step of a part of the log (the step floor). Times in s.
 //
 // Usage
 //     const std::string log = read_text_file(case_dir / "log.interFoam");
@@ -23,6 +24,15 @@ std::string fatal_line(const std::string &log);
 
 // Last "Time = t" of a solver log (the step being solved), 0 when none.
 double last_solver_time(const std::string &log);
+
+// The smallest "deltaT = dt" of whole lines of a solver log, and the
+// "Time = t" after it (the time that step reached; 0 if not in `lines`), s.
+// time_step 0: no step in `lines`.
+struct SolverStep {
+    double time_step = 0.0;
+    double time = 0.0;
+};
+SolverStep smallest_time_step(const std::string &lines);
 
 // A Courant limit passed by more than 10 %. interFoam sets each step from
 // the Courant number of the step before, so a flow that speeds up passes the

@@ -34,23 +34,11 @@ std::string after_front(double end, double front) {
            " s after the wave front reaches the gauges (" + figure_text(front) + " s)";
 }
 
-double depth_of(const Scene &scene) {
-    return scene.fluid->water_level - scene.domain_min.z();
-}
-
-double period_of(const SceneWaves &w) {
-    return w.type == "regular" ? w.period : w.tp;
-}
-
-double target_height(const SceneWaves &w) {
-    return w.type == "regular" ? w.height : w.hs;
-}
-
 // The Mansard-Funke array (x, x + L/10, x + L/4), each moved to the centre
 // of its column of cells (a point on a face would sit in two columns).
 std::vector<double> gauge_positions(const Scene &scene) {
     const SceneWaves &w = *scene.waves;
-    const double L = wavelength(period_of(w), depth_of(scene), scene.gravity.norm());
+    const double L = wavelength(w.target_period(), scene.still_water_depth(), scene.gravity.norm());
     const MeshAxis along = flume_mesh(scene).axes[0];
     std::vector<double> x;
     for (const double at : {*w.gauge_x, *w.gauge_x + 0.1 * L, *w.gauge_x + 0.25 * L})
@@ -77,7 +65,7 @@ std::string outlet_velocity(const Scene &scene) {
     if (w.outlet == "shallow_water")
         return "type            waveVelocity;\n        value           uniform (0 0 0);";
     // Linear celerity at T (Tp): the depth-mean velocity of a wave leaving is c eta / h.
-    const double depth = depth_of(scene), period = period_of(w);
+    const double depth = scene.still_water_depth(), period = w.target_period();
     const double c = wavelength(period, depth, scene.gravity.norm()) / period;
     return "type            armourShallowWaterAbsorption;\n        waterDepth      " + num(depth) +
            ";\n        celerity        " + num(c) + ";\n        value           uniform (0 0 0);";
@@ -167,8 +155,8 @@ void wave_tokens(const Scene &scene, const std::string &template_text,
 void add_wave_summary(const Scene &scene, const fs::path &case_dir, OutputFolder &folder, json &summary,
                       double until) {
     const SceneWaves &w = *scene.waves;
-    const double depth = depth_of(scene), g = scene.gravity.norm();
-    const double period = period_of(w), H = target_height(w);
+    const double depth = scene.still_water_depth(), g = scene.gravity.norm();
+    const double period = w.target_period(), H = w.target_height();
     const bool regular = w.type == "regular";
     const std::vector<double> x = gauge_positions(scene);
     GaugeRecord rec = read_gauges(case_dir, scene.fluid->water_level, 3);

@@ -141,7 +141,16 @@ struct SceneFluid {
     double max_courant = 0.5;                  // interFoam maxCo: every cell
     double max_interface_courant = 0.5;        // interFoam maxAlphaCo (the parser's default: max_courant)
     double max_time_step = 0.005;              // s, largest fluid step (at most run.output_interval)
-    double write_interval = 0.0;               // s between field writes (the parser's default: run.duration)
+    // s: a fluid step below this stops the run with an error (a diverged flow
+    // or a stalled pressure solve shrinks the step without end). The parser's
+    // default: the step of a 1 km/s flow through the smallest cell at the
+    // smaller Courant limit, at most max_time_step / 100.
+    double min_time_step = 0.0;
+    double write_interval = 0.0; // s between field writes (the parser's default: run.duration)
+    // p_rgh's solve (OpenFOAM's normalised residuals): stop at this absolute
+    // residual, and in the correctors before the last at this fraction of the
+    // initial one. Unset: the template's (docs/openfoam.md).
+    std::optional<double> pressure_tolerance, pressure_relative_tolerance;
     // Optional water column (dam break): water in this box at the start, besides
     // the water below water_level (which may then be left at domain_min.z: dry).
     bool has_water_box = false;
@@ -211,6 +220,10 @@ struct SceneWaves {
     bool active_absorption = true;    // inlet absorbs waves coming back
     std::string outlet = "absorbing"; // absorbing | shallow_water | wall
     std::optional<double> gauge_x;    // m, first gauge of the array (default: one wavelength from the inlet)
+
+    // The train's own period (s) and height (m): T and H regular, Tp and Hs irregular.
+    double target_period() const { return type == "regular" ? period : tp; }
+    double target_height() const { return type == "regular" ? height : hs; }
 };
 
 struct Scene {
@@ -253,6 +266,9 @@ struct Scene {
     std::optional<SceneFluid> fluid; // [fluid]: a coupled interFoam run
     std::optional<SceneWaves> waves; // [waves]: needs [fluid]
     std::vector<ScenePorous> porous; // [[porous]]: needs [fluid]
+
+    // m: fluid.water_level above the flume's floor run.domain_min.z (a scene with [fluid]).
+    double still_water_depth() const { return fluid->water_level - domain_min.z(); }
 };
 
 // `overrides` are "dotted.key=toml_value" strings (from --set).

@@ -186,10 +186,25 @@ const std::vector<Key<SceneFluid>> &fluid_keys() {
         key("max_time_step", &F::max_time_step, "s", "largest fluid step; <= run.output_interval")
             .in(Range::above(0))
             .defaults("min(0.005, `run.output_interval`)"),
+        key("min_time_step", &F::min_time_step, "s",
+            "a fluid step below this stops the run with one error line: the flow diverged or the pressure "
+            "solve stalled (the solver would go on at ever smaller steps); < max_time_step")
+            .in(Range::above(0))
+            .defaults("min(the smaller Courant limit x the smallest cell / 1000 m/s, `max_time_step` / 100)"),
         key("write_interval", &F::write_interval, "s",
             "time between OpenFOAM field writes in OUT/case; <= run.duration")
             .in(Range::above(0))
             .defaults("`run.duration`"),
+        key("pressure_tolerance", &F::pressure_tolerance, "",
+            "p_rgh's solve stops at this normalised residual, in every corrector (docs/openfoam.md: "
+            "looser is cheaper, and stalled a turbulent flume at 1e-6)")
+            .in(Range::open(0, 1))
+            .defaults("the template's (1e-7 wave templates, 1e-8 tank ones)"),
+        key("pressure_relative_tolerance", &F::pressure_relative_tolerance, "",
+            "p_rgh's solve also stops at this fraction of its initial residual, in the correctors before "
+            "the last")
+            .in(Range::open(0, 1))
+            .defaults("the template's (0.01; 0.05 solitary_flume)"),
         key("frozen", &F::frozen, "",
             "benchmark reference: units held, mask imposed once, no loads, no engine advance"),
         key("mirror_interior", &F::mirror_interior, "",

@@ -293,6 +293,14 @@ void read_fluid(const Table &root, Scene &s) {
                                            vector_text(fine) + " m along one (got " + vector_text(coarse) +
                                            ")");
     }
+    // 1 km/s, three times the speed of sound in air, is no flow a flume
+    // holds: an incompressible solver that steps for it has diverged.
+    if (!t.has("min_time_step"))
+        f.min_time_step = std::min(std::min(f.max_courant, f.max_interface_courant) *
+                                       f.fine_cell(extent).minCoeff() / 1000.0,
+                                   f.max_time_step / 100.0);
+    t.check(f.min_time_step < f.max_time_step, "min_time_step",
+            "must be in (0, max_time_step = " + number_text(f.max_time_step) + ") s", f.min_time_step);
     t.check(f.air_density < f.fluid_density, "air_density",
             "must be in (0, fluid_density = " + number_text(f.fluid_density) + ") kg/m^3", f.air_density);
     t.check(f.max_time_step <= s.output_interval, "max_time_step",
@@ -334,9 +342,9 @@ void read_waves(const Table &root, Scene &s) {
         s.waves = w;
         return;
     }
-    const double depth = s.fluid->water_level - s.domain_min.z(), g = s.gravity.norm();
+    const double depth = s.still_water_depth(), g = s.gravity.norm();
     const bool regular = w.type == "regular";
-    const double period = regular ? w.period : w.tp;
+    const double period = w.target_period();
     if (regular) {
         w.theory = regular_theory(w.theory, w.height, w.period, depth, g);
         const std::string why = regular_wave_refusal(w.theory, w.height, w.period, depth, g);

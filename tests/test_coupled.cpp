@@ -606,6 +606,38 @@ TEST(CoupledRun, InterfaceCourantLimitReachesTheCase) {
     clean(r);
 }
 
+// A fluid step below fluid.min_time_step stops the run at once with one line
+// naming the key (a diverged flow or a stalled pressure solve shrinks the
+// step without end; the real stall: Turbulence.LooserPressureSolve... in
+// test_fluid_models.cpp). Here the floor is set above a step the dam break
+// takes (1.8 ms after its first 5 ms step), on 2 ranks: mpirun and its ranks
+// are stopped, the case and logs stay, no summary.
+TEST(CoupledRun, StepBelowTheFloorStopsTheRun) {
+    const Outcome r = armour_run("dambreak_two_cubes.toml", "step_floor",
+                                 {"--set", "fluid.cell_size=0.04", "--set", "run.duration=0.6", "--set",
+                                  "fluid.min_time_step=0.002", "--np", "2"});
+    EXPECT_EQ(r.status, 2);
+    const std::string error = r.err.substr(std::min(r.err.find("armour: error: "), r.err.size()));
+    EXPECT_EQ(error.find('\n'), error.size() - 1) << r.err; // one line, the last
+    EXPECT_NE(error.find("key 'fluid.min_time_step': interFoam's step fell to 0.001"), std::string::npos)
+        << r.err;
+    EXPECT_NE(error.find("below 0.002 s"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(r.out / "summary.json"));
+    std::ifstream log(r.out / "case" / "log.interFoam");
+    std::stringstream text;
+    text << log.rdbuf();
+    EXPECT_LT(armour::last_solver_time(text.str()), 0.3) << "the run went on after the dip";
+    // No live process works in the case (stopped ranks may linger as zombies, which hold nothing).
+    const fs::path case_dir = fs::canonical(r.out / "case");
+    for (const auto &entry : fs::directory_iterator("/proc")) {
+        std::error_code ec;
+        const fs::path cwd = fs::read_symlink(entry.path() / "cwd", ec);
+        EXPECT_TRUE(ec || cwd != case_dir)
+            << "process " << entry.path().filename() << " still runs in the case";
+    }
+    clean(r);
+}
+
 // The solvers armour starts keep freed memory in the heap (docs/openfoam.md,
 // "The solver's memory": 0.88 x the CPU per serial step at Dn/4); a user's
 // own glibc settings, or ARMOUR_SOLVER_MALLOC=glibc, are left alone.
@@ -668,6 +700,20 @@ TEST(SolverLog, CountsStepsPastTheCourantLimitsAndWhatSetTheStep) {
     EXPECT_EQ(f.interface_courant_over.after_capped_steps, 0);
     const armour::SolverLogFigures unchecked = armour::solver_log_figures(log);
     EXPECT_EQ(unchecked.courant_over.steps + unchecked.interface_courant_over.steps, 0);
+    // The smallest step and the time it reached (its "Time =" follows it);
+    // a step whose "Time =" is not yet written reached an unknown time.
+    const armour::SolverStep smallest = armour::smallest_time_step(log);
+    EXPECT_DOUBLE_EQ(smallest.time_step, 0.0025);
+    EXPECT_DOUBLE_EQ(smallest.time, 0.0105);
+    const armour::SolverStep dip =
+        armour::smallest_time_step("deltaT = 0.002\nTime = 1.002\ndeltaT = 1.2e-06\nTime = 1.0020012\ndeltaT "
+                                   "= 0.001\nTime = 1.0030012\n");
+    EXPECT_DOUBLE_EQ(dip.time_step, 1.2e-6);
+    EXPECT_DOUBLE_EQ(dip.time, 1.0020012);
+    const armour::SolverStep open = armour::smallest_time_step(log + "deltaT = 1.2e-25\n");
+    EXPECT_DOUBLE_EQ(open.time_step, 1.2e-25);
+    EXPECT_DOUBLE_EQ(open.time, 0.0);
+    EXPECT_DOUBLE_EQ(armour::smallest_time_step("Create time\n").time_step, 0.0);
 }
 
 // A resume sets the case's paths anew from its template (a moved run folder,

@@ -610,3 +610,104 @@ TEST(Turbulence, KOmegaSSTFlumeRunsAndReportsItsHeight) {
     if (!HasFailure())
         fs::remove_all(dir);
 }
+
+// Past the edge of the pressure solve: the turbulent flume above with p_rgh
+// solved to 1e-6 and 5 % (the laminar stability scene's setting) loses its
+// step at t = 7.27 s (measured: 5 ms to 2e-6 s and below, where it went on
+// at 1e-25 s until killed before the step floor existed). The run stops
+// there with one line naming fluid.min_time_step (the default floor: 0.5 x
+// 1 cm / 1000 m/s = 5e-6 s), instead of running for ever; ~40 s.
+TEST(Turbulence, LooserPressureSolveStallsAndTheRunStopsWithOneLine) {
+    const fs::path dir = temp_dir("turbulence_stall");
+    const std::string cmd =
+        std::string("'") + ARMOUR_EXE + "' run '" + ARMOUR_SOURCE_DIR + "/scenes/wave_flume.toml' --out '" +
+        (dir / "out").string() +
+        "' --set 'fluid.turbulence=\"kOmegaSST\"' --set fluid.turbulence_intensity=0.01 "
+        "--set fluid.pressure_tolerance=1e-6 --set fluid.pressure_relative_tolerance=0.05 > '" +
+        (dir / "run.log").string() + "' 2>&1";
+    const int rc = std::system(cmd.c_str());
+    const std::string out = read_text_file(dir / "run.log");
+    ASSERT_TRUE(WIFEXITED(rc) && WEXITSTATUS(rc) == 2) << out;
+    const std::string error = out.substr(std::min(out.find("armour: error: "), out.size()));
+    EXPECT_EQ(error.find('\n'), error.size() - 1) << out;
+    EXPECT_NE(error.find("wave_flume.toml: key 'fluid.min_time_step': interFoam's step fell to "),
+              std::string::npos)
+        << out;
+    EXPECT_NE(error.find("below 5e-06 s"), std::string::npos) << out;
+    const std::smatch at = [&] {
+        std::smatch m;
+        std::regex_search(error, m, std::regex(R"(at t = ([0-9.]+) s)"));
+        return m;
+    }();
+    ASSERT_EQ(at.size(), 2u) << error;
+    EXPECT_GT(std::stod(at[1]), 3.0) << "the pressure solve held through the ramp";
+    EXPECT_LT(std::stod(at[1]), 32.0);
+    EXPECT_FALSE(fs::exists(dir / "out/summary.json"));
+    if (!HasFailure())
+        fs::remove_all(dir);
+}
+
+// fluid.pressure_tolerance and pressure_relative_tolerance reach p_rgh's
+// solve in every corrector (the last solves p_rghFinal, relTol 0): OpenFOAM
+// reads them from the case (foamDictionary merges the appended entries), and every p_rgh solve of
+// the shipped empty flume's first 0.3 s stops where they say, the last of
+// each step at the absolute tolerance, which the template's 1e-7 would not
+// let pass (some final residuals lie above it).
+TEST(PressureSolve, ToleranceKeysSetEveryCorrectorsStop) {
+    const fs::path dir = temp_dir("pressure_solve");
+    const std::string cmd = std::string("'") + ARMOUR_EXE + "' run '" + ARMOUR_SOURCE_DIR +
+                            "/scenes/wave_flume.toml' --out '" + (dir / "out").string() +
+                            "' --set run.duration=0.3 --set fluid.pressure_tolerance=2e-6 --set "
+                            "fluid.pressure_relative_tolerance=0.03 > '" +
+                            (dir / "run.log").string() + "' 2>&1";
+    const int rc = std::system(cmd.c_str());
+    ASSERT_TRUE(WIFEXITED(rc) && WEXITSTATUS(rc) == 0) << read_text_file(dir / "run.log");
+    const fs::path case_dir = dir / "out/case";
+    for (const auto &[entry, value] :
+         std::vector<std::pair<std::string, double>>{{"p_rgh/tolerance", 2e-6},
+                                                     {"p_rgh/relTol", 0.03},
+                                                     {"p_rghFinal/tolerance", 2e-6},
+                                                     {"p_rghFinal/relTol", 0.0},
+                                                     {"\"U.*\"/tolerance", 1e-8}}) {
+        const fs::path read = dir / "entry.txt";
+        ASSERT_EQ(run_foam(case_dir, "foamDictionary -entry 'solvers/" + entry +
+                                         "' -value system/fvSolution > '" + read.string() + "' 2>&1"),
+                  0)
+            << entry << ": " << read_text_file(read);
+        EXPECT_DOUBLE_EQ(std::stod(read_text_file(read)), value) << entry;
+    }
+    // "GAMG:  Solving for p_rgh, Initial residual = a, Final residual = b, No Iterations n"
+    const std::string log = read_text_file(case_dir / "log.interFoam");
+    const std::regex solve(R"(Solving for p_rgh, Initial residual = ([^,]+), Final residual = ([^,]+),)");
+    std::vector<std::pair<double, double>> step; // one step's solves
+    int steps = 0, above_template = 0;
+    const auto close_step = [&] {
+        for (std::size_t i = 0; i < step.size(); ++i) {
+            const auto [initial, final] = step[i];
+            if (i + 1 == step.size()) {
+                EXPECT_LE(final, 2e-6) << "step " << steps;
+                above_template += final > 1e-7;
+            } else {
+                EXPECT_LE(final, std::max(2e-6, 0.03 * initial) * (1 + 1e-9)) << "step " << steps;
+            }
+        }
+        steps += !step.empty();
+        step.clear();
+    };
+    std::istringstream lines(log);
+    for (std::string line; std::getline(lines, line);) {
+        std::smatch m;
+        if (line.rfind("Time = ", 0) == 0)
+            close_step();
+        else if (std::regex_search(line, m, solve))
+            step.emplace_back(std::stod(m[1]), std::stod(m[2]));
+    }
+    close_step();
+    EXPECT_GT(steps, 10);
+    EXPECT_GT(above_template, 0) << "every last solve met the template's 1e-7 anyway";
+    const json summary = json::parse(read_text_file(dir / "out/summary.json"));
+    EXPECT_DOUBLE_EQ(summary["fluid"]["pressure_tolerance"].get<double>(), 2e-6);
+    EXPECT_DOUBLE_EQ(summary["fluid"]["pressure_relative_tolerance"].get<double>(), 0.03);
+    if (!HasFailure())
+        fs::remove_all(dir);
+}

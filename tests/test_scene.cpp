@@ -806,6 +806,15 @@ TEST_F(SceneFile, FluidDefaultsAndCellSize) {
                                                  "max_courant = 1\nmax_interface_courant = 0.5\n"));
     EXPECT_DOUBLE_EQ(air.fluid->max_courant, 1.0);
     EXPECT_DOUBLE_EQ(air.fluid->max_interface_courant, 0.5);
+    // The step floor: a 1 km/s flow through the smallest cell at the smaller
+    // Courant limit (0.5 x 0.5 m / 1000 m/s), at most max_time_step / 100.
+    EXPECT_DOUBLE_EQ(f.min_time_step, 0.005 / 100.0); // 0.5 x 0.5 m / 1000 m/s = 2.5e-4 s, capped
+    EXPECT_DOUBLE_EQ(air.fluid->min_time_step, 0.005 / 100.0);
+    const Scene fine = load_scene(
+        write(std::string(kMinimal) + "[fluid]\nwater_level = 1\ncell_size = 0.01\nmax_courant = 0.8\n"));
+    EXPECT_DOUBLE_EQ(fine.fluid->min_time_step, 0.8 * 0.01 / 1000.0);
+    EXPECT_FALSE(f.pressure_tolerance.has_value()); // the template's
+    EXPECT_FALSE(f.pressure_relative_tolerance.has_value());
 }
 
 TEST_F(SceneFile, FluidErrorsNameLineAndKey) {
@@ -823,6 +832,12 @@ TEST_F(SceneFile, FluidErrorsNameLineAndKey) {
                  "(0, 1]");
     expect_error(at("water_level = 1\ncells = [4, 4, 4]\nmax_interface_courant = 0.6\n"), 17,
                  "fluid.max_interface_courant", "(0, max_courant = 0.5]");
+    expect_error(at("water_level = 1\ncells = [4, 4, 4]\nmin_time_step = 0.005\n"), 17, "fluid.min_time_step",
+                 "(0, max_time_step = 0.005) s");
+    expect_error(at("water_level = 1\ncells = [4, 4, 4]\npressure_tolerance = 0\n"), 17,
+                 "fluid.pressure_tolerance", "(0, 1)");
+    expect_error(at("water_level = 1\ncells = [4, 4, 4]\npressure_relative_tolerance = 1\n"), 17,
+                 "fluid.pressure_relative_tolerance", "(0, 1)");
     expect_error(at("water_level = 1\ncells = [4, 4, 4]\npenalty = 0\n"), 17, "fluid.penalty", "> 0");
     expect_error(at("water_level = 1\ncells = [4, 4, 4]\nmask = \"clump\"\n"), 17, "fluid.mask",
                  "\"exact\", \"spheres\"");

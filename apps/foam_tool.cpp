@@ -1,0 +1,163 @@
+#include "foam_tool.h"
+
+#include "mesh.h"
+#include "output_folder.h"
+#include "scene_keys.h"
+#include "solver_log.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <fcntl.h>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
+
+namespace armour {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The whole lines a growing log gained since byte `offset`, which moves past them.
+std::string new_log_lines(const fs::path &log, std::uintmax_t &offset) {
+    std::ifstream in(log, std::ios::binary);
+    if (!in.seekg(static_cast<std::streamoff>(offset)))
+        return "";
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    text.resize(text.rfind('\n') + 1); // npos + 1 = 0: no whole line yet
+    offset += text.size();
+    return text;
+}
+
+// Stops a tool (mpirun passes the signal to its ranks) and reaps it.
+void stop_tool(pid_t pid) {
+    ::kill(pid, SIGTERM);
+    for (int naps = 0; naps < 1000; ++naps) { // 10 s, then for good
+        int status = 0;
+        if (::waitpid(pid, &status, WNOHANG) != 0)
+            return;
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, nullptr, 0);
+}
+
+} // namespace
+
+void run_tool(const std::string &name, const std::vector<std::string> &args, const fs::path &case_dir,
+              double end_time, bool show_progress, double start_time, const StepFloor &floor) {
+    const fs::path log = case_dir / ("log." + name);
+    std::vector<char *> argv;
+    for (const auto &a : args)
+        argv.push_back(const_cast<char *>(a.c_str()));
+    argv.push_back(nullptr);
+    const std::string dir = case_dir.string(), log_path = log.string();
+    const pid_t armour = ::getpid();
+    const pid_t pid = ::fork();
+    if (pid < 0)
+        throw InputError(name + ": cannot start: " + std::strerror(errno));
+    if (pid == 0) {
+        // interFoam is the run (the engine lives in its plugin): killed alone,
+        // `armour run` must not leave it going on to the end in the background
+        // (mpirun passes the signal to its ranks).
+        if (::prctl(PR_SET_PDEATHSIG, SIGTERM) != 0 || ::getppid() != armour)
+            ::_exit(127);
+        const int fd = ::open(log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (fd < 0 || ::chdir(dir.c_str()) != 0)
+            ::_exit(127);
+        ::dup2(fd, STDOUT_FILENO);
+        ::dup2(fd, STDERR_FILENO);
+        ::execvp(argv[0], argv.data());
+        ::_exit(127);
+    }
+    const bool terminal = ::isatty(STDERR_FILENO) != 0;
+    // Every step is checked against the floor: a dip between two looks at the
+    // log's tail counts as much as a collapse.
+    std::uintmax_t log_checked = 0;
+    const auto check_floor = [&](double solver_time_now, bool running) {
+        if (floor.min_time_step <= 0.0)
+            return;
+        const SolverStep step = smallest_time_step(new_log_lines(log, log_checked));
+        if (step.time_step <= 0.0 || step.time_step >= floor.min_time_step)
+            return;
+        if (running)
+            stop_tool(pid);
+        if (show_progress && terminal)
+            std::fputc('\n', stderr);
+        throw InputError(floor.scene_file + ": key 'fluid.min_time_step': " + name + "'s step fell to " +
+                         figure_text(step.time_step) +
+                         " s at t = " + figure_text(step.time > 0.0 ? step.time : solver_time_now) +
+                         " s, below " + number_text(floor.min_time_step) +
+                         " s: the flow diverged or the pressure solve stopped converging (see " +
+                         log.string() + ")" + (running ? "; the run was stopped there" : ""));
+    };
+    const auto start = std::chrono::steady_clock::now();
+    SolverProgress progress(start_time, end_time);
+    double solver_time = start_time; // until the solver's first "Time =" line
+    int status = 0;
+    long naps = 0;
+    for (;;) {
+        const pid_t done = ::waitpid(pid, &status, WNOHANG);
+        if (done == pid)
+            break;
+        if (done < 0 && errno != EINTR)
+            throw InputError(name + ": lost the process: " + std::strerror(errno));
+        // Short naps, so that the wall time measured around a tool is good to
+        // ~10 ms; the log is read for progress every 250 ms only.
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        if ((!show_progress && floor.min_time_step <= 0.0) || ++naps % 25 != 0)
+            continue;
+        // The tail: reading all of a long run's log (100 MB) took a sixth of a core.
+        const double t = solver_time =
+            std::max(solver_time, last_solver_time(read_text_file_tail(log, 1 << 16)));
+        check_floor(t, true);
+        if (!show_progress)
+            continue;
+        const double fraction = std::min(1.0, t / end_time);
+        const double elapsed =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        if (terminal)
+            std::fprintf(stderr, "\r[%-30s] t = %.3f / %.3f s  ETA %.0f s ",
+                         std::string(static_cast<std::size_t>(30 * fraction), '#').c_str(), t, end_time,
+                         progress.seconds_left(t, elapsed).value_or(0.0));
+        else if (const std::string line = progress.line(t, elapsed); !line.empty())
+            std::fputs(line.c_str(), stderr);
+    }
+    check_floor(solver_time, false);
+    if (show_progress && terminal)
+        std::fputc('\n', stderr);
+    const std::string text = read_text_file(log);
+    const std::string fatal = fatal_line(text);
+    const bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+    // mpirun may exit 0 although a rank reported FOAM FATAL.
+    if (!ok || !fatal.empty()) {
+        std::string why = fatal;
+        if (why.empty()) {
+            if (WIFEXITED(status) && WEXITSTATUS(status) == 127)
+                why = "could not run " + args[0];
+            else {
+                std::istringstream in(text);
+                std::vector<std::string> lines;
+                for (std::string l; std::getline(in, l);)
+                    if (!l.empty())
+                        lines.push_back(l);
+                for (std::size_t i = lines.size() > 3 ? lines.size() - 3 : 0; i < lines.size(); ++i)
+                    why += (why.empty() ? "" : " | ") + lines[i];
+                if (WIFSIGNALED(status))
+                    why = "killed by signal " + std::to_string(WTERMSIG(status)) +
+                          (why.empty() ? "" : ": " + why);
+            }
+        }
+        throw InputError(name + " failed (see " + log.string() + "): " + why);
+    }
+}
+
+} // namespace armour
