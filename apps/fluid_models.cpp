@@ -205,6 +205,9 @@ void write_pressure_solve(const SceneFluid &f, const fs::path &case_dir) {
 void write_fluid_models(const Scene &scene, const fs::path &case_dir) {
     if (scene.fluid->pressure_tolerance || scene.fluid->pressure_relative_tolerance)
         write_pressure_solve(*scene.fluid, case_dir);
+    if (const std::optional<bool> &predictor = scene.fluid->momentum_predictor)
+        append(case_dir / "system" / "fvSolution",
+               std::string("PIMPLE\n{\n    momentumPredictor ") + (*predictor ? "yes" : "no") + ";\n}\n");
     if (scene.fluid->turbulence != "laminar")
         write_turbulence(scene, case_dir);
     if (needs_porous_zones(scene))
@@ -227,9 +230,12 @@ void add_fluid_models_summary(const Scene &scene, json &summary) {
     }
     summary["fluid"]["turbulence"] = turbulence;
     // null: the template's own (its system/fvSolution).
-    summary["fluid"]["pressure_tolerance"] = f.pressure_tolerance ? json(*f.pressure_tolerance) : json(nullptr);
+    summary["fluid"]["pressure_tolerance"] =
+        f.pressure_tolerance ? json(*f.pressure_tolerance) : json(nullptr);
     summary["fluid"]["pressure_relative_tolerance"] =
         f.pressure_relative_tolerance ? json(*f.pressure_relative_tolerance) : json(nullptr);
+    summary["fluid"]["momentum_predictor"] =
+        f.momentum_predictor ? json(*f.momentum_predictor) : json(nullptr);
     if (scene.porous.empty())
         return;
     json regions = json::array();

@@ -13,12 +13,14 @@
 # difference in unit weights) and their poses at its end (largest difference
 # in Dn; for units other than cubes, N and m). The second row may also change
 # the pressure solver (p_rgh's GAMG tolerance, absolute, and relTol of its
-# non-final correctors; the final's tolerance follows). The rows run one after
+# non-final correctors; the final's tolerance follows) and PIMPLE's momentum
+# predictor (fluid.pressure_tolerance, pressure_relative_tolerance and
+# momentum_predictor, which a resume may not change). The rows run one after
 # another in one call: compare their ratios. Writes OUT/summary.json (SI) and
 # keeps each row's solver log (OUT/ROW.log.interFoam).
 # Usage: bash bench/run_courant_window.sh RUN_DIR [--checkpoint T] [--seconds S]
 #          [--max-courant C] [--max-interface-courant C] [--pressure-tolerance T]
-#          [--pressure-rel-tol R] [--np N] [--build DIR] [--out DIR]
+#          [--pressure-rel-tol R] [--momentum-predictor yes|no] [--np N] [--build DIR] [--out DIR]
 #   RUN_DIR      an `armour run` output folder with checkpoints (serial or parallel)
 #   --checkpoint the checkpoint's time in s, as its folder is named (default the latest)
 #   --seconds    simulated seconds of the window (default 2)
@@ -26,14 +28,15 @@
 #   --pressure-tolerance, --pressure-rel-tol  the second row's p_rgh tolerance
 #                and relTol (default: as the run's case has them; the template's
 #                1e-7 and 0.01)
+#   --momentum-predictor  the second row's PIMPLE momentumPredictor (default: as the run's)
 #   --np         ranks of both rows (default the checkpoint's)
 #   --out        default ${TMPDIR:-/tmp}/armour-bench/courant_window
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 bench_name=courant_window bench_targets="armour armourFoamCoupling armourWaves"
-bench_options="checkpoint seconds max-courant max-interface-courant pressure-tolerance pressure-rel-tol np"
+bench_options="checkpoint seconds max-courant max-interface-courant pressure-tolerance pressure-rel-tol momentum-predictor np"
 opt_checkpoint="" opt_seconds=2 opt_max_courant=1.0 opt_max_interface_courant=0.5 opt_np=""
-opt_pressure_tolerance="" opt_pressure_rel_tol=""
+opt_pressure_tolerance="" opt_pressure_rel_tol="" opt_momentum_predictor=""
 source "$root/bench/common.sh"
 bench_window_args "$@"
 start="$opt_checkpoint"
@@ -51,14 +54,21 @@ row() {
 
 cut -d' ' -f1-3 /proc/loadavg >"$out/loadavg_before"
 row as_run
-# p_rgh's block in the case's fvSolution (p_rghFinal takes its tolerance from it).
+# p_rgh's blocks in the case's fvSolution: the template's, and the one
+# `armour run` appends for the fluid.pressure_* keys (with a p_rghFinal of its
+# own, which the template's copies from p_rgh when it is read).
 edits=()
 [ -z "$opt_pressure_tolerance" ] ||
-  edits+=(-e "/^    p_rgh\$/,/^    }/ s/^\( *tolerance *\)[^;]*;/\1$opt_pressure_tolerance;/")
+  edits+=(-e "/^    p_rgh\(Final\)\?\$/,/^    }/ s/^\( *tolerance *\)[^;]*;/\1$opt_pressure_tolerance;/")
 [ -z "$opt_pressure_rel_tol" ] ||
   edits+=(-e "/^    p_rgh\$/,/^    }/ s/^\( *relTol *\)[^;]*;/\1$opt_pressure_rel_tol;/")
 if [ ${#edits[@]} -gt 0 ]; then
   bench_case_edit="sed -i $(printf '%q ' "${edits[@]}") system/fvSolution"
+fi
+# A PIMPLE dictionary appended last wins (OpenFOAM merges a repeated one).
+if [ -n "$opt_momentum_predictor" ]; then
+  case "$opt_momentum_predictor" in yes | no) ;; *) bench_fail "--momentum-predictor: yes or no (got $opt_momentum_predictor)" ;; esac
+  bench_case_edit="${bench_case_edit:+$bench_case_edit && }printf 'PIMPLE\\n{\\n    momentumPredictor $opt_momentum_predictor;\\n}\\n' >> system/fvSolution"
 fi
 row split --set "fluid.max_courant=$opt_max_courant" --set "fluid.max_interface_courant=$opt_max_interface_courant"
 bench_case_edit=""
@@ -83,10 +93,14 @@ def log_figures(row):
     control = open(os.path.join(out, row, "case", "system", "controlDict")).read()
     limit = lambda key: float(re.search(r"^%s\s+([^;]+);" % key, control, re.M).group(1))
     solution = open(os.path.join(out, row, "case", "system", "fvSolution")).read()
-    p_rgh = re.search(r"^    p_rgh\n    \{(.*?)^    \}", solution, re.M | re.S).group(1)
-    setting = lambda key: float(re.search(r"^\s*%s\s+([^;]+);" % key, p_rgh, re.M).group(1))
+    # OpenFOAM merges repeated dictionaries: the last p_rgh block that sets a
+    # key (armour run appends one for fluid.pressure_*) is the one in force.
+    p_rgh = "".join(re.findall(r"^    p_rgh\n    \{(.*?)^    \}", solution, re.M | re.S))
+    setting = lambda key: float(re.findall(r"^\s*%s\s+([^;]+);" % key, p_rgh, re.M)[-1])
+    predictor = re.findall(r"^\s*momentumPredictor\s+([^;]+);", solution, re.M)[-1]
     return {"max_courant": limit("maxCo"), "max_interface_courant": limit("maxAlphaCo"),
-            "pressure_tolerance": setting("tolerance"), "pressure_rel_tol": setting("relTol"), "steps": steps,
+            "pressure_tolerance": setting("tolerance"), "pressure_rel_tol": setting("relTol"),
+            "momentum_predictor": predictor in ("yes", "on", "true"), "steps": steps,
             "cpu_seconds": cpu[-1] if cpu else None,
             "steps_set_off_the_surface": off / max(len(pairs), 1),
             "courant_max_seen": max(co) if co else None, "interface_courant_max_seen": max(iface) if iface else None}

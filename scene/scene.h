@@ -151,6 +151,9 @@ struct SceneFluid {
     // residual, and in the correctors before the last at this fraction of the
     // initial one. Unset: the template's (docs/openfoam.md).
     std::optional<double> pressure_tolerance, pressure_relative_tolerance;
+    // PIMPLE's momentumPredictor: solve the momentum equation before the
+    // pressure correctors. Unset: the template's (docs/openfoam.md).
+    std::optional<bool> momentum_predictor;
     // Optional water column (dam break): water in this box at the start, besides
     // the water below water_level (which may then be left at domain_min.z: dry).
     bool has_water_box = false;

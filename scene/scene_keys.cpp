@@ -205,6 +205,10 @@ const std::vector<Key<SceneFluid>> &fluid_keys() {
             "the last")
             .in(Range::open(0, 1))
             .defaults("the template's (0.01; 0.05 solitary_flume)"),
+        key("momentum_predictor", &F::momentum_predictor, "",
+            "PIMPLE solves the momentum equation before the pressure correctors (false: the correctors "
+            "alone; docs/openfoam.md)")
+            .defaults("the template's (true; false in solitary_flume)"),
         key("frozen", &F::frozen, "",
             "benchmark reference: units held, mask imposed once, no loads, no engine advance"),
         key("mirror_interior", &F::mirror_interior, "",
@@ -598,6 +602,7 @@ template <class S> KeyInfo describe(const char *section, const Key<S> &k) {
                    [&](std::array<int, 3> S::*) { info.type = "3 integers"; },
                    [&](std::optional<double> S::*) { info.type = "number"; },
                    [&](std::optional<Eigen::Vector3d> S::*) { info.type = "[x, y, z]"; },
+                   [&](std::optional<bool> S::*) { info.type = "boolean"; },
                },
                k.field);
     if (*k.default_doc)

@@ -38,6 +38,9 @@ template <class S> std::optional<std::string> value_text(const Key<S> &k, const 
             [&](std::optional<double> S::*f) -> std::optional<std::string> {
                 return (obj.*f) ? std::optional<std::string>(toml_float(*(obj.*f))) : std::nullopt;
             },
+            [&](std::optional<bool> S::*f) -> std::optional<std::string> {
+                return (obj.*f) ? std::optional<std::string>(flag(*(obj.*f))) : std::nullopt;
+            },
             [&](std::optional<Eigen::Vector3d> S::*f) -> std::optional<std::string> {
                 return (obj.*f) ? std::optional<std::string>(vector_text(*(obj.*f))) : std::nullopt;
             },

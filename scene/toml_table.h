@@ -391,6 +391,7 @@ template <class S> void read_value(const Table &t, const Key<S> &k, S &obj) {
                        obj.*f = static_cast<std::uint64_t>(v);
                    },
                    [&](bool S::*f) { obj.*f = t.boolean(name, false); },
+                   [&](std::optional<bool> S::*f) { obj.*f = t.boolean(name, false); },
                    [&](Eigen::Vector3d S::*f) { obj.*f = t.vec3(name, obj.*f, unit); },
                    [&](std::optional<Eigen::Vector3d> S::*f) {
                        obj.*f = t.vec3(name, Eigen::Vector3d::Zero(), unit);

@@ -648,18 +648,21 @@ TEST(Turbulence, LooserPressureSolveStallsAndTheRunStopsWithOneLine) {
 }
 
 // fluid.pressure_tolerance and pressure_relative_tolerance reach p_rgh's
-// solve in every corrector (the last solves p_rghFinal, relTol 0): OpenFOAM
-// reads them from the case (foamDictionary merges the appended entries), and every p_rgh solve of
-// the shipped empty flume's first 0.3 s stops where they say, the last of
-// each step at the absolute tolerance, which the template's 1e-7 would not
-// let pass (some final residuals lie above it).
-TEST(PressureSolve, ToleranceKeysSetEveryCorrectorsStop) {
+// solve in every corrector (the last solves p_rghFinal, relTol 0), and
+// fluid.momentum_predictor = false PIMPLE's momentumPredictor: OpenFOAM reads
+// them from the case (foamDictionary merges the appended entries); every
+// p_rgh solve of the shipped empty flume's first 0.3 s stops where they say,
+// the last of each step at the absolute tolerance, which the template's 1e-7
+// would not let pass (some final residuals lie above it); and no step solves
+// the momentum equation (no "Solving for Ux"), which the template's does.
+TEST(SolverSettings, PressureToleranceAndMomentumPredictorReachTheSolve) {
     const fs::path dir = temp_dir("pressure_solve");
-    const std::string cmd = std::string("'") + ARMOUR_EXE + "' run '" + ARMOUR_SOURCE_DIR +
-                            "/scenes/wave_flume.toml' --out '" + (dir / "out").string() +
-                            "' --set run.duration=0.3 --set fluid.pressure_tolerance=2e-6 --set "
-                            "fluid.pressure_relative_tolerance=0.03 > '" +
-                            (dir / "run.log").string() + "' 2>&1";
+    const std::string cmd =
+        std::string("'") + ARMOUR_EXE + "' run '" + ARMOUR_SOURCE_DIR + "/scenes/wave_flume.toml' --out '" +
+        (dir / "out").string() +
+        "' --set run.duration=0.3 --set fluid.pressure_tolerance=2e-6 --set "
+        "fluid.pressure_relative_tolerance=0.03 --set fluid.momentum_predictor=false > '" +
+        (dir / "run.log").string() + "' 2>&1";
     const int rc = std::system(cmd.c_str());
     ASSERT_TRUE(WIFEXITED(rc) && WEXITSTATUS(rc) == 0) << read_text_file(dir / "run.log");
     const fs::path case_dir = dir / "out/case";
@@ -705,9 +708,18 @@ TEST(PressureSolve, ToleranceKeysSetEveryCorrectorsStop) {
     close_step();
     EXPECT_GT(steps, 10);
     EXPECT_GT(above_template, 0) << "every last solve met the template's 1e-7 anyway";
+    const fs::path predictor = dir / "predictor.txt";
+    ASSERT_EQ(
+        run_foam(case_dir, "foamDictionary -entry PIMPLE/momentumPredictor -value system/fvSolution > '" +
+                               predictor.string() + "' 2>&1"),
+        0)
+        << read_text_file(predictor);
+    EXPECT_EQ(read_text_file(predictor).substr(0, 2), "no") << read_text_file(predictor);
+    EXPECT_EQ(log.find("Solving for Ux"), std::string::npos);
     const json summary = json::parse(read_text_file(dir / "out/summary.json"));
     EXPECT_DOUBLE_EQ(summary["fluid"]["pressure_tolerance"].get<double>(), 2e-6);
     EXPECT_DOUBLE_EQ(summary["fluid"]["pressure_relative_tolerance"].get<double>(), 0.03);
+    EXPECT_EQ(summary["fluid"]["momentum_predictor"], false);
     if (!HasFailure())
         fs::remove_all(dir);
 }

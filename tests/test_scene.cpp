@@ -815,6 +815,16 @@ TEST_F(SceneFile, FluidDefaultsAndCellSize) {
     EXPECT_DOUBLE_EQ(fine.fluid->min_time_step, 0.8 * 0.01 / 1000.0);
     EXPECT_FALSE(f.pressure_tolerance.has_value()); // the template's
     EXPECT_FALSE(f.pressure_relative_tolerance.has_value());
+    EXPECT_FALSE(f.momentum_predictor.has_value());
+    // Given, the solver settings survive the resolved scene (what the plugin and a resume read).
+    const Scene set = load_scene(write(
+        std::string(kMinimal) + "[fluid]\nwater_level = 1\ncell_size = 0.5\nmomentum_predictor = false\n"
+                                "pressure_tolerance = 2e-6\n"));
+    const Scene again = load_scene(write(armour::resolved_scene_toml(set)));
+    ASSERT_TRUE(again.fluid->momentum_predictor.has_value());
+    EXPECT_FALSE(*again.fluid->momentum_predictor);
+    EXPECT_DOUBLE_EQ(again.fluid->pressure_tolerance.value_or(0.0), 2e-6);
+    EXPECT_FALSE(again.fluid->pressure_relative_tolerance.has_value());
 }
 
 TEST_F(SceneFile, FluidErrorsNameLineAndKey) {
@@ -834,6 +844,8 @@ TEST_F(SceneFile, FluidErrorsNameLineAndKey) {
                  "fluid.max_interface_courant", "(0, max_courant = 0.5]");
     expect_error(at("water_level = 1\ncells = [4, 4, 4]\nmin_time_step = 0.005\n"), 17, "fluid.min_time_step",
                  "(0, max_time_step = 0.005) s");
+    expect_error(at("water_level = 1\ncells = [4, 4, 4]\nmomentum_predictor = 1\n"), 17,
+                 "fluid.momentum_predictor", "");
     expect_error(at("water_level = 1\ncells = [4, 4, 4]\npressure_tolerance = 0\n"), 17,
                  "fluid.pressure_tolerance", "(0, 1)");
     expect_error(at("water_level = 1\ncells = [4, 4, 4]\npressure_relative_tolerance = 1\n"), 17,
