@@ -13,7 +13,6 @@
 #include <cstring>
 #include <fcntl.h>
 #include <fstream>
-#include <iterator>
 #include <sstream>
 #include <sys/prctl.h>
 #include <sys/wait.h>
@@ -25,17 +24,6 @@ namespace armour {
 namespace fs = std::filesystem;
 
 namespace {
-
-// The whole lines a growing log gained since byte `offset`, which moves past them.
-std::string new_log_lines(const fs::path &log, std::uintmax_t &offset) {
-    std::ifstream in(log, std::ios::binary);
-    if (!in.seekg(static_cast<std::streamoff>(offset)))
-        return "";
-    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    text.resize(text.rfind('\n') + 1); // npos + 1 = 0: no whole line yet
-    offset += text.size();
-    return text;
-}
 
 // Stops a tool (mpirun passes the signal to its ranks) and reaps it.
 void stop_tool(pid_t pid) {
@@ -79,13 +67,14 @@ void run_tool(const std::string &name, const std::vector<std::string> &args, con
         ::_exit(127);
     }
     const bool terminal = ::isatty(STDERR_FILENO) != 0;
-    // Every step is checked against the floor: a dip between two looks at the
-    // log's tail counts as much as a collapse.
-    std::uintmax_t log_checked = 0;
-    const auto check_floor = [&](double solver_time_now, bool running) {
+    // The log is read as it grows, each line once (a long run's log reaches
+    // 100 MB): every step is checked against the floor, so a dip between two
+    // looks counts as much as a collapse.
+    std::uintmax_t log_read = 0;
+    const auto check_floor = [&](const std::string &lines, double solver_time_now, bool running) {
         if (floor.min_time_step <= 0.0)
             return;
-        const SolverStep step = smallest_time_step(new_log_lines(log, log_checked));
+        const SolverStep step = smallest_time_step(lines);
         if (step.time_step <= 0.0 || step.time_step >= floor.min_time_step)
             return;
         if (running)
@@ -115,10 +104,9 @@ void run_tool(const std::string &name, const std::vector<std::string> &args, con
         std::this_thread::sleep_for(std::chrono::milliseconds(10));
         if ((!show_progress && floor.min_time_step <= 0.0) || ++naps % 25 != 0)
             continue;
-        // The tail: reading all of a long run's log (100 MB) took a sixth of a core.
-        const double t = solver_time =
-            std::max(solver_time, last_solver_time(read_text_file_tail(log, 1 << 16)));
-        check_floor(t, true);
+        const std::string lines = read_new_lines(log, log_read);
+        const double t = solver_time = std::max(solver_time, last_solver_time("\n" + lines));
+        check_floor(lines, t, true);
         if (!show_progress)
             continue;
         const double fraction = std::min(1.0, t / end_time);
@@ -131,7 +119,7 @@ void run_tool(const std::string &name, const std::vector<std::string> &args, con
         else if (const std::string line = progress.line(t, elapsed); !line.empty())
             std::fputs(line.c_str(), stderr);
     }
-    check_floor(solver_time, false);
+    check_floor(read_new_lines(log, log_read), solver_time, false);
     if (show_progress && terminal)
         std::fputc('\n', stderr);
     const std::string text = read_text_file(log);

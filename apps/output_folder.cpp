@@ -9,6 +9,7 @@
 #include <cstring>
 #include <fcntl.h>
 #include <fstream>
+#include <iterator>
 #include <signal.h>
 #include <sstream>
 #include <stdexcept>
@@ -389,18 +390,13 @@ std::string read_text_file(const fs::path &path) {
     return text.str();
 }
 
-std::string read_text_file_tail(const fs::path &path, std::size_t max_bytes) {
-    std::ifstream in(path, std::ios::binary | std::ios::ate);
-    if (!in)
+std::string read_new_lines(const fs::path &path, std::uintmax_t &offset) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in.seekg(static_cast<std::streamoff>(offset)))
         return "";
-    const std::streamoff size = in.tellg();
-    if (size < 0) // not seekable
-        return "";
-    const std::streamoff start = std::max<std::streamoff>(0, size - static_cast<std::streamoff>(max_bytes));
-    in.seekg(start);
-    std::string text(static_cast<std::size_t>(size - start), '\0');
-    in.read(text.data(), static_cast<std::streamsize>(text.size()));
-    text.resize(static_cast<std::size_t>(in.gcount()));
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    text.resize(text.rfind('\n') + 1); // npos + 1 = 0: no whole line yet
+    offset += text.size();
     return text;
 }
 

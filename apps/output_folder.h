@@ -36,6 +36,7 @@
 //     out.commit();                                       // staged only
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -105,8 +106,9 @@ void write_text_file(const std::filesystem::path &path, const std::string &text)
 // The whole file, byte for byte ("" when it cannot be read).
 std::string read_text_file(const std::filesystem::path &path);
 
-// The file's last max_bytes bytes (all of a shorter file; "" when it cannot
-// be read): a growing log's progress without reading all of it.
-std::string read_text_file_tail(const std::filesystem::path &path, std::size_t max_bytes);
+// The whole lines a growing file (a solver's log) gained since byte `offset`,
+// which moves past them ("" when it cannot be read): each line read once, a
+// line still being written left for the next call.
+std::string read_new_lines(const std::filesystem::path &path, std::uintmax_t &offset);
 
 } // namespace armour

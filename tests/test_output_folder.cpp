@@ -291,18 +291,23 @@ TEST_F(OutputLock, AKilledCompareIsCleanedUpByTheNext) {
         EXPECT_EQ(name.find("out.partial-"), std::string::npos) << name;
 }
 
-// The progress line reads a solver log's tail only (a long run's log.interFoam
-// grows by ~100 MB in 20 min): the tail must be the file's last bytes exactly,
-// and a file shorter than the tail must come back whole.
-TEST(ReadTextFileTail, GivesTheLastBytesOfALogAndAllOfAShortOne) {
-    const fs::path path = fs::temp_directory_path() / ("armour_tail_" + std::to_string(::getpid()) + ".log");
-    std::string log;
-    for (int step = 1; step <= 5000; ++step)
-        log += "Courant Number mean: 0.01 max: 0.4\nTime = " + std::to_string(step) + "e-3\n\nsolving...\n";
-    std::ofstream(path, std::ios::binary) << log;
-    EXPECT_EQ(armour::read_text_file_tail(path, 4096), log.substr(log.size() - 4096));
-    EXPECT_EQ(armour::read_text_file_tail(path, log.size() + 100), log);
-    EXPECT_EQ(armour::read_text_file_tail(path, 0), "");
-    EXPECT_EQ(armour::read_text_file_tail(path.string() + ".missing", 4096), "");
+// A run reads its solver's log as it grows (a long run's log.interFoam
+// grows by ~100 MB in 20 min; every step is checked against the step floor):
+// each whole line comes back once, in order, and a line still being written
+// waits for its end.
+TEST(ReadNewLines, GivesEachWholeLineOfAGrowingLogOnce) {
+    const fs::path path =
+        fs::temp_directory_path() / ("armour_growing_" + std::to_string(::getpid()) + ".log");
+    std::uintmax_t offset = 0;
+    EXPECT_EQ(armour::read_new_lines(path, offset), ""); // not there yet
+    EXPECT_EQ(offset, 0u);
+    std::ofstream out(path, std::ios::binary);
+    out << "deltaT = 0.005\nTime = 0.005\n\ndeltaT = 0.0" << std::flush;
+    EXPECT_EQ(armour::read_new_lines(path, offset), "deltaT = 0.005\nTime = 0.005\n\n");
+    EXPECT_EQ(armour::read_new_lines(path, offset), ""); // "deltaT = 0.0" is not a whole line
+    out << "01\nTime = 0.006\n" << std::flush;
+    EXPECT_EQ(armour::read_new_lines(path, offset), "deltaT = 0.001\nTime = 0.006\n");
+    EXPECT_EQ(offset, fs::file_size(path));
+    EXPECT_EQ(armour::read_new_lines(path, offset), "");
     fs::remove(path);
 }
