@@ -20,24 +20,17 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
-#include <cerrno>
 #include <chrono>
 #include <cmath>
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <fcntl.h>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <sstream>
-#include <sys/prctl.h>
-#include <sys/wait.h>
-#include <thread>
 #include <tuple>
 #include <unistd.h>
 
@@ -502,7 +495,7 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
             {"@GRAVITY@", foam_vector(scene.gravity)},
             {"@WATER_BOX_MIN@", foam_vector(column_min)},
             {"@WATER_BOX_MAX@", foam_vector(column_max)},
-            {"@WATER_DEPTH@", number_text(f.water_level - lo.z())},
+            {"@WATER_DEPTH@", number_text(scene.still_water_depth())},
             {"@WAVE_HEIGHT@", number_text(f.wave_height)},
         });
         geometry_tokens(scene, setup, used, tokens);
