@@ -471,6 +471,19 @@ Scene settle_before_coupling(const RunRequest &r, OutputFolder &folder, const Sc
 
 // The scene as far as a resume may not change it: the keys a resume may
 // change (docs/checkpoints.md) set to fixed values.
+// A run that asks for checkpoints but will write none (they fall at
+// multiples of the interval, never at the last step) cannot be resumed:
+// say so before hours are spent on it.
+void warn_if_no_checkpoint(const Scene &scene) {
+    const double interval = scene.checkpoint_interval;
+    if (interval > 0.0 && interval >= scene.duration)
+        std::fprintf(stderr,
+                     "armour: warning: run.checkpoint_interval = %g s is not below run.duration = %g s: "
+                     "no checkpoint is written (none at the last step), so this run cannot be "
+                     "resumed\n",
+                     interval, scene.duration);
+}
+
 std::string resumable_form(Scene s, bool resumable_keys = true) {
     if (resumable_keys) {
         s.duration = 1.0;
@@ -576,6 +589,8 @@ int run_scene(const RunRequest &r) {
     if (r.resume && !settles)
         resume = checked_resume(r, scene, folder.target());
     SceneSetup setup = build_scene(scene, r.cache.empty() ? default_cache_dir() : r.cache, true);
+    if (!r.resume)
+        warn_if_no_checkpoint(scene);
     if (!scene.fluid) {
         check_analysis_fits(scene, setup);
         if (r.np != 0)

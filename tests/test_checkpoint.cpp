@@ -268,6 +268,30 @@ TEST_P(Resume, RefusesAChangedSceneAndAFolderWithoutCheckpoint) {
         << none_err;
 }
 
+// Checkpoints fall at multiples of the interval and never at the last step,
+// so an interval not below the duration writes none: the run says so at its
+// start, and a run just longer than one interval writes one and says nothing.
+TEST_P(Resume, AnIntervalNotBelowTheDurationIsWarnedOf) {
+    const fs::path equal = scene(drop_scene(GetParam(), 0.1), "equal.toml");
+    ::testing::internal::CaptureStderr();
+    const int equal_code = run(args(equal, dir_ / "equal", false));
+    const std::string equal_err = ::testing::internal::GetCapturedStderr();
+    ASSERT_EQ(equal_code, 0) << equal_err;
+    EXPECT_NE(equal_err.find("armour: warning: run.checkpoint_interval = 0.1 s is not below run.duration = "
+                             "0.1 s: no checkpoint is written"),
+              std::string::npos)
+        << equal_err;
+    EXPECT_FALSE(armour::last_checkpoint(dir_ / "equal").has_value());
+
+    const fs::path longer = scene(drop_scene(GetParam(), 0.15), "longer.toml");
+    ::testing::internal::CaptureStderr();
+    const int longer_code = run(args(longer, dir_ / "longer", false));
+    const std::string longer_err = ::testing::internal::GetCapturedStderr();
+    ASSERT_EQ(longer_code, 0) << longer_err;
+    EXPECT_EQ(longer_err.find("checkpoint_interval"), std::string::npos) << longer_err;
+    EXPECT_TRUE(armour::last_checkpoint(dir_ / "longer").has_value());
+}
+
 INSTANTIATE_TEST_SUITE_P(Engines, Resume, ::testing::Values("free_body", "bullet", "liggghts"),
                          [](const ::testing::TestParamInfo<std::string> &p) { return p.param; });
 
