@@ -6,9 +6,21 @@
 #include <cstdlib>
 #include <regex>
 #include <sstream>
+#include <string_view>
 #include <vector>
 
 namespace armour {
+
+namespace {
+
+// The number after `prefix` on a log line that starts with it ("deltaT = 0.001").
+std::optional<double> number_after(const std::string &line, std::string_view prefix) {
+    if (line.rfind(prefix, 0) != 0)
+        return std::nullopt;
+    return std::atof(line.c_str() + prefix.size());
+}
+
+} // namespace
 
 std::string fatal_line(const std::string &log) {
     const auto at = log.find("FOAM FATAL");
@@ -36,14 +48,13 @@ SolverStep smallest_time_step(const std::string &lines) {
     bool reached = true; // the smallest step's "Time =" line was read
     std::istringstream in(lines);
     for (std::string line; std::getline(in, line);) {
-        if (line.rfind("deltaT = ", 0) == 0) {
-            const double dt = std::atof(line.c_str() + 9);
-            if (dt > 0.0 && (smallest.time_step == 0.0 || dt < smallest.time_step)) {
-                smallest = {dt, 0.0};
+        if (const auto dt = number_after(line, "deltaT = ")) {
+            if (*dt > 0.0 && (smallest.time_step == 0.0 || *dt < smallest.time_step)) {
+                smallest = {*dt, 0.0};
                 reached = false;
             }
-        } else if (!reached && line.rfind("Time = ", 0) == 0) {
-            smallest.time = std::atof(line.c_str() + 7);
+        } else if (const auto t = number_after(line, "Time = "); t && !reached) {
+            smallest.time = *t;
             reached = true;
         }
     }
@@ -84,16 +95,16 @@ SolverLogFigures solver_log_figures(const std::string &log, const SolverLimits &
     double last_step = 0.0; // "deltaT = ": the step a following Courant line measures
     std::istringstream lines(log);
     for (std::string line; std::getline(lines, line);) {
-        if (line.rfind("Time = ", 0) == 0) {
+        if (number_after(line, "Time = ")) {
             ++figures.steps;
             continue;
         }
-        if (line.rfind("ExecutionTime = ", 0) == 0) {
-            cpu.push_back(std::atof(line.c_str() + 16));
+        if (const auto clock = number_after(line, "ExecutionTime = ")) {
+            cpu.push_back(*clock);
             continue;
         }
-        if (line.rfind("deltaT = ", 0) == 0) {
-            last_step = std::atof(line.c_str() + 9);
+        if (const auto dt = number_after(line, "deltaT = ")) {
+            last_step = *dt;
             continue;
         }
         const auto at = line.find("Courant Number mean:");
