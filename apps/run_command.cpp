@@ -469,8 +469,6 @@ Scene settle_before_coupling(const RunRequest &r, OutputFolder &folder, const Sc
     return settled;
 }
 
-// The scene as far as a resume may not change it: the keys a resume may
-// change (docs/checkpoints.md) set to fixed values.
 // A run that asks for checkpoints but will write none (they fall at
 // multiples of the interval, never at the last step) cannot be resumed:
 // say so before hours are spent on it.
@@ -484,6 +482,8 @@ void warn_if_no_checkpoint(const Scene &scene) {
                      interval, scene.duration);
 }
 
+// The scene as far as a resume may not change it: the keys a resume may
+// change (docs/checkpoints.md) set to fixed values.
 std::string resumable_form(Scene s, bool resumable_keys = true) {
     if (resumable_keys) {
         s.duration = 1.0;
