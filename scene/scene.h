@@ -7,9 +7,10 @@
 //     examples live in scenes/. load_scene() checks every key and
 //     value before anything runs: an unknown key, a missing key or a bad value
 //     throws InputError "FILE:LINE: key 'a.b': reason". Overrides given as
-//     --set key=value (dotted path, TOML value syntax; arrays of tables by
-//     index, e.g. unit.0.spheres=20) are applied before the checks, so they
-//     are checked the same way, and the resolved scene can be written back.
+//     --set key=value (dotted path, TOML value syntax, a string key's value
+//     also bare: waves.type=irregular; arrays of tables by index, e.g.
+//     unit.0.spheres=20) are applied before the checks, so they are checked
+//     the same way, and the resolved scene can be written back.
 //
 // Usage
 //     Scene scene = load_scene("scenes/drop_bounce.toml", {"run.duration=0.5"});
@@ -274,7 +275,8 @@ struct Scene {
     double still_water_depth() const { return fluid->water_level - domain_min.z(); }
 };
 
-// `overrides` are "dotted.key=toml_value" strings (from --set).
+// `overrides` are "dotted.key=toml_value" strings (from --set; a string key's
+// value may also be bare text, docs/scenes.md).
 Scene load_scene(const std::string &path, const std::vector<std::string> &overrides = {});
 
 // The scene after overrides and defaults, as TOML (echoed into every output folder).

@@ -482,8 +482,9 @@ TEST_F(SceneFile, MalformedOverridesAreRejected) {
         {"run.duration=", "empty value"},
         {"=1", "empty key"},
         {"run..duration=1", "empty segment"},
-        {"name=hello", "bad TOML value"},               // unquoted string
-        {"run.durration=1", "did you mean 'duration'"}, // unknown key cannot be created
+        {"run.duration=hello", "key 'run.duration' takes a number, and hello is not one"},
+        {"name=\"unterminated", "key 'name' takes a string"}, // a quote begins a TOML string
+        {"run.durration=1", "did you mean 'duration'"},       // unknown key cannot be created
         {"unit.5.size=1", "index 5 out of range"},
         {"unit.size=1", "is an array"},
         {"nothere.x=1", "does not exist"},
@@ -494,6 +495,66 @@ TEST_F(SceneFile, MalformedOverridesAreRejected) {
         const std::string e = error_of(path, {set});
         EXPECT_EQ(e.rfind("--set '" + set + "': ", 0), 0u) << set << " -> " << e;
         EXPECT_NE(e.find(reason), std::string::npos) << set << " -> " << e;
+    }
+}
+
+// A string key takes a bare word as well as its TOML string: the text after
+// the first '=', its ends trimmed, whatever it looks like (a number, a date,
+// more '='), in single tables, arrays of tables and at the top level alike.
+TEST_F(SceneFile, StringKeyTakesABareWord) {
+    const Scene s = load_scene(write(kFull), {"name=bare",                  // top level
+                                              "contact.model=hertz",        // a choice in a single table
+                                              "unit.0.method=optimised",    // an array of tables
+                                              "unit.2.stl=meshes/unit.stl", // a path: resolved as in the file
+                                              "wall.0.name = 2 ",           // a number's text, trimmed
+                                              "wall.3.name=a=b c"});        // '=' and spaces kept
+    EXPECT_EQ(s.name, "bare");
+    EXPECT_EQ(s.contact_model, "hertz");
+    EXPECT_EQ(s.units[0].method, "optimised");
+    EXPECT_TRUE(fs::equivalent(s.units[2].stl, dir_ / "meshes" / "unit.stl")) << s.units[2].stl;
+    EXPECT_EQ(s.walls[0].name, "2");
+    EXPECT_EQ(s.walls[3].name, "a=b c");
+    // A date is text too; the quoted forms read as TOML strings, escapes included.
+    EXPECT_EQ(load_scene(write(kFull), {"name=1979-05-27"}).name, "1979-05-27");
+    EXPECT_EQ(load_scene(write(kFull), {"name=\"a\\tb\""}).name, "a\tb");
+    EXPECT_EQ(load_scene(write(kFull), {"name='c:\\x'"}).name, "c:\\x");
+}
+
+// The shipped wave flume's own comment: --set waves.type=irregular.
+TEST_F(SceneFile, WaveFlumeTakesItsCommentsOverride) {
+    const std::string flume = (fs::path(ARMOUR_SOURCE_DIR) / "scenes" / "wave_flume.toml").string();
+    for (const char *set : {"waves.type=irregular", "waves.type=\"irregular\"", "waves.type='irregular'"}) {
+        const Scene s = load_scene(flume, {set});
+        ASSERT_TRUE(s.waves.has_value());
+        EXPECT_EQ(s.waves->type, "irregular") << set;
+    }
+}
+
+// A bare word is text for string keys only: a number, boolean or array key
+// refuses it in one line naming --set, the key and the type it takes; a
+// string key refuses an array, and a choice key a word it does not know.
+TEST_F(SceneFile, BareWordForAnotherTypeIsRefused) {
+    const std::string path = write(kFull);
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"run.duration=abc",
+         "--set 'run.duration=abc': key 'run.duration' takes a number, and abc is not one"},
+        {"unit.0.spheres=many", "--set 'unit.0.spheres=many': key 'unit.0.spheres' takes an integer"},
+        {"run.force_time_step=yes",
+         "--set 'run.force_time_step=yes': key 'run.force_time_step' takes true or false"},
+        {"run.gravity=0,0,-9", "--set 'run.gravity=0,0,-9': key 'run.gravity' takes an array [x, y, z]"},
+        {"body.0.fixed_rotation=x",
+         "--set 'body.0.fixed_rotation=x': key 'body.0.fixed_rotation' takes an array "
+         "of 3 booleans"},
+        {"name=[1, 2]", "--set: key 'name': must be a string (got an array)"},
+        {"contact.model=hook",
+         "--set: key 'contact.model': must be one of \"hertz\", \"hooke\" (got \"hook\""},
+        {"run.durration=fast",
+         "--set 'run.durration=fast': unknown key 'run.durration' (did you mean 'duration'?)"},
+    };
+    for (const auto &[set, head] : cases) {
+        const std::string e = error_of(path, {set});
+        EXPECT_EQ(e.rfind(head, 0), 0u) << set << " -> " << e;
+        EXPECT_EQ(e.find('\n'), std::string::npos) << e;
     }
 }
 
