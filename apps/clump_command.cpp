@@ -31,6 +31,8 @@ Shape make_requested_shape(const ClumpRequest &r) {
     if (r.shape == "cube") {
         if (r.height != 0.0)
             throw InputError("--height: applies to --shape dolos, not cube (use --size)");
+        if (r.waist_given)
+            throw InputError("--waist: applies to --shape dolos, not cube");
         return make_cube_shape(r.size, r.chamfer, r.density);
     }
     if (r.shape == "dolos") {
@@ -170,18 +172,6 @@ Built build_requested(const Shape &shape, ClumpMethod method, int spheres, const
     return b;
 }
 
-void check_tolerances(double tol_volume, double tol_surface, double tol_topple) {
-    if (!(tol_volume > 0.0 && tol_volume < 1.0))
-        throw InputError("--tol-volume: must be a fraction in (0, 1), e.g. 0.01 for 1 % (got " +
-                         number(tol_volume) + ")");
-    if (!(tol_surface > 0.0 && tol_surface < 1.0))
-        throw InputError("--tol-surface: must be a fraction of Dn in (0, 1), e.g. 0.02 for 2 % (got " +
-                         number(tol_surface) + ")");
-    if (!(tol_topple > 0.0 && tol_topple < 90.0))
-        throw InputError("--tol-topple: must be an angle in (0, 90) degrees, e.g. 1 (got " +
-                         number(tol_topple) + ")");
-}
-
 } // namespace
 
 int run_clump(const ClumpRequest &r) {
@@ -191,7 +181,7 @@ int run_clump(const ClumpRequest &r) {
         throw InputError("--spheres: the number of spheres must be >= 1 (got " + std::to_string(r.spheres) +
                          ")");
     if (!r.fixed_count)
-        check_tolerances(r.tol_volume, r.tol_surface, r.tol_topple);
+        check_tolerances({r.tol_volume, r.tol_surface, r.tol_topple});
     if (r.max_spheres < 1)
         throw InputError("--max-spheres: must be >= 1 (got " + std::to_string(r.max_spheres) + ")");
     const Shape shape = make_requested_shape(r);
@@ -218,7 +208,7 @@ int run_clump(const ClumpRequest &r) {
 }
 
 int run_demo(const DemoRequest &r) {
-    check_tolerances(r.tol_volume, r.tol_surface, r.tol_topple);
+    check_tolerances({r.tol_volume, r.tol_surface, r.tol_topple});
     const double density = 2400.0;
     const Shape shapes[] = {make_cube_shape(1.0, 0.0, density),
                             make_dolos_shape(2.0, kDolosWaistDefault, density)};

@@ -13,6 +13,7 @@ struct ClumpRequest {
     double chamfer = 0.0;      // cube edge chamfer, m
     double height = 0.0;       // dolos height, m
     double waist = 0.33;       // dolos waist ratio, -
+    bool waist_given = false;  // --waist given (a cube refuses it)
     double density = 2400.0;   // kg/m^3
     bool fixed_count = false;  // --spheres given; else tolerance mode
     int spheres = 0;           // with fixed_count

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <numeric>
 #include <random>
+#include <sstream>
 
 namespace armour {
 
@@ -289,18 +290,27 @@ bool meets(const ClumpQuality &q, const ClumpTolerances &t) {
            q.topple_error_deg <= t.topple_deg;
 }
 
+void check_tolerances(const ClumpTolerances &t) {
+    const auto text = [](double v) {
+        std::ostringstream s;
+        s << v;
+        return s.str();
+    };
+    if (!(t.volume > 0.0 && t.volume < 1.0))
+        throw InputError("--tol-volume: must be a fraction in (0, 1), e.g. 0.01 for 1 % (got " +
+                         text(t.volume) + ")");
+    if (!(t.surface_rms > 0.0 && t.surface_rms < 1.0))
+        throw InputError("--tol-surface: must be a fraction of Dn in (0, 1), e.g. 0.02 for 2 % (got " +
+                         text(t.surface_rms) + ")");
+    if (!(t.topple_deg > 0.0 && t.topple_deg < 90.0))
+        throw InputError("--tol-topple: must be an angle in (0, 90) degrees, e.g. 1 (got " +
+                         text(t.topple_deg) + ")");
+}
+
 ToleranceSearch fewest_spheres(const Shape &shape, ClumpMethod method, const ClumpTolerances &tolerances,
                                int max_spheres, std::uint64_t seed,
                                const std::function<void(const ClumpQuality &)> &progress) {
-    if (!(tolerances.volume > 0.0) || !std::isfinite(tolerances.volume))
-        throw InputError("--tol-volume: must be a fraction > 0, e.g. 0.01 for 1 % (got " +
-                         std::to_string(tolerances.volume) + ")");
-    if (!(tolerances.surface_rms > 0.0) || !std::isfinite(tolerances.surface_rms))
-        throw InputError("--tol-surface: must be a fraction of Dn > 0, e.g. 0.02 for 2 % (got " +
-                         std::to_string(tolerances.surface_rms) + ")");
-    if (!(tolerances.topple_deg > 0.0) || std::isnan(tolerances.topple_deg))
-        throw InputError("--tol-topple: must be an angle > 0 in degrees, e.g. 1 (got " +
-                         std::to_string(tolerances.topple_deg) + ")");
+    check_tolerances(tolerances);
     if (max_spheres < 1)
         throw InputError("--max-spheres: must be >= 1 (got " + std::to_string(max_spheres) + ")");
 

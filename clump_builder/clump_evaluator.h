@@ -93,6 +93,11 @@ struct ClumpTolerances {
     double topple_deg = 1.0;   // largest |topple angle error|, degrees
 };
 bool meets(const ClumpQuality &quality, const ClumpTolerances &tolerances);
+// The tolerances allowed, one rule for `armour clump`, `armour demo` and
+// fewest_spheres: volume and surface fractions in (0, 1), topple in (0, 90)
+// degrees (a topple angle itself lies in [0, 90)). Throws InputError naming
+// --tol-volume, --tol-surface or --tol-topple, the options that set them.
+void check_tolerances(const ClumpTolerances &tolerances);
 struct ToleranceSearch {
     Clump clump; // the chosen clump (or the best tried)
     ClumpQuality quality;

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <unistd.h>
 
 using namespace armour;
@@ -348,6 +349,20 @@ TEST(ClumpTolerance, ReportsWhenItCannotBeMet) {
     EXPECT_THROW(fewest_spheres(unit_cube(), ClumpMethod::optimised, {0.0, 0.02}, 10), InputError);
     EXPECT_THROW(fewest_spheres(unit_cube(), ClumpMethod::optimised, {0.01, -1.0}, 10), InputError);
     EXPECT_THROW(fewest_spheres(unit_cube(), ClumpMethod::optimised, {0.01, 0.02, 0.0}, 10), InputError);
+}
+
+// One range for each tolerance, the one `armour clump` and `armour demo`
+// state: fractions in (0, 1), the topple error in (0, 90) degrees.
+TEST(ClumpTolerance, OneRangeForEachTolerance) {
+    EXPECT_NO_THROW(check_tolerances({0.999, 0.999, 89.9}));
+    const double inf = std::numeric_limits<double>::infinity();
+    for (const ClumpTolerances &t :
+         {ClumpTolerances{1.0, 0.02, 1.0}, ClumpTolerances{0.01, 1.0, 1.0}, ClumpTolerances{0.01, 0.02, 90.0},
+          ClumpTolerances{0.01, 0.02, inf}, ClumpTolerances{0.01, 0.02, std::nan("")}})
+        EXPECT_THROW(check_tolerances(t), InputError)
+            << t.volume << " " << t.surface_rms << " " << t.topple_deg;
+    // The search applies the same rule: a topple tolerance of 90 degrees is refused before any clump.
+    EXPECT_THROW(fewest_spheres(unit_cube(), ClumpMethod::optimised, {0.01, 0.02, 90.0}, 10), InputError);
 }
 
 TEST(ClumpFiles, SphereFileRoundTripsAndSnippetCarriesExactMass) {
