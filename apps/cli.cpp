@@ -1,11 +1,13 @@
 #include "cli.h"
 
+#include "cli_checks.h"
 #include "clump_command.h"
 #include "compare_command.h"
 #include "engine_registry.h"
 #include "mesh.h"
 #include "report_command.h"
 #include "run_command.h"
+#include "scene_keys.h"
 #include "sweep_command.h"
 
 #include <CLI/CLI.hpp>
@@ -19,6 +21,25 @@ namespace armour {
 const char *const kOutHelp = "Output folder: new, empty, or an earlier result of the same command (whose "
                              "files alone are replaced); any other folder is refused";
 const char *const kCacheHelp = "Clump cache folder (default $ARMOUR_CACHE or ~/.cache/armour-fsi)";
+
+namespace {
+
+// --tol-volume, --tol-surface, --tol-topple of `clump` and `demo`: the same
+// words and ranges, checked by check_tolerances (clump_evaluator.h).
+std::vector<CLI::Option *> add_tolerance_options(CLI::App &cmd, const std::string &prefix, double &volume,
+                                                 double &surface, double &topple) {
+    return {cmd.add_option("--tol-volume", volume, prefix + "max |volume error| as a fraction, in (0, 1) [-]")
+                ->capture_default_str(),
+            cmd.add_option("--tol-surface", surface,
+                           prefix + "max surface RMS deviation as a fraction of Dn, in (0, 1) [-]")
+                ->capture_default_str(),
+            cmd.add_option("--tol-topple", topple,
+                           prefix + "max error of the topple angle about any edge of any face the unit rests "
+                                    "on, in (0, 90) [deg]")
+                ->capture_default_str()};
+}
+
+} // namespace
 
 int armour_main(int argc, const char *const *argv) {
     CLI::App app{"armour-fsi: breakwater armour units as sphere clumps, DEM and coupled with waves.\n"
@@ -35,28 +56,21 @@ int armour_main(int argc, const char *const *argv) {
     auto *stl_opt =
         clump_cmd->add_option("--stl", clump.stl, "Closed triangle mesh (ASCII or binary STL, m)");
     shape_opt->excludes(stl_opt);
-    clump_cmd->add_option("--size", clump.size, "Cube edge length [m]");
-    clump_cmd->add_option("--chamfer", clump.chamfer,
-                          "Cube edge chamfer, cut into each face [m] (default 0)");
-    clump_cmd->add_option("--height", clump.height, "Dolos overall height H [m]");
-    clump_cmd->add_option("--waist", clump.waist, "Dolos waist ratio: shank thickness / H [-], 0.25-0.50")
-        ->capture_default_str();
+    auto *size_opt = clump_cmd->add_option("--size", clump.size, "Cube edge length [m]");
+    auto *chamfer_opt = clump_cmd->add_option("--chamfer", clump.chamfer,
+                                              "Cube edge chamfer, cut into each face [m] (default 0)");
+    auto *height_opt = clump_cmd->add_option("--height", clump.height, "Dolos overall height H [m]");
+    auto *waist_opt =
+        clump_cmd->add_option("--waist", clump.waist, "Dolos waist ratio: shank thickness / H [-], 0.25-0.50")
+            ->capture_default_str();
+    for (CLI::Option *dimension : {size_opt, chamfer_opt, height_opt, waist_opt})
+        stl_opt->excludes(dimension); // a mesh brings its own size
     auto *spheres_opt = clump_cmd->add_option("--spheres", clump.spheres,
                                               "Number of spheres N (>= 1); omit for tolerance mode");
-    auto *tol_v = clump_cmd
-                      ->add_option("--tol-volume", clump.tol_volume,
-                                   "Tolerance mode: max |volume error| as a fraction [-]")
-                      ->capture_default_str();
-    auto *tol_s = clump_cmd
-                      ->add_option("--tol-surface", clump.tol_surface,
-                                   "Tolerance mode: max surface RMS deviation as a fraction of Dn [-]")
-                      ->capture_default_str();
-    auto *tol_t = clump_cmd
-                      ->add_option("--tol-topple", clump.tol_topple,
-                                   "Tolerance mode: max error of the topple angle about any edge of any "
-                                   "face the unit rests on [deg]")
-                      ->capture_default_str();
-    spheres_opt->excludes(tol_v)->excludes(tol_s)->excludes(tol_t);
+    const std::vector<CLI::Option *> tolerances = add_tolerance_options(
+        *clump_cmd, "Tolerance mode: ", clump.tol_volume, clump.tol_surface, clump.tol_topple);
+    for (CLI::Option *tolerance : tolerances)
+        spheres_opt->excludes(tolerance);
     clump_cmd->add_option("--max-spheres", clump.max_spheres, "Tolerance mode: largest N to try")
         ->capture_default_str();
     clump_cmd->add_option("--method", clump.method, "Clump method: greedy (baseline) or optimised")
@@ -72,13 +86,7 @@ int armour_main(int argc, const char *const *argv) {
         "Default job: clumps of a 1 m cube and a 2 m dolos (2400 kg/m^3) with the fewest spheres meeting "
         "the tolerances, both methods, and their error table.");
     demo_cmd->add_option("--out", demo.out, kOutHelp)->capture_default_str();
-    demo_cmd->add_option("--tol-volume", demo.tol_volume, "Max |volume error| as a fraction [-]")
-        ->capture_default_str();
-    demo_cmd
-        ->add_option("--tol-surface", demo.tol_surface, "Max surface RMS deviation as a fraction of Dn [-]")
-        ->capture_default_str();
-    demo_cmd->add_option("--tol-topple", demo.tol_topple, "Max topple angle error [deg]")
-        ->capture_default_str();
+    add_tolerance_options(*demo_cmd, "", demo.tol_volume, demo.tol_surface, demo.tol_topple);
 
     RunRequest run;
     CLI::App *run_cmd = app.add_subcommand(
@@ -89,17 +97,19 @@ int armour_main(int argc, const char *const *argv) {
         "scene to --out (and the OpenFOAM case to --out/case).");
     run_cmd->add_option("scene", run.scene, "Scene file (.toml)")->required();
     run_cmd->add_option("--out", run.out, kOutHelp)->required();
-    run_cmd->add_option("--set", run.overrides,
-                        "Override a scene key, TOML syntax: --set run.duration=0.5 --set unit.0.spheres=20");
+    run_cmd->add_option(
+        "--set", run.overrides,
+        "Override a scene key: KEY=VALUE, the value in TOML syntax, a string key's also as a bare word "
+        "(docs/scenes.md): --set run.duration=0.5 --set unit.0.spheres=20 --set waves.type=irregular");
     run_cmd->add_option("--cache", run.cache, kCacheHelp);
     run_cmd
         ->add_option("--np", run.np,
                      "Scenes with [fluid]: MPI ranks of interFoam (overrides fluid.np; every rank runs "
                      "the engine)")
-        ->check(CLI::PositiveNumber);
+        ->check(integer_at_least(1));
     std::string run_engine;
     run_cmd->add_option("--engine", run_engine,
-                        "Engine, same as --set run.engine=\"NAME\" (`armour engines` lists them)");
+                        "Engine, same as --set run.engine=NAME (`armour engines` lists them)");
     run_cmd->add_flag("--resume", run.resume,
                       "Continue the run in --out from its last checkpoint (run.checkpoint_interval, s of "
                       "simulated time); only run.duration, run.checkpoint_interval, fluid.write_interval and "
@@ -118,12 +128,7 @@ int armour_main(int argc, const char *const *argv) {
     report_cmd->add_option("run", report.run, "The run's folder (its --out)")->required();
     report_cmd->add_option("--out", report.out, kOutHelp)->required();
     report_cmd->add_option("--until", report.until, "Use the record up to this simulated time [s]")
-        ->check(CLI::Validator(
-            [](const std::string &text) {
-                return std::strtod(text.c_str(), nullptr) > 0.0 ? std::string()
-                                                                : "a simulated time > 0 s, got " + text;
-            },
-            "S>0"));
+        ->check(number_above(0.0, "s"));
     report_cmd->add_option("--cache", report.cache, kCacheHelp);
 
     CLI::App *engines_cmd = app.add_subcommand(
@@ -137,7 +142,9 @@ int armour_main(int argc, const char *const *argv) {
         "bumpiness.png and report.md to --out.");
     compare_cmd->add_option("scene", compare.scene, "Scene file (.toml)")->required();
     compare_cmd->add_option("--out", compare.out, kOutHelp)->required();
-    compare_cmd->add_option("--spheres", compare.spheres, "Sphere counts per unit, e.g. 5,10,20,50,100")
+    compare_cmd
+        ->add_option("--spheres", compare.spheres,
+                     "Sphere counts per unit, each >= 2 (LIGGGHTS multisphere), e.g. 5,10,20,50,100")
         ->delimiter(',')
         ->capture_default_str();
     compare_cmd
@@ -146,12 +153,12 @@ int armour_main(int argc, const char *const *argv) {
         ->delimiter(',');
     compare_cmd
         ->add_option("--dt-factors", compare.dt_factors,
-                     "Time steps to sweep, as multiples of each engine's stability limit [-]")
+                     "Time steps to sweep, as multiples of each engine's stability limit, each > 0 [-]")
         ->delimiter(',')
         ->capture_default_str();
     compare_cmd
         ->add_option("--dt-sweep-spheres", compare.dt_sweep_spheres,
-                     "Spheres per unit in the dt sweep (0: the --spheres count nearest 20)")
+                     "Spheres per unit in the dt sweep, >= 2 (0: the --spheres count nearest 20)")
         ->capture_default_str();
     compare_cmd->add_option(
         "--tolerance", compare.tolerance,
@@ -159,29 +166,32 @@ int armour_main(int argc, const char *const *argv) {
         "slide_angle_deg=0.5,packing_density=0.05 (defaults: docs/comparison.md)");
     compare_cmd
         ->add_option("--blow-up-gain", compare.blow_up_gain,
-                     "Energy gain (E_max - E_0) / sum(m g Dn) [-] above which a run counts as blown up")
+                     "Energy gain (E_max - E_0) / sum(m g Dn) above which a run counts as blown up, > 0 [-]")
         ->capture_default_str();
-    compare_cmd->add_option("--set", compare.overrides, "Override a scene key for every run (TOML syntax)");
+    compare_cmd->add_option("--set", compare.overrides,
+                            "Override a scene key for every run, as `armour run --set`");
     compare_cmd->add_option("--cache", compare.cache, kCacheHelp);
 
     SweepRequest sweep;
     CLI::App *sweep_cmd = add_sweep_command(app, sweep);
 
+    add_type_checks(app); // after the options' own checks, which check the type too
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError &e) {
-        return app.exit(e) == 0 ? 0 : 1;
+        return parse_error_exit(app, e);
     }
     try {
         if (clump_cmd->parsed()) {
             clump.fixed_count = spheres_opt->count() > 0;
+            clump.waist_given = waist_opt->count() > 0;
             return run_clump(clump);
         }
         if (demo_cmd->parsed())
             return run_demo(demo);
         if (run_cmd->parsed()) {
             if (!run_engine.empty())
-                run.overrides.push_back("run.engine=\"" + run_engine + "\"");
+                run.overrides.push_back("run.engine=" + toml_string(run_engine));
             return run_scene(run);
         }
         if (report_cmd->parsed())

@@ -75,6 +75,11 @@ int run_compare(const CompareRequest &r) {
         if (n < 2)
             throw InputError("--spheres: every count must be >= 2 (LIGGGHTS multisphere), got " +
                              std::to_string(n));
+    if (r.dt_sweep_spheres != 0 && r.dt_sweep_spheres < 2)
+        throw InputError(
+            "--dt-sweep-spheres: must be >= 2 (LIGGGHTS multisphere), or 0 for the --spheres count "
+            "nearest 20 (got " +
+            std::to_string(r.dt_sweep_spheres) + ")");
     for (double f : r.dt_factors)
         if (!(f > 0.0))
             throw InputError("--dt-factors: every factor must be > 0");

@@ -317,3 +317,95 @@ TEST_F(Cli, EnginesListsEveryRegisteredStyleWithItsCapabilities) {
     EXPECT_EQ(n, armour::engine_styles().size());
     EXPECT_NE(out.find("free_body: contacts=none"), std::string::npos) << out;
 }
+
+// A bad command line, CLI11's own errors included, is refused like bad input:
+// exit status 2, stderr exactly one line `armour: error: ` naming the option
+// (or argument) and the reason, nothing written.
+TEST_F(Cli, CommandLineErrorsAreOneLineAndExitTwo) {
+    const std::string out = (dir_ / "out").string(), scene = (dir_ / "scene.toml").string();
+    std::ofstream(scene) << "name = \"s\"\n[[material]]\nname = \"m\"\n[[unit]]\nname = \"u\"\nshape = "
+                            "\"cube\"\nsize = 0.2\n[[body]]\nunit = \"u\"\nposition = [0, 0, 1]\n";
+    const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+        {{"clump", "--shape", "cube", "--size", "1", "--spheres", "abc", "--out", out},
+         "--spheres: 'abc' is not an integer"},
+        {{"clump", "--shape", "cube", "--size", "1", "--spheres", "2.5", "--out", out},
+         "--spheres: '2.5' is not an integer"},
+        {{"clump", "--shape", "cube", "--size", "big", "--spheres", "3", "--out", out},
+         "--size: 'big' is not a number"},
+        {{"clump", "--shape", "cube", "--size", "inf", "--spheres", "3", "--out", out},
+         "--size: 'inf' is not a finite number"},
+        {{"clump", "--shape", "cube", "--size", "1", "--seed", "-1", "--out", out},
+         "--seed: '-1' is not an integer >= 0"},
+        {{"clump", "--shape", "cube", "--size", "1", "--bogus", "--out", out}, "--bogus: unknown option"},
+        {{"clump", "--shape", "cube", "--size", "1", "--spheres", "3"}, "--out is required"},
+        {{"clump", "--shape", "cube", "--size", "1", "--out"}, "--out: needs a value"},
+        {{"clump", "--stl", scene, "--size", "1", "--out", out}, "--stl excludes --size"},
+        {{"clump", "--shape", "cube", "--size", "1", "--waist", "0.3", "--out", out}, "--waist: applies to"},
+        {{}, "a command is required, one of: clump, demo, run"},
+        {{"frobnicate"}, "'frobnicate' is not a command"},
+        {{"--bogus"}, "--bogus: unknown option (armour --help lists them)"},
+        {{"run", scene, "extra.toml", "--out", out}, "'extra.toml': unexpected argument"},
+        {{"run", scene, "--out", out, "--np", "0"}, "--np: must be >= 1 (got 0)"},
+        {{"run", scene, "--out", out, "--np", "two"}, "--np: 'two' is not an integer"},
+        {{"run", scene, "--out", out, "--set", "run.duration=abc"},
+         "--set 'run.duration=abc': key 'run.duration' takes a number"},
+        {{"report", dir_.string(), "--out", out, "--until", "0"}, "--until: must be > 0 s (got 0)"},
+        {{"report", dir_.string(), "--out", out, "--until", "nan"}, "--until: 'nan' is not a finite number"},
+        {{"compare", scene, "--out", out, "--spheres", "5,x"}, "--spheres: 'x' is not an integer"},
+        {{"compare", scene, "--out", out, "--dt-sweep-spheres", "-3"}, "--dt-sweep-spheres: must be >= 2"},
+        {{"sweep", scene, "--out", out, "--jobs", "0"}, "--jobs: must be >= 1 (got 0)"},
+        {{"sweep", scene, "--out", out, "--jobs", "-2"}, "--jobs: must be >= 1 (got -2)"},
+    };
+    for (const auto &[args, what] : cases) {
+        std::string command = "armour";
+        for (const auto &a : args)
+            command += " " + a;
+        EXPECT_EQ(run(args), 2) << command << "\n" << err_;
+        EXPECT_EQ(err_.rfind("armour: error: ", 0), 0u) << command << "\n" << err_;
+        EXPECT_EQ(err_.find('\n'), err_.size() - 1) << command << "\n" << err_;
+        EXPECT_NE(err_.find(what), std::string::npos) << command << "\n" << err_ << "expected: " << what;
+        EXPECT_FALSE(fs::exists(out)) << command;
+    }
+}
+
+// --help and -h print help on stdout and exit 0, for the command and each subcommand.
+TEST_F(Cli, HelpExitsZero) {
+    for (const std::vector<std::string> &args : {std::vector<std::string>{"--help"},
+                                                 {"-h"},
+                                                 {"run", "--help"},
+                                                 {"sweep", "-h"},
+                                                 {"compare", "--help"}}) {
+        ::testing::internal::CaptureStdout();
+        const int code = run(args);
+        const std::string help = ::testing::internal::GetCapturedStdout();
+        EXPECT_EQ(code, 0) << args.front() << "\n" << err_;
+        EXPECT_TRUE(err_.empty()) << err_;
+        EXPECT_NE(help.find("--help"), std::string::npos) << help;
+    }
+}
+
+// The help states each option's range as its check applies it: --jobs >= 1
+// and --jobs 1 accepted, one --tol-topple range for clump and demo.
+TEST_F(Cli, HelpAndChecksAgree) {
+    const auto help_of = [&](const std::string &command) {
+        ::testing::internal::CaptureStdout();
+        EXPECT_EQ(run({command, "--help"}), 0);
+        return ::testing::internal::GetCapturedStdout();
+    };
+    EXPECT_NE(help_of("sweep").find("--jobs INT:>=1"), std::string::npos) << help_of("sweep");
+    for (const std::string command : {"clump", "demo"}) {
+        const std::string help = help_of(command);
+        EXPECT_NE(help.find("on, in (0, 90) [deg]"), std::string::npos) << help;
+        std::vector<std::string> args = {command, "--tol-topple", "90", "--out", (dir_ / "out").string()};
+        if (command == "clump")
+            args.insert(args.begin() + 1, {"--shape", "cube", "--size", "1"});
+        EXPECT_EQ(run(args), 2) << command;
+        EXPECT_EQ(err_,
+                  "armour: error: --tol-topple: must be an angle in (0, 90) degrees, e.g. 1 (got 90)\n");
+    }
+    // --jobs 1 passes the command line: the sweep file is what is refused.
+    const std::string missing = (dir_ / "missing.toml").string();
+    EXPECT_EQ(run({"sweep", missing, "--out", (dir_ / "s").string(), "--jobs", "1"}), 2);
+    EXPECT_EQ(err_.find("--jobs"), std::string::npos) << err_;
+    EXPECT_NE(err_.find("missing.toml"), std::string::npos) << err_;
+}

@@ -1,5 +1,6 @@
 #include "sweep_command.h"
 
+#include "cli_checks.h"
 #include "executors.h"
 #include "mesh.h"
 #include "output_folder.h"
@@ -131,7 +132,8 @@ CLI::App *add_sweep_command(CLI::App &app, SweepRequest &r) {
                     "Output folder: new, empty, or an earlier result of this sweep (resumed)");
     cmd->add_option("--executor", r.executor, "local (processes on this machine) or slurm (one job array)")
         ->capture_default_str();
-    cmd->add_option("--jobs", r.jobs, "local: cases run at once (default: cores / run.np)");
+    cmd->add_option("--jobs", r.jobs, "local: cases run at once, >= 1 (default: cores / run.np)")
+        ->check(integer_at_least(1));
     cmd->add_flag("--dry-run", r.dry_run, "Check every case and list what would run; write nothing");
     cmd->add_flag("--retry-failed", r.retry_failed, "Run failed cases again (finished ones are always kept)");
     cmd->add_flag("--no-wait", r.no_wait,
@@ -161,8 +163,8 @@ int run_sweep(const SweepRequest &r) {
         throw InputError("--out: an output folder is required");
     if (r.executor != "local" && r.executor != "slurm")
         throw InputError("--executor: must be local or slurm (got '" + r.executor + "')");
-    if (r.jobs < 0)
-        throw InputError("--jobs: must be at least 1 (0 = cores / run.np)");
+    if (r.jobs < 0) // 0: not given (the command line refuses --jobs 0 itself)
+        throw InputError("--jobs: must be >= 1 (got " + std::to_string(r.jobs) + ")");
     if (r.no_wait && r.executor != "slurm")
         throw InputError("--no-wait: only with --executor slurm");
 

@@ -27,7 +27,7 @@ struct SweepRequest {
     std::string sweep_file;
     std::string out;
     std::string executor = "local"; // local | slurm
-    int jobs = 0;                   // local: parallel cases; 0 = cores / np
+    int jobs = 0;                   // local: parallel cases (--jobs, >= 1); 0 = not given: cores / np
     bool dry_run = false;
     bool retry_failed = false;
     bool no_wait = false; // slurm: submit and return
