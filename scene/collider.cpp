@@ -156,27 +156,33 @@ std::pair<double, int> body_wall_penetration(const BodyInit &b, const UnitTempla
     return c.spheres ? wall_penetration(b, unit.clump, walls) : exact_wall_penetration(b, c, walls);
 }
 
-bool closer_than(const BodyInit &a, const BodyInit &b, const UnitTemplate &unit, const Collider &c,
-                 double clearance) {
-    if (c.spheres) {
-        for (const auto &sa : unit.clump) {
-            const Eigen::Vector3d ca = a.pose.position + a.pose.orientation * sa.center;
-            for (const auto &sb : unit.clump)
-                if ((ca - b.pose.position - b.pose.orientation * sb.center).norm() <
+bool closer_than(const BodyInit &a, const UnitTemplate &unit_a, const Collider &ca, const BodyInit &b,
+                 const UnitTemplate &unit_b, const Collider &cb, double clearance) {
+    if (ca.spheres) {
+        for (const auto &sa : unit_a.clump) {
+            const Eigen::Vector3d centre_a = a.pose.position + a.pose.orientation * sa.center;
+            for (const auto &sb : unit_b.clump)
+                if ((centre_a - b.pose.position - b.pose.orientation * sb.center).norm() <
                     sa.radius + sb.radius + clearance)
                     return true;
         }
         return false;
     }
-    const auto into = [&](const BodyInit &from, const BodyInit &to) {
-        for (const auto &q : c.points)
-            if (depth_inside(c, to.pose.orientation.inverse() *
-                                    (from.pose.position + from.pose.orientation * q - to.pose.position)) >
+    const auto into = [&](const BodyInit &from, const Collider &points, const BodyInit &to,
+                          const Collider &parts) {
+        for (const auto &q : points.points)
+            if (depth_inside(parts, to.pose.orientation.inverse() *
+                                        (from.pose.position + from.pose.orientation * q - to.pose.position)) >
                 -clearance)
                 return true;
         return false;
     };
-    return into(a, b) || into(b, a);
+    return into(a, ca, b, cb) || into(b, cb, a, ca);
+}
+
+bool closer_than(const BodyInit &a, const BodyInit &b, const UnitTemplate &unit, const Collider &c,
+                 double clearance) {
+    return closer_than(a, unit, c, b, unit, c, clearance);
 }
 
 } // namespace armour

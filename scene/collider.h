@@ -58,9 +58,13 @@ bool consistently_wound(const TriangleMesh &surface);
 std::pair<double, int> body_wall_penetration(const BodyInit &b, const UnitTemplate &unit, const Collider &c,
                                              const std::vector<Wall> &walls);
 
-// Whether posed bodies a and b, of one unit, come closer than `clearance`
-// (m) as the engine collides them: clump spheres, or exact surface points
-// (<= 0.05 Dn apart) within the clearance of the other's parts.
+// Whether posed bodies a and b come closer than `clearance` (m) as the
+// engine collides them: clump spheres, or exact surface points (<= 0.05 Dn
+// apart) within the clearance of the other's parts. Both colliders are of
+// one engine (both clumps or both exact shapes).
+bool closer_than(const BodyInit &a, const UnitTemplate &unit_a, const Collider &ca, const BodyInit &b,
+                 const UnitTemplate &unit_b, const Collider &cb, double clearance);
+// The same for two bodies of one unit.
 bool closer_than(const BodyInit &a, const BodyInit &b, const UnitTemplate &unit, const Collider &c,
                  double clearance);
 

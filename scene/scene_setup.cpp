@@ -293,6 +293,19 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
         const SceneDrop &d = scene.drops[k];
         const int unit = unit_index(d.unit);
         const double R = collided_radius(unit);
+        // Units clear of each other by their collided shapes, not by the
+        // spheres that enclose them: a cube turned at random is kept ~2 Dn
+        // apart by those (a 20-sphere clump's corner spheres stand 0.197 m
+        // from a 0.2 m cube's centre), and slope_cubes' region, which a pile
+        // at the Rock Manual's porosity 0.47 fills with ~60, took 22 of its
+        // 30. They all fall at g from rest: a gap of 2 % of Dn stays open
+        // until they land.
+        const double gap = 0.02 * setup.unit_Dn[static_cast<std::size_t>(unit)];
+        const auto touches = [&](const BodyInit &a, const BodyInit &b) {
+            return (a.pose.position - b.pose.position).norm() < R + collided_radius(b.unit) + gap &&
+                   closer_than(a, setup.units[unit], colliders[unit], b, setup.units[b.unit],
+                               colliders[b.unit], gap);
+        };
         std::mt19937_64 rng(d.seed);
         std::uniform_real_distribution<double> uniform(0.0, 1.0);
         int placed = 0;
@@ -306,8 +319,7 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
             bool free = ((init.pose.position.array() - R) > scene.domain_min.array()).all() &&
                         ((init.pose.position.array() + R) < placement_max.array()).all();
             for (const auto &other : setup.bodies)
-                free = free &&
-                       (other.pose.position - init.pose.position).norm() > R + collided_radius(other.unit);
+                free = free && !touches(init, other);
             if (!free ||
                 body_wall_penetration(init, setup.units[unit], colliders[unit], setup.walls).first > 0.0)
                 continue;

@@ -296,6 +296,56 @@ TEST(SlopePattern, TargetsAPackingDensity) {
     }
 }
 
+// A [[drop]] keeps units apart by the shape the engine collides, not by
+// their enclosing spheres (a 20-sphere cube clump's reach 0.197 m, ~2 Dn
+// apart): 24 cubes of 0.2 m go into a 0.8 m box of centres, which a pile at
+// the Rock Manual's porosity 0.47 fills with 66 (0.53 x 1 m^3 / 0.008 m^3),
+// units placed one by one at random without settling with ~30 (the clumps:
+// measured 30 of 33), and enclosing spheres with 12-16 (slope_cubes' 30 took
+// 22 so).
+TEST(SlopeDrop, FillsARegionAsALoosePileWould) {
+    for (const armour::EngineStyle &style : armour::engine_styles()) {
+        if (style.capabilities.contacts == armour::ContactKind::none)
+            continue;
+        const armour::Scene scene = write_and_load(
+            "armour_test_drop.toml",
+            "name = \"drop\"\n[run]\nengine = \"" + style.name +
+                "\"\nduration = 0.01\ndomain_min = [-1, -1, -1]\ndomain_max = [1, 1, 1]\n"
+                "[[material]]\nname = \"concrete\"\n"
+                "[[unit]]\nname = \"cube\"\nshape = \"cube\"\nsize = 0.2\nspheres = 20\n"
+                "[[drop]]\nunit = \"cube\"\ncount = 24\nmin = [-0.4, -0.4, -0.4]\nmax = [0.4, 0.4, 0.4]\n");
+        armour::SceneSetup setup;
+        ASSERT_NO_THROW(setup = armour::build_scene(scene, cache_dir(), false)) << style.name;
+        ASSERT_EQ(setup.bodies.size(), 24u) << style.name;
+        // No two apart by less than their collided shapes: no clump spheres
+        // overlapping, no exact cube's corner inside another.
+        const bool spheres = style.capabilities.shape == armour::ShapeModel::sphere_clumps;
+        const armour::Clump &clump = setup.units[0].clump;
+        int overlaps = 0, within_reach = 0;
+        for (const armour::BodyInit &a : setup.bodies)
+            for (const armour::BodyInit &b : setup.bodies) {
+                if (&a == &b)
+                    continue;
+                within_reach += (a.pose.position - b.pose.position).norm() < 2.0 * 0.197;
+                if (spheres) {
+                    for (const auto &sa : clump)
+                        for (const auto &sb : clump)
+                            overlaps += ((a.pose.position + a.pose.orientation * sa.center) -
+                                         (b.pose.position + b.pose.orientation * sb.center))
+                                            .norm() < sa.radius + sb.radius;
+                } else {
+                    for (const Vector3d &v : setup.units[0].mesh.vertices) {
+                        const Vector3d in_b = b.pose.orientation.inverse() *
+                                              (a.pose.position + a.pose.orientation * v - b.pose.position);
+                        overlaps += in_b.cwiseAbs().maxCoeff() < 0.5 * kA;
+                    }
+                }
+            }
+        EXPECT_EQ(overlaps, 0) << style.name;
+        EXPECT_GT(within_reach, 0) << style.name << ": no two units within each other's enclosing spheres";
+    }
+}
+
 // ---------------------------------------------------------------- damage
 
 TEST(Damage, FormulasGiveThePublishedNumbers) {

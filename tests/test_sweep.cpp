@@ -1,10 +1,14 @@
 // `armour sweep`: the tilt scene over friction x spheres per clump through the
 // local executor and a real single-node Slurm (scripts/slurm-local.sh),
-// resume after kill -9, bad input, and the report's stability chart on
+// resume after kill -9, bad input, --set, the shipped studies (every case
+// checked, one tiny case of each run), and the report's stability chart on
 // synthetic damage summaries. The armour binary runs as a separate process,
 // as users run it.
+#include "scene_smoke.h"
+
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -21,6 +25,7 @@
 #include <sys/file.h>
 #include <sys/wait.h>
 #include <thread>
+#include <toml++/toml.h>
 #include <unistd.h>
 #include <vector>
 
@@ -163,6 +168,36 @@ TEST_F(SweepTest, DryRunChecksEveryCaseAndWritesNothing) {
     EXPECT_FALSE(fs::exists(dir_ / "out"));
 }
 
+// --set reaches every case after the sweep file's [set]: the cases' scenes
+// (their hashes) change, and a longer duration in [set] is overridden.
+TEST_F(SweepTest, SetOverridesEveryCaseAfterTheFilesSet) {
+    const fs::path sweep = tilt_sweep("[set]\n\"run.duration\" = 8.0\n");
+    const std::string dry =
+        kArmour + " sweep " + sweep.string() + " --out " + (dir_ / "out").string() + " --dry-run";
+    const Result plain = run(dry), shorter = run(dry + " --set run.duration=6");
+    ASSERT_EQ(plain.status, 0) << plain.output;
+    ASSERT_EQ(shorter.status, 0) << shorter.output;
+    const auto hash = [](const std::string &listing, const std::string &id) {
+        const std::size_t at = listing.find(id + "  scene ");
+        return at == std::string::npos ? std::string() : listing.substr(at + id.size() + 8, 16);
+    };
+    for (const char *id : {"friction-0.3_spheres-20", "friction-0.5_spheres-50"}) {
+        ASSERT_FALSE(hash(plain.output, id).empty()) << plain.output;
+        EXPECT_NE(hash(plain.output, id), hash(shorter.output, id)) << id;
+    }
+    // A real case runs the duration --set gives, not [set]'s.
+    const fs::path one = dir_ / "one.toml", out = dir_ / "one";
+    write(one, "scene = \"" + kSource + "/scenes/tilt_cube.toml\"\n[set]\n\"run.duration\" = 8.0\n" +
+                   "[vary]\n\"material.0.friction\" = [0.5]\n");
+    const Result r =
+        run(kArmour + " sweep " + one.string() + " --out " + out.string() + " --set run.duration=6");
+    ASSERT_EQ(r.status, 0) << r.output;
+    const json summary = json::parse(read_text(out / "cases" / "friction-0.5" / "run" / "summary.json"));
+    EXPECT_NEAR(summary["simulated_seconds"].get<double>(), 6.0, 0.01);
+    const json plan = json::parse(read_text(out / "sweep.json"));
+    EXPECT_EQ(plan["set"], json({"run.duration=8.0", "run.duration=6"}));
+}
+
 // The shipped studies as a user starts them: every case passes what
 // `armour run` checks before it writes (the scene reader, the placement, the
 // engine's step, the fluid case): a case refused at its start on a cluster
@@ -184,6 +219,70 @@ TEST_F(SweepTest, ShippedStudiesCheckEveryCase) {
                              (dir_ / entry.path().stem()).string() + " --dry-run");
         EXPECT_EQ(r.status, 0) << entry.path() << ": " << r.output;
         EXPECT_NE(r.output.find("all checked"), std::string::npos) << r.output;
+    }
+    EXPECT_GE(studies, 2);
+}
+
+// One tiny real case of each shipped study, as a user would try one before
+// a cluster: a copy of the study cut to the first value of every [vary] list
+// (or its first [[case]]) and its first seed, on one MPI rank, its case's
+// scene shortened as the smoke shortens that scene (scene_smoke.h) through
+// `armour sweep --set`. The case ends done and every headline figure of the
+// sweep is a finite number.
+TEST_F(SweepTest, ShippedStudiesRunOneTinyCaseEach) {
+    int studies = 0;
+    for (const auto &entry : fs::directory_iterator(kSource + "/studies")) {
+        if (entry.path().extension() != ".toml")
+            continue;
+        ++studies;
+        const std::string name = entry.path().filename().string();
+        toml::table study = toml::parse_file(entry.path().string());
+        fs::path scene(study["scene"].value_or(std::string()));
+        if (scene.is_relative())
+            scene = entry.path().parent_path() / scene;
+        scene = scene.lexically_normal();
+#ifndef ARMOUR_HAS_OPENFOAM
+        if (toml::parse_file(scene.string()).contains("fluid"))
+            continue; // its cases need the OpenFOAM plugin, which this build lacks
+#endif
+        const auto smoke = armour_test::kSmoke.find(scene.filename().string());
+        ASSERT_NE(smoke, armour_test::kSmoke.end()) << name << ": its scene has no row in scene_smoke.h";
+
+        study.insert_or_assign("scene", scene.string());
+        const auto first_only = [](toml::array *list) {
+            if (list && list->size() > 1)
+                list->erase(list->cbegin() + 1, list->cend());
+        };
+        if (toml::table *vary = study["vary"].as_table()) {
+            for (auto &&[key, values] : *vary)
+                first_only(values.as_array());
+            study.erase("case");
+        } else {
+            first_only(study["case"].as_array());
+        }
+        first_only(study["seeds"].as_array());
+        if (toml::table *run_table = study["run"].as_table())
+            run_table->erase("np"); // one rank on a 2-core machine
+        const fs::path copy = dir_ / "studies" / name, out = dir_ / ("tiny-" + entry.path().stem().string());
+        fs::create_directories(copy.parent_path());
+        std::ofstream(copy) << study << "\n";
+
+        const Result r = run(kArmour + " sweep " + copy.string() + " --out " + out.string() + " " +
+                             armour_test::shell_sets(smoke->second));
+        ASSERT_EQ(r.status, 0) << name << ": " << r.output << "\n" << read_text(copy);
+        const json summary = json::parse(read_text(out / "summary.json"));
+        ASSERT_EQ(summary["total"], 1) << name;
+        ASSERT_EQ(summary["done"], 1) << name;
+        const json &figures = summary["cases"][0]["figures"];
+        const std::vector<std::string> &may_be_null = smoke->second.null_figures;
+        ASSERT_FALSE(summary["headline"].empty()) << name;
+        for (const std::string key : summary["headline"]) {
+            if (std::find(may_be_null.begin(), may_be_null.end(), key) != may_be_null.end() &&
+                (!figures.contains(key) || figures[key].is_null()))
+                continue; // the smoke row says why
+            ASSERT_TRUE(figures.contains(key) && figures[key].is_number()) << name << ": " << key;
+            EXPECT_TRUE(std::isfinite(figures[key].get<double>())) << name << ": " << key;
+        }
     }
     EXPECT_GE(studies, 2);
 }
@@ -331,6 +430,13 @@ TEST_F(SweepTest, BadInputIsOneErrorLineBeforeAnythingRuns) {
         {scene + "[vary]\n\"run.time_step\" = [1e-5, 0.01]\n", "",
          "case time_step-0.01: run.time_step: 0.01 s exceeds the stability limit"},
         {scene + "[vary]\n\"body.0.position\" = [[0.0, 0.0, 0.05]]\n", "", "cuts into wall 'plate' by"},
+        // --set: what every case shares, never what the sweep varies.
+        {scene + "[vary]\n\"material.0.friction\" = [0.3]\n", "--set material.0.friction=0.4",
+         "--set: key 'material.0.friction': the sweep file"},
+        {scene + "[vary]\n\"material.0.friction\" = [0.3]\n", "--set run.duration",
+         "--set: 'run.duration': expected KEY=VALUE"},
+        {scene + "[vary]\n\"material.0.friction\" = [0.3]\n", "--set run.durration=1",
+         "case friction-0.3: --set 'run.durration=1': unknown key"},
     };
     for (const auto &c : cases) {
         write(dir_ / "bad.toml", c.sweep);

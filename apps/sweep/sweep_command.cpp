@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <thread>
 #include <unistd.h>
@@ -37,6 +38,14 @@ std::string self_exe() {
     return exe.string();
 }
 
+// [set] and --set, as KEY=VALUE: what every case shares (sweep.toml lacks --set).
+std::vector<std::string> set_overrides(const SweepSpec &spec) {
+    std::vector<std::string> out;
+    for (const auto &[key, value] : spec.fixed)
+        out.push_back(key + "=" + value);
+    return out;
+}
+
 json plan_json(const SweepContext &ctx) {
     json cases = json::array();
     for (const SweepCase &c : ctx.plan.cases)
@@ -49,6 +58,7 @@ json plan_json(const SweepContext &ctx) {
             {"analysis", ctx.plan.analysis},
             {"executor", ctx.executor},
             {"varied", ctx.plan.columns},
+            {"set", set_overrides(ctx.plan.spec)},
             {"seeds", ctx.plan.spec.seeds},
             {"np", ctx.plan.spec.np},
             {"timeout", ctx.plan.spec.timeout},
@@ -81,6 +91,31 @@ SweepContext read_context(const fs::path &out) {
         ctx.plan.cases.push_back(sc);
     }
     return ctx;
+}
+
+// The --set overrides appended to the sweep file's [set]: they apply to
+// every case. A key the sweep varies is refused: each case sets it again
+// after [set], so --set would change nothing while seeming to.
+void add_command_line_sets(SweepSpec &spec, const std::vector<std::string> &overrides) {
+    std::set<std::string> varied(spec.seed_keys.begin(), spec.seed_keys.end());
+    for (const auto &[key, values] : spec.vary)
+        varied.insert(key);
+    for (const auto &c : spec.cases)
+        for (const auto &kv : c)
+            varied.insert(kv.first);
+    const bool drop_seeds = !spec.seeds.empty() && spec.seed_keys.empty(); // every [[drop]]'s seed
+    for (const std::string &o : overrides) {
+        const std::size_t eq = o.find('=');
+        if (eq == std::string::npos || eq == 0)
+            throw InputError("--set: '" + o + "': expected KEY=VALUE, e.g. --set run.duration=0.5");
+        const std::string key = o.substr(0, eq);
+        const bool seed = drop_seeds && key.rfind("drop.", 0) == 0 && key.size() > 5 &&
+                          key.compare(key.size() - 5, 5, ".seed") == 0;
+        if (varied.count(key) || seed)
+            throw InputError("--set: key '" + key + "': the sweep file " + spec.file +
+                             " varies it ([vary], [[case]] or seeds); --set sets what every case shares");
+        spec.fixed.emplace_back(key, o.substr(eq + 1));
+    }
 }
 
 void write_report(const fs::path &out) {
@@ -130,6 +165,9 @@ CLI::App *add_sweep_command(CLI::App &app, SweepRequest &r) {
     cmd->add_option("sweep", r.sweep_file, "Sweep file (.toml)");
     cmd->add_option("--out", r.out,
                     "Output folder: new, empty, or an earlier result of this sweep (resumed)");
+    cmd->add_option("--set", r.overrides,
+                    "Override a scene key for every case, after the sweep file's [set], TOML syntax: "
+                    "--set run.duration=0.5 (not a key the sweep varies)");
     cmd->add_option("--executor", r.executor, "local (processes on this machine) or slurm (one job array)")
         ->capture_default_str();
     cmd->add_option("--jobs", r.jobs, "local: cases run at once, >= 1 (default: cores / run.np)")
@@ -153,8 +191,8 @@ int run_sweep(const SweepRequest &r) {
         return status;
     }
     if (!r.collect.empty()) {
-        if (!r.sweep_file.empty() || !r.out.empty())
-            throw InputError("--collect: takes the sweep's folder alone (no SWEEP.toml, no --out)");
+        if (!r.sweep_file.empty() || !r.out.empty() || !r.overrides.empty())
+            throw InputError("--collect: takes the sweep's folder alone (no SWEEP.toml, no --out, no --set)");
         return collect(r);
     }
     if (r.sweep_file.empty())
@@ -169,7 +207,9 @@ int run_sweep(const SweepRequest &r) {
         throw InputError("--no-wait: only with --executor slurm");
 
     SweepContext ctx;
-    ctx.plan = plan_sweep(read_sweep_file(r.sweep_file)); // every case checked before anything runs
+    SweepSpec spec = read_sweep_file(r.sweep_file);
+    add_command_line_sets(spec, r.overrides);
+    ctx.plan = plan_sweep(spec); // every case checked before anything runs
     ctx.out = fs::absolute(r.out).lexically_normal();
     ctx.executor = r.executor;
     ctx.armour_exe = self_exe();

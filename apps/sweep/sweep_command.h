@@ -1,5 +1,5 @@
-// `armour sweep SWEEP.toml --out DIR [--executor local|slurm] [--jobs N] [--dry-run]
-//  [--retry-failed] [--no-wait]` and `armour sweep --collect DIR`.
+// `armour sweep SWEEP.toml --out DIR [--set KEY=VALUE]... [--executor local|slurm] [--jobs N]
+//  [--dry-run] [--retry-failed] [--no-wait]` and `armour sweep --collect DIR`.
 //
 // Description
 //     Runs every case of a sweep file (sweep_file.h, docs/sweeps.md) as its own
@@ -8,7 +8,8 @@
 //     ends with DIR/report.md (charts by sweep_report.py). Every case's scene
 //     is checked before anything runs. Running the same command again resumes:
 //     finished cases with the same scene hash are skipped, failed ones are run
-//     again only with --retry-failed.
+//     again only with --retry-failed. --set overrides a scene key for every
+//     case after the sweep file's [set] (a shorter run.duration for a trial).
 //
 // Usage
 //     SweepRequest r;  r.sweep_file = "studies/tilt_friction.toml";  r.out = "tilt-sweep";
@@ -16,6 +17,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace CLI {
 class App;
@@ -26,8 +28,9 @@ namespace armour {
 struct SweepRequest {
     std::string sweep_file;
     std::string out;
-    std::string executor = "local"; // local | slurm
-    int jobs = 0;                   // local: parallel cases (--jobs, >= 1); 0 = not given: cores / np
+    std::vector<std::string> overrides; // --set KEY=VALUE: every case, after the file's [set]
+    std::string executor = "local";     // local | slurm
+    int jobs = 0;                       // local: parallel cases (--jobs, >= 1); 0 = not given: cores / np
     bool dry_run = false;
     bool retry_failed = false;
     bool no_wait = false; // slurm: submit and return
