@@ -91,8 +91,8 @@ const char *mode_name(Mode m) {
 }
 
 // The per-command choice, first match wins, matched against the command with
-// its binary written `armour`. Measured on 2 cores (the test's whole cost is
-// in the report).
+// its binary written `armour`. Every document together: ~2.2 min of CPU on 2
+// cores (most of it the stability scene's random placement in its dry runs).
 struct Rule {
     const char *pattern;
     Mode mode;
@@ -112,9 +112,9 @@ const Rule kRules[] = {
     {R"(^armour run scenes/(slope_cubes|slope_dolosse)\.toml )", Mode::shorten, 0.05,
      "a dry scene: its units placed and dropped for 0.05 s (settling takes minutes)"},
     {R"(^armour compare scenes/drop_bounce\.toml --spheres 4,8,20 --set run\.duration=0\.6)", Mode::full, 0,
-     "the quick start's compare: ~30 s"},
+     "the quick start's compare: ~7 s of CPU"},
     {R"(^armour sweep studies/tilt_friction\.toml --out \S+$)", Mode::dry, 0,
-     "eight tilt runs (~2 min); tests/test_sweep.cpp runs such sweeps"},
+     "four full tilt runs (a minute or two); tests/test_sweep.cpp runs this sweep"},
 };
 
 // Internal options the documents name but --help leaves out on purpose.
