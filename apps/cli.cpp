@@ -116,6 +116,9 @@ int armour_main(int argc, const char *const *argv) {
                       "the Courant limits may differ; on the run's ranks unless --np gives others (the "
                       "fields are split anew); a run that settled first is not settled again "
                       "(docs/checkpoints.md)");
+    run_cmd->add_flag("--dry-run", run.dry_run,
+                      "Check everything the run checks before it starts (scene, --set, units, engine, fluid "
+                      "case and tools, --out, --resume) and print its plan; write nothing to --out");
 
     ReportRequest report;
     CLI::App *report_cmd = app.add_subcommand(
@@ -171,6 +174,9 @@ int armour_main(int argc, const char *const *argv) {
     compare_cmd->add_option("--set", compare.overrides,
                             "Override a scene key for every run, as `armour run --set`");
     compare_cmd->add_option("--cache", compare.cache, kCacheHelp);
+    compare_cmd->add_flag(
+        "--dry-run", compare.dry_run,
+        "Check the scene, the options and --out, list the runs; run nothing, write nothing");
 
     SweepRequest sweep;
     CLI::App *sweep_cmd = add_sweep_command(app, sweep);

@@ -10,6 +10,7 @@
 #include "output_folder.h"
 #include "run_command.h"
 #include "scene.h"
+#include "scene_keys.h"
 
 #include <algorithm>
 #include <cmath>
@@ -65,6 +66,34 @@ double number_or_nan(const json &summary, const std::string &key) {
                : std::nan("");
 }
 
+template <typename T> std::string joined(const std::vector<T> &values) {
+    std::string text;
+    for (const T &v : values)
+        text += (text.empty() ? "" : ",") + number_text(static_cast<double>(v));
+    return text;
+}
+
+// `armour compare --dry-run`: what the real command checks before its first
+// run (the scene, the options, --out), then the runs it would make.
+int print_compare_plan(const CompareRequest &r, const Scene &scene, const std::vector<std::uint64_t> &seeds,
+                       const std::vector<std::string> &engines) {
+    const std::filesystem::path out = OutputFolder::check_writable(r.out, "armour compare");
+    const std::size_t per_seed = r.spheres.size() + (engines.size() > 1 ? 1 : 0);
+    std::printf("%s: dry run, nothing written; checked: the scene, the options and --out %s\n",
+                r.scene.c_str(), out.c_str());
+    std::printf("  %zu runs of %s s (simulated): seeds %s x (clumps of %s spheres on %s%s)\n",
+                seeds.size() * per_seed, number_text(scene.duration).c_str(), joined(seeds).c_str(),
+                joined(r.spheres).c_str(), engines.front().c_str(),
+                engines.size() > 1 ? (", exact hulls on " + engines[1]).c_str() : "");
+    if (analysis_style(scene.analysis).turns_gravity || r.dt_factors.empty())
+        std::printf("  no time-step sweep (%s)\n",
+                    r.dt_factors.empty() ? "--dt-factors is empty" : "the analysis turns gravity");
+    else
+        std::printf("  time-step sweep: %zu factors (%s x the stability limit) x %zu engines\n",
+                    r.dt_factors.size(), joined(r.dt_factors).c_str(), engines.size());
+    return 0;
+}
+
 } // namespace
 
 int run_compare(const CompareRequest &r) {
@@ -111,6 +140,9 @@ int run_compare(const CompareRequest &r) {
     std::vector<std::string> engines = {clump_engine};
     if (have_exact)
         engines.push_back(exact_engine);
+
+    if (r.dry_run)
+        return print_compare_plan(r, scene, seeds, engines);
 
     OutputFolder out(r.out, "armour compare", OutputFolder::Mode::staged);
     out.open();

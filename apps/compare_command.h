@@ -19,6 +19,7 @@ struct CompareRequest {
     double blow_up_gain = 0.1;          // energy gain (E_max - E_0) / sum(m g Dn) above which a run failed
     std::vector<std::string> overrides; // --set, applied to every run
     std::string cache;
+    bool dry_run = false; // check and list the runs; run nothing, write nothing
 };
 
 int run_compare(const CompareRequest &request);

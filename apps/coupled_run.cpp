@@ -221,9 +221,14 @@ std::vector<std::string> check_coupled_scene(const Scene &scene, const SceneSetu
     }
     const std::string used = template_text(tmpl); // every file of the template, read once
     {
-        std::map<std::string, std::string>
-            tokens; // [waves] and the template agree, before anything is written
+        // [waves], the walls and the template agree, before anything is written.
+        std::map<std::string, std::string> tokens;
         wave_tokens(scene, used, tokens);
+        geometry_tokens(scene, setup, used, tokens);
+        if (used.find("@ARMOUR_WAVES@") != std::string::npos && f.wave_height <= 0.0 &&
+            !makes_wave_train(scene))
+            throw InputError(file + ": key 'fluid.wave_height': fluid.case \"" + f.case_name +
+                             "\" makes a solitary wave: give its height (> 0 m)");
     }
     check_flume_grading(scene, setup, used);
     const std::string plugin = plugin_path();
@@ -498,12 +503,8 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
             {"@WATER_DEPTH@", number_text(scene.still_water_depth())},
             {"@WAVE_HEIGHT@", number_text(f.wave_height)},
         });
-        geometry_tokens(scene, setup, used, tokens);
+        geometry_tokens(scene, setup, used, tokens); // checked by check_coupled_scene
         wave_tokens(scene, used, tokens);
-        if (used.find("@ARMOUR_WAVES@") != std::string::npos && f.wave_height <= 0.0 &&
-            !makes_wave_train(scene))
-            throw InputError(scene.file + ": key 'fluid.wave_height': fluid.case \"" + f.case_name +
-                             "\" makes a solitary wave: give its height (> 0 m)");
         fill_tokens(case_dir, tokens);
         write_fluid_models(scene, case_dir);
 

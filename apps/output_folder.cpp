@@ -106,15 +106,25 @@ void warn_about_old_staging(const fs::path &target) {
     }
 }
 
+// The folder `--out` names, absolute; "dir/" and "." name the folder itself.
+fs::path normalised_target(const fs::path &target) {
+    if (target.empty())
+        throw InputError("--out: an output directory is required");
+    const fs::path folder = fs::absolute(target).lexically_normal();
+    return folder.filename().empty() ? folder.parent_path() : folder;
+}
+
+InputError in_use_error(const fs::path &target, const std::string &holder) {
+    return InputError("--out " + target.string() + ": in use by another armour command (pid " +
+                      (holder.empty() ? "unknown" : holder) +
+                      "); wait for it to end or choose another folder");
+}
+
 } // namespace
 
 OutputFolder::OutputFolder(const fs::path &target, std::string command, Mode mode)
-    : target_(fs::absolute(target).lexically_normal()), command_(std::move(command)), mode_(mode) {
-    if (target.empty())
-        throw InputError("--out: an output directory is required");
-    if (target_.filename().empty())
-        target_ = target_.parent_path(); // "dir/" and "." name the folder itself
-    check();                             // a folder that is not ours is refused untouched
+    : target_(normalised_target(target)), command_(std::move(command)), mode_(mode) {
+    check(); // a folder that is not ours is refused untouched
     try {
         create_target();
         lock();
@@ -190,9 +200,7 @@ void OutputFolder::lock() {
                 throw InputError(
                     "--out " + target_.string() + ": in use by a program the ended armour command " + holder +
                     " started (interFoam or mpirun still running?); end it or choose " + "another folder");
-            throw InputError("--out " + target_.string() + ": in use by another armour command (pid " +
-                             (holder.empty() ? "unknown" : holder) +
-                             "); wait for it to end or choose another folder");
+            throw in_use_error(target_, holder);
         }
         // The holder before us removes the file as it lets go: a lock taken on
         // the removed file guards nothing, so open the new one.
@@ -227,28 +235,48 @@ void OutputFolder::release() {
     created_.clear();
 }
 
-OutputFolder::Earlier OutputFolder::check() const {
+fs::path OutputFolder::check_writable(const fs::path &target, const std::string &command) {
+    const fs::path folder = normalised_target(target);
+    check(folder, command);
+    // A folder to be made: its nearest existing parent must take it.
+    fs::path parent = folder;
+    while (!fs::exists(parent) && parent != parent.parent_path())
+        parent = parent.parent_path();
+    if (parent != folder && (!fs::is_directory(parent) || ::access(parent.c_str(), W_OK) != 0))
+        throw InputError("--out " + folder.string() + ": cannot create it in " + parent.string() + ": " +
+                         (fs::is_directory(parent) ? std::strerror(errno) : "not a folder"));
+    // The lock's holder, as lock() would find it, without taking the lock:
+    // a lock file left by a killed command names a pid that is gone.
+    std::ifstream lock_file(folder / kLock);
+    std::string holder;
+    if (lock_file && std::getline(lock_file, holder) && !holder.empty() &&
+        holder.find_first_not_of("0123456789") == std::string::npos && process_alive(holder))
+        throw in_use_error(folder, holder);
+    return folder;
+}
+
+OutputFolder::Earlier OutputFolder::check(const fs::path &target, const std::string &command) {
     Earlier earlier;
     std::error_code ec;
-    const fs::file_status status = fs::status(target_, ec);
+    const fs::file_status status = fs::status(target, ec);
     if (!fs::exists(status))
         return earlier;
     if (!fs::is_directory(status))
-        throw InputError("--out " + target_.string() + ": exists and is not a folder");
+        throw InputError("--out " + target.string() + ": exists and is not a folder");
     earlier.exists = true;
     std::string owner;
-    std::ifstream marker(target_ / kMarker);
+    std::ifstream marker(target / kMarker);
     const bool marked = static_cast<bool>(marker);
     if (marked && std::getline(marker, owner))
         for (std::string line; std::getline(marker, line);)
             if (plain_entry(line))
                 earlier.entries.push_back(line);
     const std::string refused =
-        "--out " + target_.string() + ": not empty and not an earlier result of '" + command_ + "' (";
+        "--out " + target.string() + ": not empty and not an earlier result of '" + command + "' (";
     const std::string advice = "); choose a new or empty folder";
-    if (marked && owner != command_)
+    if (marked && owner != command)
         throw InputError(refused + "it is a result of '" + owner + "'" + advice);
-    for (const std::string &name : entries_of(target_))
+    for (const std::string &name : entries_of(target))
         if (std::find(earlier.entries.begin(), earlier.entries.end(), name) == earlier.entries.end() &&
             !temporary_of(name, earlier.entries))
             throw InputError(refused + "holds '" + name + "'" + advice);

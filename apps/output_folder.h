@@ -68,6 +68,13 @@ class OutputFolder {
     // only its summary.json goes (a result being continued is not whole).
     void resume();
 
+    // What the constructor checks, changing nothing (`armour run --dry-run`):
+    // throws the InputError it would throw for `target` (not a folder, not
+    // empty and not an earlier result of `command`, in use by a live command).
+    // Returns the folder, absolute.
+    static std::filesystem::path check_writable(const std::filesystem::path &target,
+                                                const std::string &command);
+
     const std::filesystem::path &target() const { return target_; } // the final place
     // Where entries are written until commit(): the staging folder, or DIR
     // when streaming (for a tool that writes its own files there; staged, all
@@ -79,7 +86,8 @@ class OutputFolder {
         bool exists = false;              // the folder exists
         std::vector<std::string> entries; // what its marker lists (empty folder: none)
     };
-    Earlier check() const;
+    Earlier check() const { return check(target_, command_); }
+    static Earlier check(const std::filesystem::path &target, const std::string &command);
     void write_marker(const std::filesystem::path &dir, const std::vector<std::string> &entries) const;
     void remove_entries(const std::vector<std::string> &entries) const;
     void create_target();

@@ -8,6 +8,8 @@
 #include "clump_io.h"
 #include "coupled_run.h"
 #include "engine_registry.h"
+#include "flume_mesh.h"
+#include "foam_restart.h"
 #include "mesh.h"
 #include "output_folder.h"
 #include "scene_keys.h"
@@ -544,9 +546,11 @@ Checkpoint checked_resume(const RunRequest &r, const Scene &scene, const fs::pat
 // again. The scene must be the one that ran but for the resumable keys:
 // the settle's (OUT/settle/scene.resolved.toml: units, placement,
 // materials, walls, settle time and friction) and the coupled run's from
-// the settled poses (OUT/scene.resolved.toml).
-int resume_settled(const RunRequest &r, OutputFolder &folder, const Scene &scene, const SceneSetup &setup) {
-    const fs::path dir = folder.target() / "settle";
+// the settled poses (OUT/scene.resolved.toml). Returns the settled scene and
+// the checkpoint it continues from; reads `out` only.
+std::pair<Scene, Checkpoint> checked_settled_resume(const RunRequest &r, const Scene &scene,
+                                                    const SceneSetup &setup, const fs::path &out) {
+    const fs::path dir = out / "settle";
     for (const char *name : {"scene.resolved.toml", "scene.settled.toml", "settled.json"})
         if (!fs::is_regular_file(dir / name))
             throw InputError("--resume: " + (dir / name).string() +
@@ -555,35 +559,140 @@ int resume_settled(const RunRequest &r, OutputFolder &folder, const Scene &scene
     refuse_if_differs(r.scene, resumable_form(settle_scene(scene, setup), false),
                       resumable_form(load_scene((dir / "scene.resolved.toml").string()), false),
                       "settled in " + dir.string());
-    const Scene settled = settled_scene(scene, load_scene((dir / "scene.settled.toml").string()).bodies);
-    const Checkpoint checkpoint = checked_resume(r, settled, folder.target());
+    Scene settled = settled_scene(scene, load_scene((dir / "scene.settled.toml").string()).bodies);
+    const Checkpoint checkpoint = checked_resume(r, settled, out);
+    return {std::move(settled), checkpoint};
+}
+
+int resume_settled(const RunRequest &r, OutputFolder &folder, const Scene &scene, const SceneSetup &setup) {
+    const auto [settled, checkpoint] = checked_settled_resume(r, scene, setup, folder.target());
     const SceneSetup settled_setup =
         build_scene(settled, r.cache.empty() ? default_cache_dir() : r.cache, false);
     folder.resume();
     return with_settle_report(folder, run_coupled(r, settled, settled_setup, folder, &checkpoint),
-                              settle_report(dir, setup));
+                              settle_report(folder.target() / "settle", setup));
+}
+
+// The options that do not fit the scene, refused before any work.
+void check_options(const RunRequest &r, const Scene &scene) {
+    if (!scene.fluid && r.np != 0)
+        throw InputError("--np: only for scenes with a [fluid] table (MPI ranks of interFoam)");
+    if (r.resume && !engine_style(scene.engine).capabilities.restart)
+        throw InputError(r.scene + ": key 'run.engine': the " + scene.engine +
+                         " engine cannot restore a state, so its runs cannot be resumed");
+}
+
+void warn_if_settle_friction_unused(const Scene &scene) {
+    if (scene.fluid && scene.fluid->settle_friction && scene.fluid->settle_time <= 0.0)
+        std::fprintf(stderr, "armour: warning: fluid.settle_friction is unused: there is no settle "
+                             "(fluid.settle_time = 0)\n");
+}
+
+// What a run of a scene checks before it writes: its set-up, the warnings,
+// and a DEM run's engine step.
+struct RunCheck {
+    SceneSetup setup;
+    std::vector<std::string> warnings;
+    TimeStepReport dt; // DEM runs only: a coupled run's engine steps with the fluid
+};
+
+RunCheck check_run(const Scene &scene, const std::string &cache_dir, int np) {
+    RunCheck check;
+    check.setup = build_scene(scene, cache_dir, false);
+    if (scene.fluid) {
+        check.warnings = check_coupled_scene(scene, check.setup, np > 0 ? np : scene.fluid->np);
+        return check;
+    }
+    check_analysis_fits(scene, check.setup);
+    check.warnings = rocking_clump_warnings(scene, check.setup);
+    // The engine's step, as run_dem asks it: from the materials and clumps,
+    // before the engine starts (nothing is written, as in check_coupled_scene).
+    check.dt = scene_engine(scene, check.setup, check.setup.settings)->time_step_report();
+    if (check.dt.forced)
+        check.warnings.push_back("run.time_step " + figure_text(check.dt.used) +
+                                 " s exceeds the engine's stability limit (run.force_time_step = true)");
+    return check;
+}
+
+// The plan of a run `armour run --dry-run` prints: units, engine, the kind
+// of run, its length in simulated time and in steps or fluid cells.
+void print_plan(const RunRequest &r, const Scene &scene, const RunCheck &check, const fs::path &out,
+                const std::optional<double> &resume_time) {
+    const SceneSetup &setup = check.setup;
+    std::vector<int> count(setup.units.size(), 0);
+    for (const auto &b : setup.bodies)
+        ++count[static_cast<std::size_t>(b.unit)];
+    std::printf("%s: dry run, nothing written; checked: the scene, its units and engine%s and --out %s\n",
+                r.scene.c_str(), scene.fluid ? ", the fluid case and OpenFOAM's tools" : "", out.c_str());
+    std::printf("  units:%s", setup.bodies.empty() ? " none" : "");
+    const char *separator = "";
+    for (std::size_t k = 0; k < setup.units.size(); ++k)
+        if (count[k] > 0) {
+            std::printf("%s %d x '%s' (Dn %s m, %s kg, %d spheres)", separator, count[k],
+                        setup.units[k].name.c_str(), figure_text(setup.unit_Dn[k]).c_str(),
+                        figure_text(setup.units[k].props.mass).c_str(), setup.unit_spheres[k]);
+            separator = ",";
+        }
+    std::printf("\n  engine %s; ", scene.engine.c_str());
+    if (scene.fluid) {
+        const SceneFluid &f = *scene.fluid;
+        const FlumeMesh mesh = flume_mesh(scene);
+        const int np = r.np > 0 ? r.np : f.np;
+        std::printf(
+            "coupled with interFoam: template '%s', %d x %d x %d cells%s, %d rank%s, fluid steps <= %s s",
+            f.case_name.c_str(), mesh.axes[0].cells, mesh.axes[1].cells, mesh.axes[2].cells,
+            mesh.graded ? " (graded)" : "", np, np > 1 ? "s" : "", number_text(f.max_time_step).c_str());
+        if (f.settle_time > 0.0 && !resume_time)
+            std::printf("; a dry settle of %s s first", number_text(f.settle_time).c_str());
+    } else {
+        std::printf("dry (DEM): steps of %s s (limit %s s)", figure_text(check.dt.used).c_str(),
+                    figure_text(check.dt.limit).c_str());
+    }
+    std::printf("\n  %s %s s of simulated time", resume_time ? "resumes at" : "runs",
+                resume_time ? number_text(*resume_time).c_str() : number_text(scene.duration).c_str());
+    if (resume_time)
+        std::printf(" to %s s", number_text(scene.duration).c_str());
+    if (!scene.fluid && check.dt.used > 0.0)
+        std::printf(" (%.0f steps)", std::ceil((scene.duration - resume_time.value_or(0.0)) / check.dt.used));
+    std::printf(", a record every %s s\n", number_text(scene.output_interval).c_str());
+}
+
+// `armour run --dry-run`: every check the run makes before its work, in
+// the same order and with the same errors, then its plan; writes nothing
+// into --out (the clump cache fills as a run would fill it).
+int dry_run(const RunRequest &r, const Scene &scene) {
+    const fs::path out = OutputFolder::check_writable(r.out, "armour run");
+    check_options(r, scene);
+    const bool settles = scene.fluid && scene.fluid->settle_time > 0.0;
+    std::optional<Checkpoint> resume;
+    if (r.resume && !settles)
+        resume = checked_resume(r, scene, out);
+    // A resume goes on with the run's ranks unless told (run_coupled).
+    const int np = r.np > 0 || !resume || !scene.fluid ? r.np : checkpoint_ranks(*resume);
+    const RunCheck check = check_run(scene, r.cache.empty() ? default_cache_dir() : r.cache, np);
+    if (r.resume && settles)
+        resume = checked_settled_resume(r, scene, check.setup, out).second;
+    if (!r.resume)
+        warn_if_no_checkpoint(scene);
+    warn_if_settle_friction_unused(scene);
+    for (const std::string &w : check.warnings)
+        std::fprintf(stderr, "armour: warning: %s\n", w.c_str());
+    print_plan(r, scene, check, out, resume ? std::optional<double>(resume->time) : std::optional<double>());
+    return 0;
 }
 
 } // namespace
 
 std::vector<std::string> check_scene_runs(const Scene &scene, const std::string &cache_dir, int np) {
-    const SceneSetup setup = build_scene(scene, cache_dir, false);
-    if (scene.fluid)
-        return check_coupled_scene(scene, setup, np > 0 ? np : scene.fluid->np);
-    check_analysis_fits(scene, setup);
-    std::vector<std::string> warnings = rocking_clump_warnings(scene, setup);
-    // The engine's step, as run_dem asks it: from the materials and clumps,
-    // before the engine starts (nothing is written, as in check_coupled_scene).
-    const TimeStepReport dt = scene_engine(scene, setup, setup.settings)->time_step_report();
-    if (dt.forced)
-        warnings.push_back("run.time_step " + figure_text(dt.used) +
-                           " s exceeds the engine's stability limit (run.force_time_step = true)");
-    return warnings;
+    return check_run(scene, cache_dir, np).warnings;
 }
 
 int run_scene(const RunRequest &r) {
     const Scene scene = load_scene(r.scene, r.overrides);
+    if (r.dry_run)
+        return dry_run(r, scene);
     OutputFolder folder(r.out, "armour run", OutputFolder::Mode::streaming); // refused before any work
+    check_options(r, scene);
     const bool settles = scene.fluid && scene.fluid->settle_time > 0.0;
     std::optional<Checkpoint> resume;
     if (r.resume && !settles)
@@ -593,25 +702,14 @@ int run_scene(const RunRequest &r) {
         warn_if_no_checkpoint(scene);
     if (!scene.fluid) {
         check_analysis_fits(scene, setup);
-        if (r.np != 0)
-            throw InputError("--np: only for scenes with a [fluid] table (MPI ranks of interFoam)");
         for (const std::string &w : rocking_clump_warnings(scene, setup))
             std::fprintf(stderr, "armour: warning: %s\n", w.c_str());
-        if (resume) {
-            if (!engine_style(scene.engine).capabilities.restart)
-                throw InputError(r.scene + ": key 'run.engine': the " + scene.engine +
-                                 " engine cannot restore a state, so its runs cannot be resumed");
+        if (resume)
             folder.resume();
-        }
         return run_dem(folder, scene, setup, nullptr, nullptr, resume ? &*resume : nullptr);
     }
-    if (scene.fluid->settle_friction && scene.fluid->settle_time <= 0.0)
-        std::fprintf(stderr, "armour: warning: fluid.settle_friction is unused: there is no settle "
-                             "(fluid.settle_time = 0)\n");
+    warn_if_settle_friction_unused(scene);
     if (r.resume) {
-        if (!engine_style(scene.engine).capabilities.restart)
-            throw InputError(r.scene + ": key 'run.engine': the " + scene.engine +
-                             " engine cannot restore a state, so its runs cannot be resumed");
         if (settles)
             return resume_settled(r, folder, scene, setup);
         folder.resume();

@@ -1,4 +1,4 @@
-// `armour run SCENE --out DIR [--set key=value ...] [--np N] [--resume]`.
+// `armour run SCENE --out DIR [--set key=value ...] [--np N] [--resume] [--dry-run]`.
 #pragma once
 
 #include <string>
@@ -15,6 +15,7 @@ struct RunRequest {
     std::string cache;                  // clump cache folder; empty = default
     int np = 0;                         // MPI ranks of a coupled run; 0 = the scene's fluid.np
     bool resume = false;                // continue DIR from its last checkpoint (docs/checkpoints.md)
+    bool dry_run = false;               // every check of a run, a plan on stdout, nothing written to DIR
 };
 
 // Returns the exit status (0 on success); throws InputError before anything

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 namespace fs = std::filesystem;
@@ -351,6 +352,45 @@ TEST(Compare, RefusesAToleranceForAFigureTheAnalysisHasNot) {
               std::string::npos)
         << err;
     EXPECT_FALSE(fs::exists(out)); // nothing written
+    fs::remove_all(dir);
+}
+
+// `--dry-run` makes compare's own checks (the scene, the options, --out),
+// lists the runs the real command makes (one seed, each sphere count, the
+// exact hulls where the build has them; the time-step sweep) and writes nothing.
+TEST(Compare, DryRunListsTheRunsAndWritesNothing) {
+    const fs::path dir = fs::temp_directory_path() / ("armour_compare_dry_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    write_tiny_scene(dir / "scene.toml", "0.05", "0.01");
+    const std::string scene = (dir / "scene.toml").string(), out = (dir / "out").string();
+    const auto compare = [&](std::vector<const char *> extra, std::string &printed) {
+        std::vector<const char *> argv = {"armour", "compare",   scene.c_str(),  "--spheres", "4,8,20",
+                                          "--out",  out.c_str(), "--dt-factors", "1,2",       "--dry-run"};
+        argv.insert(argv.end(), extra.begin(), extra.end());
+        ::testing::internal::CaptureStdout();
+        ::testing::internal::CaptureStderr();
+        const int code = armour::armour_main(static_cast<int>(argv.size()), argv.data());
+        printed = ::testing::internal::GetCapturedStdout() + ::testing::internal::GetCapturedStderr();
+        return code;
+    };
+    std::string printed;
+    ASSERT_EQ(compare({}, printed), 0) << printed;
+    const bool exact = armour::find_engine_style([](const armour::EngineCapabilities &c) {
+                           return c.shape == armour::ShapeModel::convex_hulls;
+                       }) != nullptr;
+    EXPECT_NE(printed.find(std::to_string(3 + (exact ? 1 : 0)) + " runs of 0.05 s"), std::string::npos)
+        << printed;
+    EXPECT_NE(printed.find("2 factors"), std::string::npos) << printed;
+    EXPECT_FALSE(fs::exists(out));
+    EXPECT_EQ(compare({"--tolerance", "porosity=0.1"}, printed), 2);
+    EXPECT_NE(printed.find("armour: error: --tolerance: porosity: not a headline figure"), std::string::npos)
+        << printed;
+    fs::create_directories(out);
+    std::ofstream(fs::path(out) / "notes.txt") << "a user's notes\n";
+    EXPECT_EQ(compare({}, printed), 2);
+    EXPECT_NE(printed.find("holds 'notes.txt'"), std::string::npos) << printed;
+    EXPECT_EQ(output_rule::names(out), std::set<std::string>{"notes.txt"});
     fs::remove_all(dir);
 }
 

@@ -19,6 +19,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <string>
 #include <unistd.h>
@@ -351,6 +352,89 @@ TEST_F(Run, KeepsTheUsersFiles) {
                                         variant == 0 ? "run.duration=0.02" : "run.duration=0.03"});
         },
         [](const nlohmann::json &s) { return s["simulated_seconds"].get<double>() > 0.025 ? 1 : 0; });
+}
+
+// `--dry-run` makes the run's checks and writes nothing: a scene that runs
+// exits 0 with its plan (the steps the run then takes) and no folder; one
+// that cannot gives the run's own error line, still writing nothing.
+TEST_F(Run, DryRunChecksAsTheRunDoesAndWritesNothing) {
+    ::testing::internal::CaptureStdout();
+    const int code = run(scene_text("[0, 0, 0.3]"), {"--dry-run"});
+    const std::string plan = ::testing::internal::GetCapturedStdout();
+    ASSERT_EQ(code, 0) << err_;
+    EXPECT_FALSE(fs::exists(out())) << plan;
+    const std::size_t at = plan.find(" steps)");
+    ASSERT_NE(at, std::string::npos) << plan;
+    const long planned = std::stol(plan.substr(plan.rfind('(', at) + 1));
+    ASSERT_EQ(run(scene_text("[0, 0, 0.3]")), 0) << err_;
+    std::ifstream in(out() / "summary.json");
+    EXPECT_NEAR(static_cast<double>(planned), nlohmann::json::parse(in)["steps"].get<double>(), 1.0) << plan;
+    fs::remove_all(out());
+
+    struct Case {
+        std::string scene;
+        std::vector<std::string> options;
+    };
+    const std::vector<Case> refused = {
+        {scene_text("[0, 0, 0.3]", "[[body]]\nunit = \"cube\"\nposition = [0.05, 0, 0.3]\n"), {}},
+        {scene_text("[0, 0, 0.05]"), {}},                           // cuts into the floor
+        {scene_text("[0, 0, 0.3]", "", "time_step = 0.005\n"), {}}, // past the stability limit
+        {scene_text("[0, 0, 0.3]"), {"--set", "run.durration=1"}},  // no such key
+        {scene_text("[0, 0, 0.3]"), {"--np", "2"}},                 // no [fluid]
+        {scene_text("[0, 0, 0.3]"), {"--resume"}},                  // nothing to resume
+        {scene_text("[0, 0, 0.3]", "[[body]]\nunit = \"dolos\"\nposition = [0.5, 0, 0.3]\n"), {}},
+    };
+    for (const Case &c : refused) {
+        std::vector<std::string> dry = c.options;
+        dry.push_back("--dry-run");
+        EXPECT_EQ(run(c.scene, dry), 2) << err_;
+        const std::string dry_error = error_line();
+        EXPECT_FALSE(fs::exists(out())) << dry_error;
+        EXPECT_EQ(run(c.scene, c.options), 2) << err_;
+        EXPECT_EQ(dry_error, error_line());
+        EXPECT_FALSE(dry_error.empty());
+        fs::remove_all(out());
+    }
+    // A folder the run refuses: the same line, the user's file untouched.
+    fs::create_directories(out());
+    std::ofstream(out() / "notes.txt") << "a user's notes\n";
+    EXPECT_EQ(run(scene_text("[0, 0, 0.3]"), {"--dry-run"}), 2);
+    const std::string dry_error = error_line();
+    EXPECT_EQ(output_rule::names(out()), std::set<std::string>{"notes.txt"});
+    EXPECT_EQ(run(scene_text("[0, 0, 0.3]")), 2);
+    EXPECT_EQ(dry_error, error_line());
+    EXPECT_NE(dry_error.find("holds 'notes.txt'"), std::string::npos) << dry_error;
+}
+
+// A dry run of a resume reads the run's folder and changes nothing in it;
+// one the resume would refuse (a key a resume may not change) gives its line.
+TEST_F(Run, DryRunOfAResumeChangesNothingInTheRunsFolder) {
+    const std::string scene = scene_text("[0, 0, 0.3]", "", "checkpoint_interval = 0.02\n");
+    ASSERT_EQ(run(scene), 0) << err_;
+    const auto listing = [&] {
+        std::map<std::string, std::string> files;
+        for (const auto &e : fs::recursive_directory_iterator(out()))
+            files[e.path().string()] =
+                e.is_regular_file() ? std::to_string(e.file_size()) + " " +
+                                          std::to_string(e.last_write_time().time_since_epoch().count())
+                                    : "";
+        return files;
+    };
+    const auto before = listing();
+    ::testing::internal::CaptureStdout();
+    const int code = run(scene, {"--resume", "--set", "run.duration=0.1", "--dry-run"});
+    const std::string plan = ::testing::internal::GetCapturedStdout();
+    EXPECT_EQ(code, 0) << err_;
+    EXPECT_NE(plan.find("resumes at 0.04"), std::string::npos) << plan; // the last of 0.02, 0.04
+    EXPECT_EQ(listing(), before);
+    EXPECT_EQ(run(scene,
+                  {"--resume", "--set", "run.duration=0.1", "--set", "material.0.friction=0.9", "--dry-run"}),
+              2);
+    const std::string dry_error = error_line();
+    EXPECT_NE(dry_error.find("a resume may change only"), std::string::npos) << err_;
+    EXPECT_EQ(listing(), before);
+    EXPECT_EQ(run(scene, {"--resume", "--set", "run.duration=0.1", "--set", "material.0.friction=0.9"}), 2);
+    EXPECT_EQ(dry_error, error_line());
 }
 
 // `armour report` reads coupled runs only (tests/test_stability.cpp reports
