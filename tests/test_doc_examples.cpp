@@ -33,7 +33,9 @@
 //       as the value of --out it is an output folder: a new folder in the
 //       command's fresh working folder;
 //       as the run folder of `armour report` it is a run made for the
-//       test (a short coupled run, made once and kept in the build folder);
+//       test (a short coupled run, made once and kept in the build folder),
+//       and so is a relative path there (`armour report out/stability ...`
+//       after the run that wrote it: the report is the example, not the run);
 //       anywhere else (a scene, --np N, --until T, --collect DIR) it makes
 //       the command a synopsis: syntax.
 //   - `[`, `]`, `<`, `>`, `|` or `...` outside quotes make it a synopsis.
@@ -437,6 +439,11 @@ Plan plan_example(const Example &e) {
             else
                 synopsis = true;
         }
+    // A report's run folder named as a path (`armour report out/stability ...` after the run that
+    // wrote it) is the test's run too: the example checks the report, not a days-long run.
+    if (p.sub == "report" && p.run_folder.empty() && !positional.empty() && !has_placeholder(positional[0]) &&
+        !fs::path(positional[0]).is_absolute())
+        p.run_folder = positional[0];
     const bool mention = !e.fenced && p.out.empty() && positional.empty() && p.sub != "engines" &&
                          std::find(p.options.begin(), p.options.end(), "--help") == p.options.end();
     const std::size_t space = e.text.find_first_of(" \t");
@@ -560,8 +567,10 @@ void check_example(const Example &e, const fs::path &scratch, int index) {
         return;
     }
     const fs::path cwd = working_folder(scratch, index);
-    if (!p.run_folder.empty())
+    if (!p.run_folder.empty()) {
+        fs::create_directories((cwd / p.run_folder).parent_path());
         fs::create_directory_symlink(report_run(), cwd / p.run_folder);
+    }
     const fs::path script = scratch / ("example" + std::to_string(index) + ".sh");
     std::ofstream(script) << "cd '" << cwd.string() << "' || exit 99\n" << p.command << "\n";
     const auto start = std::chrono::steady_clock::now();
