@@ -96,7 +96,6 @@ fs::path Checkpoints::begin() {
 }
 
 fs::path Checkpoints::commit(const Checkpoint &at, const fs::path &partial) {
-    std::error_code ec;
     const nlohmann::json j = {{"time", at.time},
                               {"records", at.records},
                               {"wall_seconds", at.wall_seconds},
@@ -107,30 +106,57 @@ fs::path Checkpoints::commit(const Checkpoint &at, const fs::path &partial) {
         if (!out.flush())
             throw InputError((partial / "checkpoint.json").string() + ": write failed");
     }
-    fs::path final_dir = root_ / checkpoint_name(at.time);
-    fs::remove_all(final_dir, ec); // an earlier run's checkpoint of the same time
+    step("written");
+    // The newest earlier checkpoint stays (kKept - 1 of them); the others
+    // go: older ones, and any of the same time or later that a killed run
+    // left (a resume continues from the latest, so in practice none).
+    const fs::path final_dir = root_ / checkpoint_name(at.time);
+    const std::vector<Checkpoint> found = complete(root_);
+    std::vector<Checkpoint> kept, doomed;
+    for (auto c = found.rbegin(); c != found.rend(); ++c) {
+        const bool earlier = c->time < at.time && c->dir != final_dir;
+        (earlier && static_cast<int>(kept.size()) < kKept - 1 ? kept : doomed).push_back(*c);
+    }
+    // The doomed go BEFORE the new one is renamed into place, so a kill at
+    // any point leaves at most kKept complete checkpoints, and the kept one
+    // stands all along. Without an earlier one to stand meanwhile the new
+    // one goes in first (a same-named one must leave before it).
+    const bool new_first = kept.empty();
+    for (const Checkpoint &c : doomed)
+        if (!new_first || c.dir == final_dir)
+            drop(c.dir);
+    std::error_code ec;
     fs::rename(partial, final_dir, ec);
     if (ec)
         throw InputError(final_dir.string() + ": cannot move the checkpoint into place: " + ec.message());
-    // Keep the last two; a later one left by a killed run (resumed from an
-    // earlier one) is superseded by this one. A folder goes by a rename to a
-    // partial name first, so a kill while removing it leaves no half folder
-    // under a checkpoint's name.
-    const auto drop = [&](const fs::path &dir) {
-        const fs::path gone = root_ / (".partial-old-" + std::to_string(::getpid()));
-        fs::rename(dir, gone, ec);
-        fs::remove_all(ec ? dir : gone, ec);
-    };
-    std::vector<Checkpoint> found = complete(root_);
-    for (const Checkpoint &c : found)
-        if (c.time > at.time)
-            drop(c.dir);
-    found = complete(root_);
-    for (std::size_t i = 0; i + kKept < found.size(); ++i)
-        drop(found[i].dir);
+    step("in place");
+    if (new_first)
+        for (const Checkpoint &c : doomed)
+            if (c.dir != final_dir)
+                drop(c.dir);
     while (next_ <= at.time + 1e-9 * interval_)
         next_ += interval_;
     return final_dir;
+}
+
+// A folder goes by a rename to a partial name first (atomic: the checkpoint
+// is whole or gone), then its removal, which is not atomic: a kill during it
+// leaves a half folder under a name no reader takes and begin() removes.
+void Checkpoints::drop(const fs::path &dir) {
+    const fs::path gone =
+        root_ / (".partial-drop-" + std::to_string(::getpid()) + "-" + std::to_string(drops_++));
+    std::error_code ec;
+    fs::rename(dir, gone, ec);
+    if (ec)
+        throw InputError(dir.string() + ": cannot remove the checkpoint: " + ec.message());
+    step("set aside " + dir.filename().string());
+    fs::remove_all(gone, ec);
+    step("removed " + dir.filename().string());
+}
+
+void Checkpoints::step(const std::string &what) const {
+    if (step_hook_)
+        step_hook_(what);
 }
 
 } // namespace armour

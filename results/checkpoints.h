@@ -4,7 +4,12 @@
 //     A checkpoint is one folder named by its simulated time (s), complete
 //     or absent: it is filled as checkpoints/.partial-<pid> and renamed into
 //     place once whole, its checkpoint.json written last inside it. Only the
-//     last two are kept. What a checkpoint holds:
+//     last two are kept: the older goes before the new one is renamed into
+//     place, and a folder goes by a rename to a .partial- name before its
+//     removal, so whenever the run is killed (kill -9 included) at most two
+//     complete checkpoints exist, no half folder carries a checkpoint's
+//     name, and, once one was written, one at least is there to resume
+//     from. What a checkpoint holds:
 //         checkpoint.json  time (s), records (steps of bodies.h5 up to and
 //                          including its time), wall_seconds of the run so far
 //         engine/          the engine's state (RigidBodyEngine::save_state)
@@ -23,6 +28,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 
 namespace armour {
 
@@ -53,8 +59,8 @@ class Checkpoints {
     bool due(double t) const { return interval_ > 0.0 && t >= next_ - 1e-9 * interval_; }
 
     // Writes the checkpoint `at`: `fill` writes the states into the folder it
-    // is given (engine/ already exists), then checkpoint.json, the rename
-    // into place, and the removal of all but the last two. Returns its folder.
+    // is given (engine/ already exists), then checkpoint.json, the removal
+    // of the older one(s) and the rename into place. Returns its folder.
     std::filesystem::path write(const Checkpoint &at,
                                 const std::function<void(const std::filesystem::path &)> &fill);
 
@@ -65,10 +71,20 @@ class Checkpoints {
     std::filesystem::path begin();
     std::filesystem::path commit(const Checkpoint &at, const std::filesystem::path &partial);
 
+    // Tests only: called after each filesystem step of a commit, named
+    // ("written", "set aside 0.1", "removed 0.1", "in place"); what a kill
+    // there would leave is on disk then, and a throw stops the commit there.
+    void set_step_hook(std::function<void(const std::string &)> hook) { step_hook_ = std::move(hook); }
+
   private:
+    void drop(const std::filesystem::path &dir);
+    void step(const std::string &what) const;
+
     std::filesystem::path root_;
     double interval_;
     double next_;
+    int drops_ = 0; // folders set aside by this writer, for unique names
+    std::function<void(const std::string &)> step_hook_;
 };
 
 } // namespace armour
