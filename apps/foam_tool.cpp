@@ -63,6 +63,7 @@ void run_tool(const std::string &name, const std::vector<std::string> &args, con
             ::_exit(127);
         ::dup2(fd, STDOUT_FILENO);
         ::dup2(fd, STDERR_FILENO);
+        inherit_output_locks(); // the folder stays locked while it may write into it
         ::execvp(argv[0], argv.data());
         ::_exit(127);
     }

@@ -3,6 +3,7 @@
 #include "mesh.h"
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
@@ -120,7 +121,34 @@ InputError in_use_error(const fs::path &target, const std::string &holder) {
                       "); wait for it to end or choose another folder");
 }
 
+// The lock descriptors this process holds (-1: a free slot). A plain array:
+// inherit_output_locks() reads it in a forked child, where nothing may
+// allocate.
+constexpr std::size_t kMaxLocks = 16;
+std::array<int, kMaxLocks> held_locks = [] {
+    std::array<int, kMaxLocks> slots{};
+    slots.fill(-1);
+    return slots;
+}();
+
+void remember_lock(int fd, bool held) {
+    for (int &slot : held_locks)
+        if (slot == (held ? -1 : fd)) {
+            slot = held ? fd : -1;
+            return;
+        }
+}
+
 } // namespace
+
+void inherit_output_locks() {
+    for (const int fd : held_locks)
+        if (fd >= 0) {
+            const int flags = ::fcntl(fd, F_GETFD);
+            if (flags >= 0)
+                ::fcntl(fd, F_SETFD, flags & ~FD_CLOEXEC);
+        }
+}
 
 OutputFolder::OutputFolder(const fs::path &target, std::string command, Mode mode)
     : target_(normalised_target(target)), command_(std::move(command)), mode_(mode) {
@@ -161,13 +189,16 @@ void OutputFolder::create_target() {
 
 // flock(2) on DIR/.armour-lock: the kernel drops the lock when the last
 // process holding it ends, however it ends (kill -9 too). The descriptor is
-// inherited by the tools a command starts (interFoam), so the folder stays
-// locked while anything we started may still write into it.
+// inherited only by the tools a command starts to write into the folder
+// (inherit_output_locks: interFoam, mpirun, a sweep's cases), so it stays
+// locked while they may still write into it. MPI's start-up helper (orted,
+// which LIGGGHTS' MPI_Init starts) held it too, for a moment after a kill -9:
+// a resume started then was refused as in use.
 void OutputFolder::lock() {
     const fs::path file = target_ / kLock;
     const auto patience = std::chrono::steady_clock::now() + std::chrono::seconds(10);
     for (;;) {
-        const int fd = ::open(file.c_str(), O_RDWR | O_CREAT, 0644);
+        const int fd = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
         if (fd < 0)
             throw InputError("--out " + target_.string() + ": cannot create " + kLock + ": " +
                              std::strerror(errno));
@@ -180,6 +211,7 @@ void OutputFolder::lock() {
                              "would not be refused\n",
                              target_.c_str(), kLock.c_str(), std::strerror(error));
                 lock_fd_ = fd;
+                remember_lock(fd, true);
                 return;
             }
             char text[32] = {};
@@ -213,6 +245,7 @@ void OutputFolder::lock() {
                 // The pid is only for the refusal's message.
             }
             lock_fd_ = fd;
+            remember_lock(fd, true);
             return;
         }
         ::close(fd);
@@ -225,6 +258,7 @@ void OutputFolder::release() {
         fs::remove_all(staging_, ec);
     if (lock_fd_ >= 0) {
         fs::remove(target_ / kLock, ec); // before letting go: see lock()
+        remember_lock(lock_fd_, false);
         ::close(lock_fd_);
         lock_fd_ = -1;
     }

@@ -16,7 +16,9 @@
 //     DIR/.armour-lock (creating DIR if needed) and a second command into
 //     DIR is refused at once, naming the holder's pid. The kernel drops the
 //     lock however the holder ends (kill -9 too); the tools a command starts
-//     inherit it. Holding it, a command removes what a killed one left
+//     to write into DIR inherit it (inherit_output_locks), nothing else does
+//     (MPI's start-up helper would keep DIR locked for a moment after a
+//     kill). Holding it, a command removes what a killed one left
 //     (.armour-partial-PID, .armour-output.tmp, the lock file itself).
 //
 //     Two ways of writing:
@@ -103,6 +105,13 @@ class OutputFolder {
     std::vector<std::filesystem::path> created_; // folders made for DIR, removed if left empty
     int lock_fd_ = -1;                           // DIR/.armour-lock, held until destruction
 };
+
+// In a child process between fork and exec: lets the program it becomes hold
+// the output-folder locks this process holds. Only for the tools a command
+// starts to write into its folder (interFoam, mpirun, a sweep's cases), so
+// the folder stays locked while they may still write; other programs (MPI's
+// start-up helper, a plot script) do not inherit them. Async-signal-safe.
+void inherit_output_locks();
 
 // The command whose result `dir` is, as its marker names it ("armour run");
 // "" when it has no marker.

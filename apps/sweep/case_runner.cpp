@@ -195,6 +195,7 @@ int run_case(const fs::path &case_dir, const std::string &armour_exe) {
         for (auto &a : args)
             argv.push_back(a.data());
         argv.push_back(nullptr);
+        inherit_output_locks(); // the folder stays locked while it may write into it
         ::execv(armour_exe.c_str(), argv.data());
         ::_exit(127);
     }

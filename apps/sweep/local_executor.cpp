@@ -2,6 +2,7 @@
 #include "executors.h"
 
 #include "mesh.h"
+#include "output_folder.h"
 
 #include <chrono>
 #include <csignal>
@@ -47,6 +48,7 @@ pid_t start_case(const SweepContext &ctx, const fs::path &dir) {
         ::prctl(PR_SET_PDEATHSIG, SIGKILL);
         std::string exe = ctx.armour_exe, sweep = "sweep", flag = "--run-case", path = dir.string();
         char *argv[] = {exe.data(), sweep.data(), flag.data(), path.data(), nullptr};
+        inherit_output_locks(); // the folder stays locked while it may write into it
         ::execv(exe.c_str(), argv);
         ::_exit(127);
     }
