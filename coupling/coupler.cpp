@@ -300,6 +300,7 @@ struct Coupler::Impl {
         bool valid = false;
     };
     std::vector<BodyCells> body_cells;
+    MaskWork work; // of the last update_mask
     void cells_of_body(int k, const CellSet &cells, BodyCells &own);
     // Convex units: each face normal turned into the world, component-wise
     // |.|, for the body at hand: a box cell of half extents e reaches
@@ -464,6 +465,7 @@ void Coupler::Impl::cells_of_body(int k, const CellSet &cells, BodyCells &own) {
                 const int b = m.bins.bin(bi, bj, bk);
                 for (int c = m.bins.first[b]; c < m.bins.first[b + 1]; ++c) {
                     const auto i = static_cast<std::size_t>(m.bins.cells[c]);
+                    ++m.work.cells_visited;
                     const double hw = half_width[i];
                     const Eigen::Vector3d r = cells.centres[i] - p;
                     const double r2 = r.squaredNorm();
@@ -476,12 +478,15 @@ void Coupler::Impl::cells_of_body(int k, const CellSet &cells, BodyCells &own) {
                     double chi;
                     Eigen::Vector3d centroid = cells.centres[i];
                     const double core = shape.inner - hw;
-                    if (core > 0.0 && r2 <= core * core)
+                    if (core > 0.0 && r2 <= core * core) {
                         chi = 1.0;
-                    else if (!shape.solid)
-                        chi = ramp(shape.signed_distance(q_inv * r), 2.0 * hw);
-                    else if (!exact_fraction(m, shape, cells, i, p, to_unit, hw, chi, centroid))
-                        continue;
+                    } else {
+                        ++m.work.cells_resolved;
+                        if (!shape.solid)
+                            chi = ramp(shape.signed_distance(q_inv * r), 2.0 * hw);
+                        else if (!exact_fraction(m, shape, cells, i, p, to_unit, hw, chi, centroid))
+                            continue;
+                    }
                     if (chi > 0.0) {
                         own.cell.push_back(static_cast<int>(i));
                         own.chi.push_back(chi);
@@ -503,6 +508,7 @@ const CellMask &Coupler::update_mask(const CellSet &cells) {
     for (int k = 0; k < nb; ++k)
         m.states[k] = m.engine.state(k);
 
+    m.work = MaskWork{};
     const bool exact = m.settings.fraction == SolidFraction::exact;
     if (!m.bins.matches(cells)) {
         double largest_outer = 0.0;
@@ -533,6 +539,7 @@ const CellMask &Coupler::update_mask(const CellSet &cells) {
                                      shape.outer * pose.orientation.angularDistance(own.pose.orientation) <=
                                  kRestTolerance * m.bins.smallest_cell;
         if (!at_rest) {
+            ++m.work.bodies_recomputed;
             m.cells_of_body(k, cells, own);
             own.pose = pose;
             own.valid = true;
@@ -554,6 +561,10 @@ const CellMask &Coupler::update_mask(const CellSet &cells) {
         m.mask.velocity[i] = s.velocity + s.angular_velocity.cross(cells.centres[i] - s.pose.position);
     }
     return m.mask;
+}
+
+const Coupler::MaskWork &Coupler::last_mask_work() const {
+    return impl_->work;
 }
 
 BodyLoads Coupler::integrate_loads(const CellSet &cells,
@@ -716,6 +727,12 @@ void Coupler::set_state(const std::vector<double> &values) {
         }
         m.swings[k] = static_cast<int>(*x++);
     }
+    forget_kept_fractions();
+}
+
+void Coupler::forget_kept_fractions() {
+    for (Impl::BodyCells &own : impl_->body_cells)
+        own.valid = false;
 }
 
 } // namespace armour

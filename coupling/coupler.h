@@ -114,6 +114,14 @@ class Coupler {
     Coupler &operator=(const Coupler &) = delete;
 
     const CellMask &update_mask(const CellSet &cells);
+    // What the last update_mask did: its cost as counts (tests assert them;
+    // bench/run_mask_bench.sh times it).
+    struct MaskWork {
+        long bodies_recomputed = 0; // bodies whose cells were found anew (the others kept theirs)
+        long cells_visited = 0;     // cells looked at in the bins near those bodies
+        long cells_resolved = 0;    // of these, the ones culling left to a distance or a clipping
+    };
+    const MaskWork &last_mask_work() const;
     BodyLoads integrate_loads(const CellSet &cells, const std::vector<Eigen::Vector3d> &force_density) const;
     void advance(const BodyLoads &total, double dt_fluid);
 
@@ -123,6 +131,12 @@ class Coupler {
     // as plain numbers for a checkpoint; set_state takes them back.
     std::vector<double> state() const;
     void set_state(const std::vector<double> &values);
+    // The exact fractions kept for units at rest (computed at an earlier
+    // pose, within kRestTolerance) go: the next update_mask computes every
+    // unit's at its pose. set_state does it, for a coupler restored from a
+    // checkpoint has none kept; the run that writes the checkpoint calls it
+    // and updates the mask, so that both go on with the same mask.
+    void forget_kept_fractions();
 
   private:
     // Throws when the loads show the signature of an unstable exchange.
