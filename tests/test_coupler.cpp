@@ -444,8 +444,8 @@ TEST(Mask, EachUnitVisitsOnlyTheCellsNearIt) {
     std::printf("mask of %zu cells x 100 units: %ld cells visited (%.2f %% of cells x units), %ld resolved "
                 "(shell: %ld), volume error %+.3f %% (h = a/%.1f)\n",
                 cells.volumes.size(), work.cells_visited,
-                100.0 * static_cast<double>(work.cells_visited) / all, work.cells_resolved, shell,
-                100 * error, 1.0 / h);
+                100.0 * static_cast<double>(work.cells_visited) / static_cast<double>(all),
+                work.cells_resolved, shell, 100 * error, 1.0 / h);
     // Coarse cells (h = a/4.4): the edge excess dominates, 2.6 % predicted.
     EXPECT_NEAR(error, cube_edge_excess(h), 0.005);
     EXPECT_EQ(work.bodies_recomputed, 100);

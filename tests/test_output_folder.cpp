@@ -179,22 +179,26 @@ TEST_F(OutputLock, AnOldSiblingStagingFolderIsNamedNeverRemoved) {
 }
 
 // The real thing: two `armour demo` processes into one --out. The second is
-// refused at once, while the first works on, and the first completes.
+// refused at once, while the first works on, and the first completes. The
+// first is held still (SIGSTOP) while the second tries, so a slow start of
+// the second cannot let the first end before it.
 TEST_F(OutputLock, TwoCommandsIntoOneFolder) {
     const fs::path out = dir_ / "demo";
     const pid_t first = spawn_armour({"demo", "--out", out.string()}, dir_ / "first.err");
     ASSERT_GT(first, 0);
     // The first holds the folder once its pid is in the lock file.
-    const auto start = std::chrono::steady_clock::now();
-    while (output_rule::read(out / ".armour-lock") != std::to_string(first) + "\n") {
-        ASSERT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(60));
+    int status = 0;
+    pid_t ended = 0;
+    while (output_rule::read(out / ".armour-lock") != std::to_string(first) + "\n" &&
+           (ended = ::waitpid(first, &status, WNOHANG)) == 0)
         std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    }
+    ASSERT_EQ(ended, 0) << output_rule::read(dir_ / "first.err");
+    ::kill(first, SIGSTOP);
     const pid_t second = spawn_armour({"demo", "--out", out.string()}, dir_ / "second.err");
     ASSERT_GT(second, 0);
     EXPECT_EQ(exit_status(second), 2);
-    int status = 0;
     EXPECT_EQ(::waitpid(first, &status, WNOHANG), 0) << "the first ended before the second was refused";
+    ::kill(first, SIGCONT);
     EXPECT_EQ(output_rule::read(dir_ / "second.err"),
               "armour: error: --out " + out.string() + ": in use by another armour command (pid " +
                   std::to_string(first) + "); wait for it to end or choose another folder\n");
@@ -267,12 +271,11 @@ TEST_F(OutputLock, AKilledCompareIsCleanedUpByTheNext) {
                                       dir_ / "killed.err");
     ASSERT_GT(killed, 0);
     const fs::path partial = out / (".armour-partial-" + std::to_string(killed));
-    const auto start = std::chrono::steady_clock::now();
-    while (!fs::exists(partial / "runs")) {
-        ASSERT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(60))
-            << output_rule::read(dir_ / "killed.err");
+    int status = 0;
+    pid_t ended = 0;
+    while (!fs::exists(partial / "runs") && (ended = ::waitpid(killed, &status, WNOHANG)) == 0)
         std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
+    ASSERT_EQ(ended, 0) << output_rule::read(dir_ / "killed.err");
     std::this_thread::sleep_for(std::chrono::milliseconds(500)); // well inside its 30 s runs
     ::kill(killed, SIGKILL);
     ASSERT_EQ(exit_status(killed), 128 + SIGKILL);

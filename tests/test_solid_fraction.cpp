@@ -412,8 +412,9 @@ TEST(SolidFraction, HundredCubesMaskCost) {
                 if (!kept)
                     computed_at = now;
                 EXPECT_EQ(work.bodies_recomputed, kept ? 0 : 100) << "update " << n;
-                if (kept)
+                if (kept) {
                     EXPECT_EQ(work.cells_visited, 0) << "update " << n;
+                }
                 recomputed += work.bodies_recomputed;
                 most_visited = std::max(most_visited, work.cells_visited);
             }
@@ -423,12 +424,13 @@ TEST(SolidFraction, HundredCubesMaskCost) {
                 "  %s, %s: %zu cells x 100 cubes: %ld units recomputed in 20 updates, at most %ld cells "
                 "visited per update (%.2f %% of cells x units), volume error %+.3e\n",
                 exact ? "exact" : "ramp", moving ? "moving" : "at rest", cells.volumes.size(), recomputed,
-                most_visited, 100.0 * static_cast<double>(most_visited) / all, error);
+                most_visited, 100.0 * static_cast<double>(most_visited) / static_cast<double>(all), error);
             if (exact) {
                 EXPECT_LT(std::abs(error), 1e-12);
             }
-            if (moving)
+            if (moving) {
                 EXPECT_GT(recomputed, 100 * 10) << "the units fell 2 mm, 50 rest tolerances";
+            }
             // Each unit visits the bins about it: a few hundred of the 15 625
             // cells, not all of them (measured below 3 % of cells x units).
             EXPECT_LT(most_visited, all / 10);
