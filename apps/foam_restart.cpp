@@ -52,6 +52,31 @@ void remove_later(const fs::path &dir, double t, bool and_at = false) {
     }
 }
 
+// interFoam projects the flux phi whenever it starts (initCorrectPhi.H: a
+// pcorr solve, phi -= its flux). The checkpoint's phi is the flux the live
+// run went on with, conservative to the pressure solver's tolerance; the
+// projection moved it in the 7th digit, and a surge on the units amplified
+// that (0.07-0.6 Dn at the end of the dam break test). A pcorr solver whose
+// tolerance, 2, lies above the largest normalised residual a zero guess can
+// start from (1) takes no iteration: pcorr stays 0 and phi is the one read,
+// to the bit. pcorr serves only that start-up projection on a static mesh.
+void keep_checkpoint_flux(const fs::path &case_dir) {
+    const fs::path dict = case_dir / "system" / "fvSolution";
+    const std::string text = text_of(dict);
+    const std::string mark = "// armour --resume: the checkpoint's flux phi is kept";
+    if (text.find(mark) != std::string::npos)
+        return;
+    const std::regex solvers("(^|\\n)solvers[ \\t]*\\n?[ \\t]*\\{");
+    std::smatch m;
+    if (!std::regex_search(text, m, solvers))
+        throw InputError(dict.string() + ": no 'solvers' dictionary to set pcorr in");
+    const std::string entries = "\n    " + mark + " (docs/checkpoints.md)\n" +
+                                "    pcorr { solver PCG; preconditioner DIC; tolerance 2; relTol 0; }\n" +
+                                "    pcorrFinal { $pcorr; }\n";
+    const auto at = static_cast<std::size_t>(m.position(0) + m.length(0));
+    write_text(dict, text.substr(0, at) + entries + text.substr(at));
+}
+
 } // namespace
 
 void write_fields_exactly(const fs::path &case_dir) {
@@ -110,6 +135,7 @@ RestoredCase restore_case(const fs::path &case_dir, const Checkpoint &checkpoint
     for (const auto &e : fs::directory_iterator(case_dir / "postProcessing", none))
         if (e.is_directory())
             remove_later(e.path(), checkpoint.time, true);
+    keep_checkpoint_flux(case_dir);
     const fs::path control = case_dir / "system" / "controlDict";
     set_entry(control, "startFrom", "latestTime");
     set_entry(control, "endTime", number_text(end_time));

@@ -9,8 +9,10 @@
 //     back the fields and the clock to the bit.
 //     restore_case puts that folder back, removes the later time folders the
 //     killed run wrote (ours: the case folder is the run's), and makes
-//     interFoam start from it; the plugin finds the checkpoint of the start
-//     time and restores the engine, the coupler and the record.
+//     interFoam start from it without projecting the checkpoint's flux phi
+//     again (system/fvSolution pcorr: no iteration; phi is the live run's);
+//     the plugin finds the checkpoint of the start time and restores the
+//     engine, the coupler and the record.
 //
 // Usage
 //     write_fields_exactly(case_dir);                    // a new case with checkpoints

@@ -3,13 +3,13 @@
 // every 0.02 s), killed with SIGKILL (its whole process group: armour and
 // interFoam, as a batch system ends a job) at a seeded random moment after a
 // checkpoint, resumed with --resume, and compared with the same run
-// uninterrupted. Every resume keeps the record whole: as many records,
-// strictly increasing, on the same output grid, the same headline figures.
-// A resume is not bit-identical: interFoam re-projects the fluxes when it
-// starts, and the surge's impact on the cubes amplifies that 7th-digit
-// difference. So a resume before the surge reaches the cubes must keep them
-// within 1e-3 Dn of the uninterrupted run up to its arrival; after it, for
-// every resume, each cube ends within one Dn (measured 0.07-0.6 Dn, reported).
+// uninterrupted. A resume continues the same flow: every record (time, pose)
+// is the uninterrupted run's to the bit, before the surge reaches the cubes
+// and during it. (It was not, until the restart kept the checkpoint's flux
+// instead of projecting it again and both runs went on from a mask computed
+// anew at the checkpoint: 0.07-0.6 Dn apart at the end; the surge's impact on
+// the cubes amplifies any difference, 3e-6 Dn at the end from the projection
+// alone. So the only tolerance this chaotic flow allows is none.)
 #include "bodies_file.h"
 #include "checkpoints.h"
 #include "cli.h"
@@ -66,6 +66,19 @@ int wait_for(pid_t pid) {
     while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
     }
     return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+// Waits until `ready` holds or process `pid` ends, however slow the machine
+// (no time limit: a run that hangs is left to ctest's timeout). True while
+// it still runs; false when it ended first (then reaped).
+bool wait_until(pid_t pid, const std::function<bool()> &ready) {
+    int status = 0;
+    while (!ready()) {
+        if (::waitpid(pid, &status, WNOHANG) != 0)
+            return false;
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    return true;
 }
 
 double since(std::chrono::steady_clock::time_point t0) {
@@ -163,24 +176,24 @@ double surge_arrival(const armour::BodiesFile &run, double weight) {
 }
 
 struct Resumed {
-    double checkpoint = 0.0;  // s, the simulated time the resume started from
-    double time_shift = 0.0;  // s, largest difference of a record's time
-    double pose = 0.0;        // m, largest difference of a final pose (turns as 0.5 Dn x angle)
-    double pose_before = 0.0; // m, the same over every record up to the surge's arrival
+    double checkpoint = 0.0; // s, the simulated time the resume started from
+    double time_shift = 0.0; // s, largest difference of a record's time
+    double pose = 0.0;       // m, largest difference of a pose over every record (turns as 0.5 Dn x angle)
+    double final_pose = 0.0; // m, the same at the last record
 };
 
-// How far apart two poses of body k at step s are (m; a turn counts as 0.5 Dn x angle).
+// How far apart two poses of body k at step s are (m; a turn counts as 0.5
+// Dn x angle, the angle exactly 0 for equal orientations).
 double pose_difference(const armour::BodiesFile &a, const armour::BodiesFile &b, std::size_t s,
                        std::size_t k) {
-    const double turn =
-        2.0 * std::acos(std::min(1.0, std::abs(b.orientation[s][k].dot(a.orientation[s][k]))));
+    const double turn = a.orientation[s][k].angularDistance(b.orientation[s][k]);
     return std::max((b.position[s][k] - a.position[s][k]).norm(), 0.5 * kDn * turn);
 }
 
 // Compares a resumed run's record with the uninterrupted one: whole (same
-// count, strictly increasing, same output grid) and the same headline figures.
-Resumed compare_records(const fs::path &reference, const fs::path &resumed, double checkpoint,
-                        double arrival) {
+// count, strictly increasing) and the same headline figures; returns how far
+// apart the records are.
+Resumed compare_records(const fs::path &reference, const fs::path &resumed, double checkpoint) {
     const armour::BodiesFile a = armour::read_bodies_file((reference / "bodies.h5").string());
     const armour::BodiesFile b = armour::read_bodies_file((resumed / "bodies.h5").string());
     Resumed r;
@@ -190,25 +203,27 @@ Resumed compare_records(const fs::path &reference, const fs::path &resumed, doub
         return r;
     for (std::size_t s = 1; s < b.time.size(); ++s)
         EXPECT_GT(b.time[s], b.time[s - 1]) << "step " << s;
-    for (std::size_t s = 0; s < a.time.size(); ++s)
-        r.time_shift = std::max(r.time_shift, std::abs(b.time[s] - a.time[s]));
-    // Records fall on the first fluid step at or after each output time, so
-    // the grid is the same within one fluid step (fluid.max_time_step).
-    EXPECT_LT(r.time_shift, 0.005) << "not the same output grid";
     const std::size_t last = a.time.size() - 1;
-    for (std::size_t k = 0; k < a.bodies(); ++k) {
-        r.pose = std::max(r.pose, pose_difference(a, b, last, k));
-        for (std::size_t s = 0; s < a.time.size() && a.time[s] <= arrival; ++s)
-            r.pose_before = std::max(r.pose_before, pose_difference(a, b, s, k));
+    for (std::size_t s = 0; s < a.time.size(); ++s) {
+        r.time_shift = std::max(r.time_shift, std::abs(b.time[s] - a.time[s]));
+        for (std::size_t k = 0; k < a.bodies(); ++k)
+            r.pose = std::max(r.pose, pose_difference(a, b, s, k));
     }
-    // Whenever it was resumed, each cube ends within one Dn of the uninterrupted run.
-    EXPECT_LT(r.pose, kDn);
+    for (std::size_t k = 0; k < a.bodies(); ++k)
+        r.final_pose = std::max(r.final_pose, pose_difference(a, b, last, k));
     const json x = summary_of(reference), y = summary_of(resumed);
     EXPECT_EQ(y["records"], x["records"]);
-    // Both end within one fluid step (<= fluid.max_time_step) of run.duration.
-    EXPECT_NEAR(y["simulated_seconds"].get<double>(), x["simulated_seconds"].get<double>(), 0.005);
+    EXPECT_EQ(y["simulated_seconds"], x["simulated_seconds"]);
     EXPECT_EQ(y["records"], a.time.size());
     return r;
+}
+
+// The same flow: every record's time and every pose to the bit (measured so
+// at every resume point tried; a lost piece of state shows as a difference
+// the surge amplifies, docs/checkpoints.md).
+void expect_same_flow(const Resumed &r) {
+    EXPECT_EQ(r.time_shift, 0.0) << "resumed at " << r.checkpoint << " s";
+    EXPECT_EQ(r.pose, 0.0) << "resumed at " << r.checkpoint << " s (" << r.pose / kDn << " Dn)";
 }
 
 } // namespace
@@ -243,13 +258,13 @@ TEST(CoupledResume, KilledDamBreakResumedEndsAsTheUninterruptedOne) {
         double delay = std::uniform_real_distribution<double>(0.0, 1.0)(random) * gap;
         for (int attempt = 0; attempt < 4; ++attempt, delay *= 0.5) {
             fs::remove_all(out);
-            const auto started = std::chrono::steady_clock::now();
             const pid_t pid = start(args(out, false));
-            while (latest_checkpoint(out) < from && since(started) < 60.0 + 5.0 * wall)
-                std::this_thread::sleep_for(std::chrono::milliseconds(2));
-            std::this_thread::sleep_for(std::chrono::duration<double>(delay));
-            ::kill(-pid, SIGKILL);
-            const bool killed = wait_for(pid) == 128 + SIGKILL;
+            bool killed = false;
+            if (wait_until(pid, [&] { return latest_checkpoint(out) >= from; })) {
+                std::this_thread::sleep_for(std::chrono::duration<double>(delay));
+                ::kill(-pid, SIGKILL);
+                killed = wait_for(pid) == 128 + SIGKILL;
+            }
             EXPECT_TRUE(wait_unlocked(out)) << "interFoam outlived the kill by 30 s";
             const double checkpoint = latest_checkpoint(out);
             if (killed && checkpoint >= from && checkpoint < to)
@@ -259,11 +274,8 @@ TEST(CoupledResume, KilledDamBreakResumedEndsAsTheUninterruptedOne) {
     };
 
     // Before the surge: the resume starts at a random checkpoint from the
-    // first to the last before the arrival, for each seed. Until the surge
-    // reaches them the cubes move as in the uninterrupted run (the restored
-    // engine and coupler go on the same way); after it, the fluid's small
-    // difference from the resume is amplified by the impact (not asserted
-    // beyond one Dn).
+    // first to the last before the arrival, for each seed (the cubes rest
+    // in air; their fractions are kept from step to step).
     for (const unsigned seed : {1u, 2u}) {
         SCOPED_TRACE("seed " + std::to_string(seed));
         std::mt19937 random(seed);
@@ -273,14 +285,14 @@ TEST(CoupledResume, KilledDamBreakResumedEndsAsTheUninterruptedOne) {
         ASSERT_GE(checkpoint, 0.0) << "no kill between a checkpoint and the surge's arrival";
         EXPECT_FALSE(fs::exists(killed / "summary.json"));
         ASSERT_EQ(wait_for(start(args(killed, true))), 0);
-        const Resumed r = compare_records(reference, killed, checkpoint, arrival);
+        const Resumed r = compare_records(reference, killed, checkpoint);
         std::printf("[ resume   ] before the surge: resumed at %.3g s; record times differ by up to %.3g s; "
-                    "poses up to the arrival by %.3g Dn, final poses by %.3g m (%.3g Dn)\n",
-                    r.checkpoint, r.time_shift, r.pose_before / kDn, r.pose, r.pose / kDn);
-        EXPECT_LT(r.pose_before, 1e-3 * kDn);
+                    "poses by %.3g Dn, final poses by %.3g Dn\n",
+                    r.checkpoint, r.time_shift, r.pose / kDn, r.final_pose / kDn);
+        expect_same_flow(r);
     }
 
-    // During the surge: the record is whole, the poses differ (within one Dn; reported).
+    // During the surge (the first cube moves; the impact amplifies any difference).
     {
         std::mt19937 random(3u);
         const fs::path killed = dir / "in_surge";
@@ -300,10 +312,11 @@ TEST(CoupledResume, KilledDamBreakResumedEndsAsTheUninterruptedOne) {
         ASSERT_EQ(wait_for(start(args(moved, true))), 0);
         EXPECT_FALSE(fs::exists(killed)) << "the resume wrote into the run's old folder";
         EXPECT_EQ(armour::read_text_file(control).find("removed-build/"), std::string::npos);
-        const Resumed r = compare_records(reference, moved, checkpoint, arrival);
+        const Resumed r = compare_records(reference, moved, checkpoint);
         std::printf("[ resume   ] during the surge: resumed at %.3g s; record times differ by up to %.3g s; "
-                    "final poses by %.3g m (%.3g Dn; not bit-identical, docs/checkpoints.md)\n",
-                    r.checkpoint, r.time_shift, r.pose, r.pose / kDn);
+                    "poses by %.3g Dn, final poses by %.3g Dn\n",
+                    r.checkpoint, r.time_shift, r.pose / kDn, r.final_pose / kDn);
+        expect_same_flow(r);
     }
     if (!::testing::Test::HasFailure())
         fs::remove_all(dir);
@@ -322,9 +335,8 @@ void expect_solver_ends_with_armour(const std::string &name, const std::vector<s
     const pid_t pid =
         start(run_args("dambreak_two_cubes.toml", out,
                        {"fluid.cell_size=0.04", "run.duration=5", "run.checkpoint_interval=0.02"}, flags));
-    const auto t0 = std::chrono::steady_clock::now();
-    while (latest_checkpoint(out) < 0.0 && since(t0) < 120.0)
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    ASSERT_TRUE(wait_until(pid, [&] { return latest_checkpoint(out) >= 0.0; }))
+        << "the run ended before its first checkpoint";
     ::kill(whole_group ? -pid : pid, SIGKILL);
     const double at_kill = latest_checkpoint(out);
     ASSERT_GE(at_kill, 0.0) << "the solver never reached its first checkpoint";
@@ -369,12 +381,11 @@ TEST(CoupledResume, ParallelRunResumesOnAnyNumberOfRanks) {
     // Starts a part, kills its group once a checkpoint at `after` s or later
     // is complete; returns that checkpoint's time.
     const auto part_killed_after = [&](const std::vector<std::string> &flags, double after) {
-        const auto t0 = std::chrono::steady_clock::now();
         const pid_t pid = start(args(flags));
-        while (latest_checkpoint(out) < after && since(t0) < 120.0)
-            std::this_thread::sleep_for(std::chrono::milliseconds(5));
-        ::kill(-pid, SIGKILL);
-        wait_for(pid);
+        if (wait_until(pid, [&] { return latest_checkpoint(out) >= after; })) {
+            ::kill(-pid, SIGKILL);
+            wait_for(pid);
+        }
         EXPECT_TRUE(wait_unlocked(out));
         EXPECT_TRUE(wait_solver_gone(out)) << "interFoam's ranks outlived the kill by 30 s";
         return latest_checkpoint(out);
@@ -469,11 +480,10 @@ TEST(CoupledResume, SettledWaveRunResumesWithTheSameCommand) {
     // Kills a run of `killed` once `ready` holds.
     const auto kill_when = [&](const std::vector<std::string> &extra, const std::function<bool()> &ready) {
         const pid_t pid = start(args(killed, extra));
-        const auto t0 = std::chrono::steady_clock::now();
-        while (!ready() && since(t0) < 600.0)
-            std::this_thread::sleep_for(std::chrono::milliseconds(10));
-        ::kill(-pid, SIGKILL);
-        wait_for(pid);
+        if (wait_until(pid, ready)) {
+            ::kill(-pid, SIGKILL);
+            wait_for(pid);
+        }
         EXPECT_TRUE(wait_unlocked(killed));
     };
     kill_when({}, [&] { return latest_checkpoint(killed) >= 6.0; });
@@ -537,9 +547,7 @@ TEST(CoupledResume, StoppedSweepResumesItsCaseFromTheCheckpoint) {
     };
     const fs::path run = out / "cases" / "max_courant-0.5" / "run";
     const pid_t first = sweep();
-    const auto t0 = std::chrono::steady_clock::now();
-    while (latest_checkpoint(run) < 0.2 && since(t0) < 300.0)
-        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    ASSERT_TRUE(wait_until(first, [&] { return latest_checkpoint(run) >= 0.2; })) << "the sweep ended first";
     ::kill(first, SIGTERM);
     EXPECT_EQ(wait_for(first), 1); // stopped: a case did not finish
     const double checkpoint = latest_checkpoint(run);

@@ -152,7 +152,7 @@ void armourFoam::checkpointing::commit(const Foam::Time& runTime)
 }
 
 
-void armourFoam::checkpointing::step
+bool armourFoam::checkpointing::step
 (
     Foam::Time& runTime,
     const bodyExchange& bodies,
@@ -162,7 +162,7 @@ void armourFoam::checkpointing::step
 {
     if (interval_ <= 0)
     {
-        return;
+        return false;
     }
     const double t = runTime.value();
     const double dt = runTime.deltaTValue();
@@ -209,7 +209,7 @@ void armourFoam::checkpointing::step
         }
         bodies.saveState(dir);
         phase_ = 2;
-        return;
+        return true;
     }
     // Two more steps must fit before the end: the run is whole then.
     if
@@ -225,6 +225,7 @@ void armourFoam::checkpointing::step
             next_ += interval_;
         }
     }
+    return false;
 }
 
 

@@ -394,13 +394,17 @@ void Foam::fv::armourCoupling::couple
     {
         // The checkpoint asks OpenFOAM for a one-shot write of the fields
         // (Time::writeOnce), which the option's const view of Time hides.
-        armour_->checkpoints->step
+        const bool saved = armour_->checkpoints->step
         (
             const_cast<Time&>(runTime),
             bodies,
             *armour_->recording,
             times
         );
+        if (saved)
+        {
+            keepRestartPoint();
+        }
     }
     catch (const std::exception& err)
     {
@@ -419,6 +423,24 @@ void Foam::fv::armourCoupling::couple
                 << " N, S = " << armourFoam::toFoam(loads.source[k])
                 << " N" << endl;
         }
+    }
+}
+
+
+void Foam::fv::armourCoupling::keepRestartPoint()
+{
+    // A run resumed from this checkpoint computes every unit's fractions
+    // at its pose; the fractions kept for units at rest (from an earlier
+    // pose) go here too, so both take this step on with the same mask.
+    armour_->bodies->restartPoint();
+    updateFields();
+    // interFoam's density: set from alpha after the alpha solve, and not
+    // written; a restart sets it from the alpha read, which the interior
+    // mirror changed since (armourInterior.H). Written into the time folder
+    // of the checkpoint, it is read back (interFoam reads rho if present).
+    if (mesh_.foundObject<volScalarField>("rho"))
+    {
+        mesh_.lookupObject<volScalarField>("rho").write();
     }
 }
 

@@ -241,6 +241,12 @@ void armourFoam::bodyExchange::loadState(const std::string& dir)
 }
 
 
+void armourFoam::bodyExchange::restartPoint()
+{
+    coupler_->forget_kept_fractions();
+}
+
+
 void armourFoam::bodyExchange::checkReplicas(double t)
 {
     // The replicas only stay one run if the engine is deterministic (same
