@@ -1,6 +1,7 @@
 #include "foam_restart.h"
 
 #include "mesh.h"
+#include "output_folder.h"
 #include "scene_keys.h"
 
 #include <algorithm>
@@ -25,11 +26,12 @@ std::string text_of(const fs::path &file) {
     return text.str();
 }
 
+// Through a temporary file and a rename: a resume killed while it sets the
+// case's dictionaries leaves each whole (the old text or the new), and the
+// next resume sets them again. Truncated in place, a kill there left a
+// controlDict without the entries a resume sets.
 void write_text(const fs::path &file, const std::string &text) {
-    std::ofstream out(file, std::ios::trunc);
-    out << text;
-    if (!out.flush())
-        throw InputError(file.string() + ": write failed");
+    write_text_file(file, text);
 }
 
 // Sets `key value;` in an OpenFOAM dictionary file (the case's controlDict).
