@@ -142,13 +142,18 @@ int run_step(const RunRequest &r, const Scene &step, const SceneSetup &setup, co
         std::fprintf(stderr, "%s: done in %s, kept\n", head.c_str(), dir.c_str());
         return 0;
     }
-    std::fprintf(stderr, "%s: %s%s -> %s\n", head.c_str(), step_text(values).c_str(),
-                 state == StepState::restarts ? " (no checkpoint: from its start)" : "", dir.c_str());
     OutputFolder folder(dir, "armour run", OutputFolder::Mode::streaming);
-    if (state == StepState::resumes) {
-        const Checkpoint checkpoint = checked_resume(request, step, dir);
+    std::optional<Checkpoint> checkpoint;
+    if (state == StepState::resumes)
+        checkpoint = checked_resume(request, step, dir);
+    const std::string how = checkpoint ? " (resumed at t = " + number_text(checkpoint->time) + " s)"
+                            : state == StepState::restarts ? " (no checkpoint: from its start)"
+                                                           : "";
+    std::fprintf(stderr, "%s: %s%s -> %s\n", head.c_str(), step_text(values).c_str(), how.c_str(),
+                 dir.c_str());
+    if (checkpoint) {
         folder.resume();
-        return run_coupled(request, step, setup, folder, &checkpoint);
+        return run_coupled(request, step, setup, folder, &*checkpoint);
     }
     return run_coupled(request, step, setup, folder);
 }

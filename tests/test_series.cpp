@@ -3,11 +3,19 @@
 // hand computation and at its edges. The series run itself is
 // test_stability_series.cpp.
 #include "damage_analysis.h"
+#include "jonswap.h"
+#include "scene.h"
 #include "series_damage.h"
+#include "wave_theory.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <unistd.h>
 
 namespace {
 
@@ -86,6 +94,77 @@ TEST(SeriesPrediction, AnUnknownStepLeavesThePredictionUnknownAfterIt) {
     EXPECT_TRUE(p[0].N_od);
     EXPECT_FALSE(p[1].N_od);
     EXPECT_FALSE(p[2].N_od);
+}
+
+// The shipped stability scene with `steps` appended, in a temporary file.
+std::string series_scene(const std::string &steps) {
+    namespace fs = std::filesystem;
+    std::ifstream in(fs::path(ARMOUR_SOURCE_DIR) / "scenes" / "stability_cubes.toml");
+    const std::string base{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    static int count = 0;
+    const fs::path file = fs::temp_directory_path() / ("armour_series_scene_" + std::to_string(::getpid()) +
+                                                       "_" + std::to_string(++count) + ".toml");
+    std::ofstream(file) << base << steps;
+    return file.string();
+}
+
+std::string error_of(const std::string &file, const std::vector<std::string> &sets = {}) {
+    try {
+        armour::load_scene(file, sets);
+    } catch (const armour::InputError &e) {
+        return e.what();
+    }
+    return "";
+}
+
+// A step's length in waves: the front's travel from the maker (x = 0) to the
+// toe (x = 1.40 m) at the group velocity of Tp in h = 0.40 m, then that many
+// of the train's Tm0,2; a step without a length runs run.duration; gamma,
+// seed and the ramp default to [waves]'s. The resolved scene reads back the same.
+TEST(SeriesScene, AStepsLengthInWavesIsTheFrontsTravelAndThatManyTm02) {
+    const std::string file =
+        series_scene("\n[[series]]\nHs = 0.1\nTp = 1.6\nwaves = 100\n\n[[series]]\nHs = 0.12\nTp = 1.8\n");
+    const armour::Scene s = armour::load_scene(file, {"run.duration=50"});
+    ASSERT_EQ(s.series.size(), 2u);
+    const auto &a = s.series[0], &b = s.series[1];
+    const double tm02 = armour::target_tm02(armour::jonswap_components(0.1, 1.6, 3.3, 200, 1));
+    EXPECT_GT(tm02, 0.75 * 1.6); // JONSWAP at gamma 3.3: Tm0,2 ~ Tp / 1.28
+    EXPECT_LT(tm02, 0.85 * 1.6);
+    EXPECT_NEAR(a.duration, 1.40 / armour::group_velocity(1.6, 0.40, 9.81) + 100.0 * tm02, 1e-9);
+    EXPECT_DOUBLE_EQ(b.duration, 50.0);
+    EXPECT_DOUBLE_EQ(a.gamma, 3.3);
+    EXPECT_EQ(b.seed, 1u);
+    EXPECT_DOUBLE_EQ(a.ramp_time, 3.6); // the scene gives waves.ramp_time
+    const std::string resolved = armour::resolved_scene_toml(s);
+    const std::string again = series_scene("");
+    std::ofstream(again) << resolved;
+    EXPECT_EQ(armour::resolved_scene_toml(armour::load_scene(again)).substr(resolved.find('\n')),
+              resolved.substr(resolved.find('\n'))); // but the comment naming the file
+    std::filesystem::remove(file);
+    std::filesystem::remove(again);
+}
+
+// What a series cannot be: one line naming the key.
+TEST(SeriesScene, AStepWithoutIrregularWavesOrWithTwoLengthsIsRefused) {
+    const std::string file = series_scene("\n[[series]]\nHs = 0.1\nTp = 1.6\nwaves = 100\nduration = 20\n");
+    EXPECT_NE(error_of(file).find("key 'series.0.duration': give the step's length as waves or as duration"),
+              std::string::npos)
+        << error_of(file);
+    const std::string one = series_scene("\n[[series]]\nHs = 0.1\nTp = 1.6\n");
+    EXPECT_NE(error_of(one, {"waves.type=regular", "waves.height=0.1", "waves.period=1.6"})
+                  .find("key 'series.0.Hs': a test series runs irregular sea states"),
+              std::string::npos)
+        << error_of(one, {"waves.type=regular", "waves.height=0.1", "waves.period=1.6"});
+    EXPECT_NE(
+        error_of(one, {"analysis.kind=none"}).find("key 'analysis.kind': a [[series]] measures the damage"),
+        std::string::npos)
+        << error_of(one, {"analysis.kind=none"});
+    EXPECT_NE(error_of(one, {"series.0.duration=0.01"})
+                  .find("key 'series.0.duration': step 1: the step's 0.01 s must be >= run.output_interval"),
+              std::string::npos)
+        << error_of(one, {"series.0.duration=0.01"});
+    std::filesystem::remove(file);
+    std::filesystem::remove(one);
 }
 
 } // namespace
