@@ -2,6 +2,7 @@
 
 #include "analysis.h"
 #include "jonswap.h"
+#include "rock_manual_layer.h"
 #include "slope_profile.h"
 #include "standard_conditions.h"
 #include "wave_separation.h"
@@ -39,20 +40,6 @@ void write_file(const std::string &path, const std::string &text) {
     }
     if (std::rename(temporary.c_str(), path.c_str()) != 0)
         throw InputError(path + ": cannot write");
-}
-
-// The layer's width across the slope (m), N_od's strips: its units' centres
-// and half a Dn beyond, out to a side wall where no unit fits between (a gap
-// under one Dn), so a layer laid wall to wall spans the wall; the wall's
-// width when no unit is on the face.
-double layer_width(const SlopeFrame &frame, const LayerRegion &region) {
-    if (region.bodies.empty())
-        return frame.width;
-    const double half = 0.5 * frame.width;
-    const double lo = region.y_lo + half < region.Dn ? -half : region.y_lo;
-    const double hi = half - region.y_hi < region.Dn ? half : region.y_hi;
-    // A layer is at least one strip wide (a wall narrower than a Dn: the wall).
-    return std::min(frame.width, std::max(region.Dn, hi - lo));
 }
 
 // Van der Meer's (1988) cube tests: a 1:1.5 slope, N up to 7500, s_om
@@ -174,6 +161,7 @@ class DamageAnalysis : public Analysis {
                              {"porosity", f.porosity},
                              {"layer_thickness", f.thickness},
                              {"layer_coefficient", f.layer_coefficient}};
+            add_rock_manual_verdict(rock_manual_verdict(scene_, setup_, f), settled_layer, summary);
         }
 
         const WaveConditions w =
@@ -268,6 +256,21 @@ class DamageAnalysis : public Analysis {
     double unit_density() const { return density_of(scene_, setup_.units[unit(0)].name); }
     std::string path(const std::string &name) const { return claim_ ? claim_(name) : out_dir_ + "/" + name; }
 
+    // The layer against the Rock Manual's band (rock_manual_layer.h). A
+    // coupled run warned before its waves (check_coupled_scene); a dry run
+    // forms its layer as it runs, so it warns here.
+    void add_rock_manual_verdict(const LayerVerdict &v, json &layer, json &summary) const {
+        layer["outside_rock_manual"] = v.judged ? json(v.outside) : json(nullptr);
+        layer["outside_reason"] = v.outside ? json(v.reason) : json(nullptr);
+        layer["rock_manual_band"] = {{"porosity", {v.band.porosity_min, v.band.porosity_max}},
+                                     {"packing_density", {v.band.packing_min, v.band.packing_max}}};
+        if (v.outside && !scene_.fluid) {
+            const std::string warning = rock_manual_warning(v);
+            summary["warnings"].push_back("damage: " + warning);
+            std::fprintf(stderr, "armour: warning: %s\n", warning.c_str());
+        }
+    }
+
     void start(double t, const std::vector<BodyState> &states) {
         units_.clear();
         for (std::size_t i = 0; i < states.size(); ++i)
@@ -295,6 +298,19 @@ class DamageAnalysis : public Analysis {
 };
 
 } // namespace
+
+// Its units' centres and half a Dn beyond, out to a side wall where no unit
+// fits between (a gap under one Dn), so a layer laid wall to wall spans the
+// wall; the wall's width when no unit is on the face.
+double layer_width(const SlopeFrame &frame, const LayerRegion &region) {
+    if (region.bodies.empty())
+        return frame.width;
+    const double half = 0.5 * frame.width;
+    const double lo = region.y_lo + half < region.Dn ? -half : region.y_lo;
+    const double hi = half - region.y_hi < region.Dn ? half : region.y_hi;
+    // A layer is at least one strip wide (a wall narrower than a Dn: the wall).
+    return std::min(frame.width, std::max(region.Dn, hi - lo));
+}
 
 UnitDamageTracker::UnitDamageTracker(const Pose &reference, double Dn, double rocking_threshold_deg,
                                      double rest_time)

@@ -35,6 +35,7 @@
 
 #include "rigid_body_engine.h"
 #include "scene.h"
+#include "slope_profile.h"
 
 #include <nlohmann/json_fwd.hpp>
 
@@ -85,6 +86,8 @@ double rotation_between_deg(const Eigen::Quaterniond &a, const Eigen::Quaternion
 
 // N_od: units displaced per strip of width Dn across the layer (layer_width m).
 double n_od(int displaced, double layer_width, double Dn);
+// m: the width of N_od's strips across the slope for the layer on `region`.
+double layer_width(const SlopeFrame &frame, const LayerRegion &region);
 // Ns = Hs / (Δ Dn), Δ = ρs/ρw − 1.
 double stability_number(double Hs, double unit_density, double water_density, double Dn);
 // Van der Meer (1988), double-layer cubes: Ns = (6.7 N_od^0.4 / N^0.3 + 1.0) s_om^−0.1.

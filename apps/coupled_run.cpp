@@ -13,6 +13,7 @@
 #include "openfoam_environment.h"
 #include "output_folder.h"
 #include "report_command.h"
+#include "rock_manual_layer.h"
 #include "scene_keys.h"
 #include "solver_log.h"
 #include "stl_io.h"
@@ -386,6 +387,13 @@ std::vector<std::string> check_coupled_scene(const Scene &scene, const SceneSetu
                                " s: fluid steps shorter than it run no engine step");
     }
     check_analysis_fits(scene, setup);
+    if (scene.analysis == "damage" && f.settle_time <= 0.0) { // before a settle the pile is not the layer
+        std::vector<BodyState> start(setup.bodies.size());
+        for (std::size_t i = 0; i < start.size(); ++i)
+            start[i].pose = setup.bodies[i].pose;
+        if (const std::string w = settled_layer_warning(scene, setup, start); !w.empty())
+            warnings.push_back(w);
+    }
     return warnings;
 }
 

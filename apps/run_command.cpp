@@ -12,8 +12,10 @@
 #include "foam_restart.h"
 #include "mesh.h"
 #include "output_folder.h"
+#include "run_parts.h"
 #include "scene_keys.h"
 #include "scene_setup.h"
+#include "series_run.h"
 #include "stl_io.h"
 
 #include <Eigen/Geometry>
@@ -309,6 +311,8 @@ void set_friction_between_units(Scene &scene, double friction) {
         }
 }
 
+} // namespace
+
 // OUT/settle/settled.json with the speed below which the layer counts as
 // still: 1 % of the smallest unit's size per second, the drift a resting
 // unit may show in water (the coupled rest test). A layer still moving
@@ -351,6 +355,9 @@ Scene settle_scene(const Scene &scene, const SceneSetup &setup) {
     dry.output_interval = std::min(scene.output_interval, fluid.settle_time);
     dry.analysis = "none";
     dry.checkpoint_interval = 0.0; // the settle run is short; the coupled run checkpoints
+    dry.series.clear();            // the waves' steps, not the settle's
+    if (!fluid.settle_engine.empty())
+        dry.engine = fluid.settle_engine;
     dry.domain_max.z() += settle_headroom(scene, setup);
     if (fluid.settle_friction)
         set_friction_between_units(dry, *fluid.settle_friction);
@@ -363,6 +370,7 @@ Scene settled_scene(const Scene &scene, std::vector<SceneBody> bodies) {
     Scene settled = scene;
     settled.fluid->settle_time = 0.0;
     settled.fluid->settle_friction.reset();
+    settled.fluid->settle_engine.clear();
     settled.drops.clear();
     settled.patterns.clear();
     settled.bodies = std::move(bodies);
@@ -486,7 +494,7 @@ void warn_if_no_checkpoint(const Scene &scene) {
 
 // The scene as far as a resume may not change it: the keys a resume may
 // change (docs/checkpoints.md) set to fixed values.
-std::string resumable_form(Scene s, bool resumable_keys = true) {
+std::string resumable_form(Scene s, bool resumable_keys) {
     if (resumable_keys) {
         s.duration = 1.0;
         s.checkpoint_interval = 0.0;
@@ -548,8 +556,7 @@ Checkpoint checked_resume(const RunRequest &r, const Scene &scene, const fs::pat
 // materials, walls, settle time and friction) and the coupled run's from
 // the settled poses (OUT/scene.resolved.toml). Returns the settled scene and
 // the checkpoint it continues from; reads `out` only.
-std::pair<Scene, Checkpoint> checked_settled_resume(const RunRequest &r, const Scene &scene,
-                                                    const SceneSetup &setup, const fs::path &out) {
+Scene checked_settle(const RunRequest &r, const Scene &scene, const SceneSetup &setup, const fs::path &out) {
     const fs::path dir = out / "settle";
     for (const char *name : {"scene.resolved.toml", "scene.settled.toml", "settled.json"})
         if (!fs::is_regular_file(dir / name))
@@ -559,10 +566,17 @@ std::pair<Scene, Checkpoint> checked_settled_resume(const RunRequest &r, const S
     refuse_if_differs(r.scene, resumable_form(settle_scene(scene, setup), false),
                       resumable_form(load_scene((dir / "scene.resolved.toml").string()), false),
                       "settled in " + dir.string());
-    Scene settled = settled_scene(scene, load_scene((dir / "scene.settled.toml").string()).bodies);
+    return settled_scene(scene, load_scene((dir / "scene.settled.toml").string()).bodies);
+}
+
+std::pair<Scene, Checkpoint> checked_settled_resume(const RunRequest &r, const Scene &scene,
+                                                    const SceneSetup &setup, const fs::path &out) {
+    Scene settled = checked_settle(r, scene, setup, out);
     const Checkpoint checkpoint = checked_resume(r, settled, out);
     return {std::move(settled), checkpoint};
 }
+
+namespace {
 
 int resume_settled(const RunRequest &r, OutputFolder &folder, const Scene &scene, const SceneSetup &setup) {
     const auto [settled, checkpoint] = checked_settled_resume(r, scene, setup, folder.target());
@@ -572,6 +586,8 @@ int resume_settled(const RunRequest &r, OutputFolder &folder, const Scene &scene
     return with_settle_report(folder, run_coupled(r, settled, settled_setup, folder, &checkpoint),
                               settle_report(folder.target() / "settle", setup));
 }
+
+} // namespace
 
 // The options that do not fit the scene, refused before any work.
 void check_options(const RunRequest &r, const Scene &scene) {
@@ -583,10 +599,17 @@ void check_options(const RunRequest &r, const Scene &scene) {
 }
 
 void warn_if_settle_friction_unused(const Scene &scene) {
-    if (scene.fluid && scene.fluid->settle_friction && scene.fluid->settle_time <= 0.0)
+    if (!scene.fluid || scene.fluid->settle_time > 0.0)
+        return;
+    if (scene.fluid->settle_friction)
         std::fprintf(stderr, "armour: warning: fluid.settle_friction is unused: there is no settle "
                              "(fluid.settle_time = 0)\n");
+    if (!scene.fluid->settle_engine.empty())
+        std::fprintf(stderr, "armour: warning: fluid.settle_engine is unused: there is no settle "
+                             "(fluid.settle_time = 0)\n");
 }
+
+namespace {
 
 // What a run of a scene checks before it writes: its set-up, the warnings,
 // and a DEM run's engine step.
@@ -601,6 +624,8 @@ RunCheck check_run(const Scene &scene, const std::string &cache_dir, int np) {
     check.setup = build_scene(scene, cache_dir, false);
     if (scene.fluid) {
         check.warnings = check_coupled_scene(scene, check.setup, np > 0 ? np : scene.fluid->np);
+        for (std::size_t k = 0; k < scene.series.size(); ++k) // a sweep's case: every step's waves
+            check_coupled_scene(series_step_scene(scene, k), check.setup, np > 0 ? np : scene.fluid->np);
         return check;
     }
     check_analysis_fits(scene, check.setup);
@@ -689,6 +714,8 @@ std::vector<std::string> check_scene_runs(const Scene &scene, const std::string 
 
 int run_scene(const RunRequest &r) {
     const Scene scene = load_scene(r.scene, r.overrides);
+    if (!scene.series.empty())
+        return run_series(r, scene);
     if (r.dry_run)
         return dry_run(r, scene);
     OutputFolder folder(r.out, "armour run", OutputFolder::Mode::streaming); // refused before any work

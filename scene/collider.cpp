@@ -140,6 +140,17 @@ Collider make_collider(const UnitTemplate &unit, ShapeModel model, double Dn) {
     return c;
 }
 
+double depth_outside_clump(const Clump &clump, const std::vector<Eigen::Vector3d> &points) {
+    double deepest = 0.0;
+    for (const Eigen::Vector3d &p : points) {
+        double outside = HUGE_VAL; // m beyond the nearest sphere's surface
+        for (const auto &sph : clump)
+            outside = std::min(outside, (p - sph.center).norm() - sph.radius);
+        deepest = std::max(deepest, outside);
+    }
+    return clump.empty() ? 0.0 : deepest;
+}
+
 double depth_inside(const Collider &c, const Eigen::Vector3d &p) {
     double deepest = -HUGE_VAL;
     for (const auto &part : c.parts) {

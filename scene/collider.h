@@ -28,6 +28,10 @@ struct Collider {
 
 Collider make_collider(const UnitTemplate &unit, ShapeModel model, double Dn);
 
+// m: how far the farthest of `points` (unit frame: an exact collider's
+// surface points) lies outside the clump's spheres (0 when all are inside).
+double depth_outside_clump(const Clump &clump, const std::vector<Eigen::Vector3d> &points);
+
 // m: how deep point p (unit frame) lies inside the collider's parts (<= 0: outside).
 double depth_inside(const Collider &c, const Eigen::Vector3d &p);
 

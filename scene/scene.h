@@ -175,6 +175,9 @@ struct SceneFluid {
     // materials' own). A placer seats each unit by hand or crane; a pile
     // dropped at once locks loose at concrete's 0.6 (docs/stability.md).
     std::optional<double> settle_friction;
+    // The engine of the settle ("" = run.engine): clumps settle a layer that
+    // exact hulls then meet the waves in, so both engines start from one layer.
+    std::string settle_engine;
     // Turbulence closure (docs/turbulence.md): laminar, or OpenFOAM's RAS
     // kOmegaSST with k and omega at the start from an intensity of the
     // shallow-water celerity sqrt(g depth) and a length scale.
@@ -230,6 +233,21 @@ struct SceneWaves {
     double target_height() const { return type == "regular" ? height : hs; }
 };
 
+// [[series]]: one sea state of a test series (docs/stability.md, "Test
+// series"): the [waves] train (type "irregular") with this height, period,
+// peak enhancement and seed, for `duration` s or `waves` of its Tm0,2 after
+// its front reaches the slope's toe, started from still water with the units
+// where the step before left them.
+struct SceneSeriesStep {
+    double hs = 0.0;        // m, Hm0 at the maker (key Hs)
+    double tp = 0.0;        // s, peak period (key Tp)
+    double gamma = 3.3;     // JONSWAP peak enhancement (the reader's default: waves.gamma)
+    std::uint64_t seed = 1; // phases (the reader's default: waves.seed)
+    double waves = 0.0;     // -, the step's length in waves (0: not given)
+    double duration = 0.0;  // s, the step's length (the reader's default: run.duration, or from `waves`)
+    double ramp_time = 0.0; // s (the reader's default: waves.ramp_time when given, else 2 Tp)
+};
+
 struct Scene {
     std::string file; // path as given
     std::string name;
@@ -267,9 +285,10 @@ struct Scene {
     std::vector<SceneBody> bodies;
     std::vector<SceneDrop> drops;
     std::vector<ScenePattern> patterns;
-    std::optional<SceneFluid> fluid; // [fluid]: a coupled interFoam run
-    std::optional<SceneWaves> waves; // [waves]: needs [fluid]
-    std::vector<ScenePorous> porous; // [[porous]]: needs [fluid]
+    std::optional<SceneFluid> fluid;     // [fluid]: a coupled interFoam run
+    std::optional<SceneWaves> waves;     // [waves]: needs [fluid]
+    std::vector<ScenePorous> porous;     // [[porous]]: needs [fluid]
+    std::vector<SceneSeriesStep> series; // [[series]]: needs [waves] type "irregular"
 
     // m: fluid.water_level above the flume's floor run.domain_min.z (a scene with [fluid]).
     double still_water_depth() const { return fluid->water_level - domain_min.z(); }

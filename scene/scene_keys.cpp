@@ -221,6 +221,12 @@ const std::vector<Key<SceneFluid>> &fluid_keys() {
             "Coulomb friction between units (and walls of their material) in the settle only (below)")
             .in(Range::at_least(0))
             .defaults("the materials' own"),
+        key("settle_engine", &F::settle_engine, "",
+            "the engine of the settle: e.g. liggghts (clumps) to settle the layer that run.engine bullet "
+            "(exact hulls) then runs, so both engines meet the waves on one layer (below)")
+            .one_of(engine_names())
+            .defaults("`run.engine`")
+            .written_if([](const F &f) { return !f.settle_engine.empty(); }),
         key("turbulence", &F::turbulence, "",
             "laminar, or OpenFOAM's RAS kOmegaSST with wall functions (over-damps waves in propagation: "
             "turbulence.md)")
@@ -482,6 +488,43 @@ const std::vector<Key<SceneWaves>> &wave_keys() {
     return keys;
 }
 
+const std::vector<Key<SceneSeriesStep>> &series_keys() {
+    using S = SceneSeriesStep;
+    static const std::vector<Key<S>> keys = {
+        key("Hs", &S::hs, "m",
+            "the step's Hm0 at the wave maker; refused, as waves.Hs is, when 1.8 Hs would break at the "
+            "inlet")
+            .in(Range::above(0))
+            .required(" (Hm0 at the wave maker, m)"),
+        key("Tp", &S::tp, "s",
+            "the step's peak period; refused, as waves.Tp is, where the stock wave model fails, and "
+            "when the gauge array at L(Tp) leaves the flume")
+            .in(Range::above(0))
+            .required(" (peak period, s)"),
+        key("gamma", &S::gamma, "", "JONSWAP peak enhancement")
+            .in(Range::closed(1, 10))
+            .defaults("`waves.gamma`"),
+        key("seed", &S::seed, "", "random phases of the step's train")
+            .in(Range::at_least(0))
+            .defaults("`waves.seed`"),
+        key("waves", &S::waves, "",
+            "the step's length as a number of waves: duration = the front's travel from the maker to the "
+            "first slope wall's toe (group velocity at Tp) + waves x the train's Tm0,2 (from its "
+            "components); give this or duration")
+            .in(Range::above(0))
+            .defaults("–")
+            .written_if([](const S &s) { return s.waves > 0.0; }),
+        key("duration", &S::duration, "s", "the step's simulated time; >= run.output_interval")
+            .in(Range::above(0))
+            .defaults("`run.duration`")
+            .written_if([](const S &s) { return s.waves <= 0.0; }),
+        key("ramp_time", &S::ramp_time, "s", "the maker's amplitude ramps up from 0 over this time")
+            .in(Range::above(0))
+            .defaults("`waves.ramp_time` when given, else 2 `Tp`"),
+    };
+    return keys;
+}
+
 const std::vector<Key<ScenePorous>> &porous_keys() {
     using P = ScenePorous;
     static const std::vector<Key<P>> keys = {
@@ -675,6 +718,7 @@ const std::vector<SceneSection> &scene_sections() {
                       "the file, checked and unused, and the other way round)"},
           {"irregular", "a JONSWAP train through OpenFOAM's irregularMultiDirectional model"}},
          [] { return describe_all("waves", wave_keys()); }},
+        {"series", SectionKind::ArrayOfTables, "", {}, [] { return describe_all("series", series_keys()); }},
         {"porous",
          SectionKind::ArrayOfTables,
          "type",

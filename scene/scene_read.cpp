@@ -314,6 +314,51 @@ void read_fluid(const Table &root, Scene &s) {
     s.fluid = f;
 }
 
+// Why an irregular train of `hs` (m) and `tp` (s) cannot run at `depth`:
+// the key ("Tp" or "Hs") and the reason; an empty key when it can.
+struct KeyRefusal {
+    std::string key, reason;
+};
+KeyRefusal irregular_refusal(double hs, double tp, double depth, double g) {
+    const double longest = 2.0 * tp; // the lowest component, 0.5 fp
+    const double kh = wave_number(longest, depth, g) * depth;
+    if (kh < kStockWavelengthMinKh)
+        return {"Tp", "the longest component (2 Tp = " + number_text(longest) +
+                          " s) has kh = " + number_text(kh) + " < " + number_text(kStockWavelengthMinKh) +
+                          ": OpenFOAM v1912's irregularMultiDirectional finds wavelengths by a fixed-point "
+                          "iteration that has not converged there (docs/waves.md)"};
+    const double largest = kLargestWaveOverHs * hs, miche = miche_height(tp, depth, g);
+    if (largest > kDepthBreakingRatio * depth || largest > miche)
+        return {"Hs",
+                number_text(kLargestWaveOverHs) + " Hs = " + figure_text(largest) +
+                    " m (the largest of ~1000 waves) breaks at the inlet: it must stay below 0.78 h = " +
+                    figure_text(kDepthBreakingRatio * depth) +
+                    " m and 0.142 L tanh(kh) = " + figure_text(miche) + " m at Tp"};
+    return {};
+}
+
+// Why the gauge array from x (m) at the wavelength of `period` (s) does not
+// fit the flume; "" when it does.
+std::string gauge_refusal(const Scene &s, double x, double period) {
+    const double L = wavelength(period, s.still_water_depth(), s.gravity.norm());
+    if (x > s.domain_min.x() && x + 0.25 * L < s.domain_max.x())
+        return "";
+    return "the gauge array x .. x + L/4 (L = " + number_text(L) +
+           " m) must lie inside the flume run.domain_min.x .. run.domain_max.x = (" +
+           number_text(s.domain_min.x()) + ", " + number_text(s.domain_max.x()) + ") m (got " +
+           number_text(x) + ")";
+}
+
+// s: the front of a train of peak period `tp` travels from the maker to the
+// first slope wall's toe at the group velocity at Tp (0 without a slope).
+double front_travel(const Scene &s, double tp) {
+    for (const SceneWall &w : s.walls)
+        if (w.type == "slope")
+            return std::max(0.0, w.toe_x - s.domain_min.x()) /
+                   group_velocity(tp, s.still_water_depth(), s.gravity.norm());
+    return 0.0;
+}
+
 // [waves] after [fluid] (the depth is fluid.water_level - run.domain_min.z):
 // the wave must be one the chosen theory describes and must not break at
 // the inlet, and the gauge array must lie in the flume.
@@ -360,33 +405,66 @@ void read_waves(const Table &root, Scene &s) {
                        "non-repeating train needs no more than 200 (repeat: components Tp / 2)");
         if (w.components % 2 != 0)
             t.fail("components", "must be even (got " + std::to_string(w.components) + ")");
-        const double longest = 2.0 * w.tp; // the lowest component, 0.5 fp
-        const double kh = wave_number(longest, depth, g) * depth;
-        if (kh < kStockWavelengthMinKh)
-            t.fail("Tp",
-                   "the longest component (2 Tp = " + number_text(longest) +
-                       " s) has kh = " + number_text(kh) + " < " + number_text(kStockWavelengthMinKh) +
-                       ": OpenFOAM v1912's irregularMultiDirectional finds wavelengths by a fixed-point "
-                       "iteration that has not converged there (docs/waves.md)");
-        const double largest = kLargestWaveOverHs * w.hs, miche = miche_height(w.tp, depth, g);
-        if (largest > kDepthBreakingRatio * depth || largest > miche)
-            t.fail("Hs", number_text(kLargestWaveOverHs) + " Hs = " + figure_text(largest) +
-                             " m (the largest of ~1000 waves) breaks at the inlet: "
-                             "it must stay below 0.78 h = " +
-                             figure_text(kDepthBreakingRatio * depth) +
-                             " m and 0.142 L tanh(kh) = " + figure_text(miche) + " m at Tp");
+        if (const KeyRefusal no = irregular_refusal(w.hs, w.tp, depth, g); !no.key.empty())
+            t.fail(no.key, no.reason);
     }
     if (!t.has("ramp_time"))
         w.ramp_time = 2.0 * period;
     const double L = wavelength(period, depth, g);
     if (!w.gauge_x)
         w.gauge_x = s.domain_min.x() + L;
-    t.check(*w.gauge_x > s.domain_min.x() && *w.gauge_x + 0.25 * L < s.domain_max.x(), "gauge_x",
-            "the gauge array x .. x + L/4 (L = " + number_text(L) +
-                " m) must lie inside the flume run.domain_min.x .. run.domain_max.x = (" +
-                number_text(s.domain_min.x()) + ", " + number_text(s.domain_max.x()) + ") m",
-            *w.gauge_x);
+    if (const std::string why = gauge_refusal(s, *w.gauge_x, period); !why.empty())
+        t.fail("gauge_x", why);
     s.waves = w;
+}
+
+// [[series]] after [waves] and the walls: each step is the [waves] train
+// with its own height, period, peak enhancement and seed, checked as
+// [waves] is (the stock model, breaking at the inlet, the gauge array at
+// its L), and its length resolved to seconds (from `waves`: the front's
+// travel to the toe and that many of its Tm0,2).
+void read_series(const Table &root, Scene &s) {
+    const auto &keys = series_keys();
+    const auto entries = root.entries("series");
+    for (std::size_t i = 0; i < entries.size(); ++i) {
+        const Table &t = entries[i];
+        t.only(names_of(keys));
+        if (!s.waves || s.waves->type != "irregular")
+            t.fail("Hs", "a test series runs irregular sea states: the scene needs [waves] with type = "
+                         "\"irregular\" (its other keys are the steps' own)");
+        if (s.analysis != "damage")
+            root.section("analysis")
+                .fail("kind", "a [[series]] measures the damage of each step: kind must be "
+                              "\"damage\" (got " +
+                                  toml_string(s.analysis) + ")");
+        const SceneWaves &w = *s.waves;
+        SceneSeriesStep step;
+        step.gamma = w.gamma;
+        step.seed = w.seed;
+        read_keys(t, keys, step);
+        if (t.has("waves") && t.has("duration"))
+            t.fail("duration", "give the step's length as waves or as duration, not both");
+        const std::string label = "step " + std::to_string(i + 1) + ": ";
+        const double depth = s.still_water_depth(), g = s.gravity.norm();
+        if (const KeyRefusal no = irregular_refusal(step.hs, step.tp, depth, g); !no.key.empty())
+            t.fail(no.key, label + no.reason);
+        if (const std::string why = gauge_refusal(s, *w.gauge_x, step.tp); !why.empty())
+            t.fail("Tp", label + "waves.gauge_x: " + why);
+        if (!t.has("ramp_time"))
+            step.ramp_time = root.section("waves").has("ramp_time") ? w.ramp_time : 2.0 * step.tp;
+        if (step.waves > 0.0) {
+            const IrregularWaves c =
+                jonswap_components(step.hs, step.tp, step.gamma, w.components, step.seed);
+            step.duration = front_travel(s, step.tp) + step.waves * target_tm02(c);
+        } else if (!t.has("duration")) {
+            step.duration = s.duration;
+        }
+        t.check(step.duration >= s.output_interval, t.has("waves") ? "waves" : "duration",
+                label + "the step's " + number_text(step.duration) +
+                    " s must be >= run.output_interval = " + number_text(s.output_interval) + " s",
+                t.has("waves") ? step.waves : step.duration);
+        s.series.push_back(step);
+    }
 }
 
 // A graded z axis holds all along the flume: the refined box's z range is the
@@ -406,6 +484,8 @@ void check_surface_band(const Table &root, const Scene &s) {
         height = s.waves->height;
     if (s.waves && s.waves->type == "irregular")
         height = kLargestWaveOverHs * s.waves->hs;
+    for (const SceneSeriesStep &step : s.series) // a series runs each of its sea states
+        height = std::max(height, kLargestWaveOverHs * step.hs);
     const double tolerance = 1e-9 * (s.domain_max.z() - s.domain_min.z());
     const bool coarse_below = f.refine_min->z() > s.domain_min.z() + tolerance,
                coarse_above = f.refine_max->z() < s.domain_max.z() - tolerance;
@@ -417,8 +497,10 @@ void check_surface_band(const Table &root, const Scene &s) {
             "the refined box's z range " + number_text(f.refine_min->z()) + " .. " +
                 number_text(f.refine_max->z()) + " m must hold the free surface " +
                 number_text(f.water_level) + " m +- the wave height " + figure_text(height) + " m" +
-                (s.waves && s.waves->type == "irregular" ? " (" + number_text(kLargestWaveOverHs) + " Hs)"
-                                                         : "") +
+                (s.waves && s.waves->type == "irregular"
+                     ? " (" + number_text(kLargestWaveOverHs) + " Hs" +
+                           (s.series.empty() ? std::string(")") : " of the highest [[series]] step)")
+                     : "") +
                 ": the z grading holds all along the flume, and coarse cells there damp the waves");
 }
 
@@ -806,7 +888,6 @@ Scene load_scene(const std::string &path, const std::vector<std::string> &overri
     read_contact_and_analysis(root, s);
     read_fluid(root, s);
     read_waves(root, s);
-    check_surface_band(root, s);
     // A coupled run without run.engine takes exact hulls where the build has
     // them: there interFoam takes 97-99 % of the time whichever engine runs,
     // and sphere clumps change the answer (the platform case: 3 of 3 cubes
@@ -822,6 +903,8 @@ Scene load_scene(const std::string &path, const std::vector<std::string> &overri
     read_units(root, s);
     read_walls(root, s);
     read_porous(root, s);
+    read_series(root, s);
+    check_surface_band(root, s);
     if (s.analysis == "damage" &&
         std::none_of(s.walls.begin(), s.walls.end(), [](const SceneWall &w) { return w.type == "slope"; }))
         root.section("analysis")

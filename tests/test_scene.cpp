@@ -165,6 +165,14 @@ unit = "u"
 position = [0, 0, 1]
 )";
 
+// `text` with its first `from` replaced by `to`.
+std::string replaced(std::string text, const std::string &from, const std::string &to) {
+    const auto at = text.find(from);
+    if (at != std::string::npos)
+        text.replace(at, from.size(), to);
+    return text;
+}
+
 class SceneFile : public ::testing::Test {
   protected:
     void SetUp() override {
@@ -995,7 +1003,12 @@ TEST_F(SceneFile, EveryTableKeyIsRead) {
                   "height = 0.1\nperiod = 1.6\n[[porous]]\nname = \"core\"\nmin = [0, 0, -1]\n"
                   "max = [1, 1, 0]\nstone_size = 0.02\n[[porous]]\nname = \"underlayer\"\n"
                   "type = \"slope_layer\"\nwall = \"slope\"\nthickness = 0.1\nstone_size = 0.02\n",
-              "waves.toml")};
+              "waves.toml"),
+        // A test series: irregular waves and the damage analysis.
+        write(replaced(kFull, "kind = \"tilt\"\ntilt_rate = 5\ntilt_max = 45.5", "kind = \"damage\"") +
+                  "\n[fluid]\nwater_level = 0.5\ncell_size = 0.5\n[waves]\ntype = \"irregular\"\nHs = 0.1\n"
+                  "Tp = 1.6\ngauge_x = -1.5\n[[series]]\nHs = 0.1\nTp = 1.6\n",
+              "series.toml")};
     for (const auto &base : bases)
         ASSERT_EQ(error_of(base), "") << base;
     // kFull's entries by shape and wall type.

@@ -198,6 +198,40 @@ TEST_F(SweepTest, SetOverridesEveryCaseAfterTheFilesSet) {
     EXPECT_EQ(plan["set"], json({"run.duration=8.0", "run.duration=6"}));
 }
 
+// A stability curve's sweep over a test series (docs/stability.md, "Test
+// series"): seeds reach each step's train and the layer (seed_key as a list),
+// [vary] a step's height; every case is a different scene, and a seed key
+// naming a step the series does not have is refused before anything runs.
+TEST_F(SweepTest, ASeriesSweepVariesTheStepsSeedsAndTheLayersSeed) {
+    const fs::path scene = dir_ / "series.toml", sweep = dir_ / "series_sweep.toml";
+    write(
+        scene,
+        read_text(fs::path(kSource) / "scenes" / "stability_cubes.toml") +
+            "\n[[series]]\nHs = 0.10\nTp = 1.8\nwaves = 50\n\n[[series]]\nHs = 0.12\nTp = 1.8\nwaves = 50\n");
+    const auto sweep_file = [&](const std::string &keys) {
+        write(sweep, "scene = \"" + scene.string() + "\"\nseeds = [1, 2]\nseed_key = [" + keys +
+                         "]\n[vary]\n\"series.1.Hs\" = [0.11, 0.12]\n");
+        return kArmour + " sweep " + sweep.string() + " --out " + (dir_ / "out").string() + " --dry-run";
+    };
+    // The steps' seeds alone: the cases differ only if they reach the steps.
+    const Result r = run(sweep_file(R"("series.0.seed", "series.1.seed")"));
+    ASSERT_EQ(r.status, 0) << r.output;
+    std::set<std::string> hashes;
+    for (const char *id : {"Hs-0.11_seed-1", "Hs-0.11_seed-2", "Hs-0.12_seed-1", "Hs-0.12_seed-2"}) {
+        const std::size_t at = r.output.find(std::string(id) + "  scene ");
+        ASSERT_NE(at, std::string::npos) << r.output;
+        hashes.insert(r.output.substr(at + std::string(id).size() + 8, 16));
+    }
+    EXPECT_EQ(hashes.size(), 4u) << r.output;
+    EXPECT_FALSE(fs::exists(dir_ / "out"));
+    const Result with_layer = run(sweep_file(R"("series.0.seed", "series.1.seed", "pattern.0.seed")"));
+    EXPECT_EQ(with_layer.status, 0) << with_layer.output;
+    const Result bad = run(sweep_file(R"("series.2.seed")"));
+    EXPECT_EQ(bad.status, 2) << bad.output;
+    EXPECT_NE(bad.output.find("series.2.seed"), std::string::npos) << bad.output;
+    EXPECT_FALSE(fs::exists(dir_ / "out"));
+}
+
 // The shipped studies as a user starts them: every case passes what
 // `armour run` checks before it writes (the scene reader, the placement, the
 // engine's step, the fluid case): a case refused at its start on a cluster

@@ -40,4 +40,14 @@ IrregularWaves jonswap_components(double hs, double tp, double gamma, int count,
     return w;
 }
 
+double target_tm02(const IrregularWaves &waves) {
+    double m0 = 0.0, m2 = 0.0;
+    for (std::size_t j = 0; j < waves.frequency.size(); ++j) {
+        const double e = 0.5 * waves.amplitude[j] * waves.amplitude[j];
+        m0 += e;
+        m2 += e * waves.frequency[j] * waves.frequency[j];
+    }
+    return m2 > 0.0 ? std::sqrt(m0 / m2) : 0.0;
+}
+
 } // namespace armour

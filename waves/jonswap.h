@@ -41,4 +41,8 @@ double jonswap_shape(double f, double peak_frequency, double gamma);
 // count even, >= 4, <= kMaxWaveComponents (checked by the scene).
 IrregularWaves jonswap_components(double hs, double tp, double gamma, int count, std::uint64_t seed);
 
+// s: the train's mean period Tm0,2 = sqrt(m0 / m2) over its components
+// (Van der Meer's Tm of s_om and N for a target train).
+double target_tm02(const IrregularWaves &waves);
+
 } // namespace armour

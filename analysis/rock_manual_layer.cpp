@@ -1,0 +1,62 @@
+#include "rock_manual_layer.h"
+
+#include <cstdio>
+
+namespace armour {
+
+namespace {
+
+std::string figure(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g", v);
+    return text;
+}
+
+} // namespace
+
+LayerVerdict rock_manual_verdict(const Scene &scene, const SceneSetup &setup, const LayerFigures &layer) {
+    LayerVerdict v;
+    bool cubes = !setup.bodies.empty() && scene.layers == 2;
+    for (const BodyInit &b : setup.bodies)
+        cubes = cubes && scene.units[static_cast<std::size_t>(b.unit)].shape == "cube";
+    if (!cubes || layer.units == 0)
+        return v;
+    v.judged = true;
+    const RockManualBand &band = v.band;
+    const auto add = [&](const std::string &text) { v.reason += (v.reason.empty() ? "" : "; ") + text; };
+    if (layer.porosity < band.porosity_min)
+        add("porosity " + figure(layer.porosity) + " < " + figure(band.porosity_min) +
+            " (a random cube layer that dense cannot be built and overstates stability: Medina et al. 2014)");
+    if (layer.porosity > band.porosity_max)
+        add("porosity " + figure(layer.porosity) + " > " + figure(band.porosity_max) +
+            " (looser than built)");
+    if (layer.packing_density < band.packing_min || layer.packing_density > band.packing_max)
+        add("packing " + figure(layer.packing_density) + " units/Dn^2 outside " + figure(band.packing_min) +
+            " .. " + figure(band.packing_max));
+    v.outside = !v.reason.empty();
+    return v;
+}
+
+std::string settled_layer_warning(const Scene &scene, const SceneSetup &setup,
+                                  const std::vector<BodyState> &states) {
+    const std::optional<SlopeFrame> frame = slope_frame(scene);
+    if (!frame || states.empty())
+        return "";
+    const LayerRegion region = layer_region(*frame, setup, states);
+    if (region.bodies.empty())
+        return "";
+    const ArmourProfile profile = armour_profile(*frame, setup, states, region);
+    return rock_manual_warning(
+        rock_manual_verdict(scene, setup, layer_figures(setup, region, profile, scene.layers)));
+}
+
+std::string rock_manual_warning(const LayerVerdict &v) {
+    if (!v.outside)
+        return "";
+    return "the layer the waves meet is outside the Rock Manual's random double layer of cubes (porosity "
+           "0.47, 1.17 units/Dn^2; band porosity " +
+           figure(v.band.porosity_min) + " .. " + figure(v.band.porosity_max) + "): " + v.reason +
+           "; its damage is not that of a layer a laboratory builds (docs/stability.md)";
+}
+
+} // namespace armour

@@ -1,0 +1,63 @@
+// The parts of `armour run` (run_command.cpp) that a test series
+// (series_run.h) runs again for each of its steps: the settle before the
+// waves, the checks of a resume, the warnings a run prints before it starts.
+#pragma once
+
+#include "checkpoints.h"
+#include "output_folder.h"
+#include "run_command.h"
+#include "scene.h"
+#include "scene_setup.h"
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace armour {
+
+// OUT/settle/settled.json, with the speed below which the layer counts as still.
+nlohmann::json settle_report(const std::filesystem::path &dir, const SceneSetup &setup);
+// Adds `report` to OUT/summary.json as its "settle" object (status 0 only); returns `status`.
+int with_settle_report(OutputFolder &folder, int status, nlohmann::json report);
+
+// The settle's own scene (OUT/settle/scene.resolved.toml): the scene without
+// its fluid and waves, in fluid.settle_engine, with fluid.settle_friction.
+Scene settle_scene(const Scene &scene, const SceneSetup &setup);
+// The scene the waves start from after the settle: every unit an explicit
+// [[body]] at `bodies`, no settle.
+Scene settled_scene(const Scene &scene, std::vector<SceneBody> bodies);
+// Settles a coupled scene's units in the DEM (a forked child) into OUT/settle
+// and returns the settled scene; `setup` becomes its set-up, `report` the
+// settle's (settled.json).
+Scene settle_before_coupling(const RunRequest &r, OutputFolder &folder, const Scene &scene, SceneSetup &setup,
+                             nlohmann::json &report);
+
+// A run whose checkpoints all fall at or after its end: one warning.
+void warn_if_no_checkpoint(const Scene &scene);
+// fluid.settle_friction or fluid.settle_engine without a settle: one warning each.
+void warn_if_settle_friction_unused(const Scene &scene);
+// The options that do not fit the scene (--np without [fluid], --resume of
+// an engine that cannot restore its state): InputError.
+void check_options(const RunRequest &r, const Scene &scene);
+
+// The scene as far as a resume may not change it (resumable_keys: the keys a
+// resume may change set to fixed values), as text to compare.
+std::string resumable_form(Scene s, bool resumable_keys = true);
+// InputError naming `scene_file` and the first line that differs, when `now` and `before` differ.
+void refuse_if_differs(const std::string &scene_file, const std::string &now, const std::string &before,
+                       const std::string &where);
+// The checkpoint `armour run --resume` continues the run in `out` from, after
+// checking that `scene` is the one that ran there but for the resumable keys.
+Checkpoint checked_resume(const RunRequest &r, const Scene &scene, const std::filesystem::path &out);
+// A resume's settle: `out`/settle must have ended and settled this scene;
+// returns the settled scene (nothing is run again).
+Scene checked_settle(const RunRequest &r, const Scene &scene, const SceneSetup &setup,
+                     const std::filesystem::path &out);
+// checked_settle, then checked_resume of the settled scene in `out`.
+std::pair<Scene, Checkpoint> checked_settled_resume(const RunRequest &r, const Scene &scene,
+                                                    const SceneSetup &setup,
+                                                    const std::filesystem::path &out);
+
+} // namespace armour
