@@ -538,6 +538,10 @@ TEST_F(SweepTest, ReportDrawsDamageAgainstVanDerMeerAndHudson) {
     const std::string report = read_text(out / "report.md");
     EXPECT_NE(report.find("Van der Meer curve for N = 1000 waves, s_om = 0.03"), std::string::npos) << report;
     EXPECT_NE(report.find("Hudson lines for cot α = 2"), std::string::npos) << report;
+    // A point per height: the mean of its two realisations (seeds), with intervals.
+    EXPECT_NE(report.find("4 points, each the mean of 2 realisation(s) with its 95 % interval"),
+              std::string::npos)
+        << report;
 
     // The formulas the chart draws (stability.md): Van der Meer for cubes and Hudson.
     const Result f = run("cd " + kSource +

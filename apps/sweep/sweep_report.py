@@ -7,8 +7,9 @@ Description
     seeds with its 95 % interval (Student t), one line per combination of the
     other varied keys, and the predicted value dashed where the analysis gives
     one. When the cases report N_od and Ns (the damage analysis), it also
-    draws N_od (and damage_S) against the stability number Ns = Hs/(Delta Dn)
-    with the Van der Meer curve for cubes at the sweep's N and s_om,
+    draws N_od (and damage_S) against the stability number Ns = Hs/(Delta Dn),
+    a point per set of varied values (the mean of its realisations, with 95 %
+    intervals in Ns and N_od, each realisation dotted), with the Van der Meer curve for cubes at the sweep's N and s_om,
         Ns = (6.7 N_od^0.4 / N^0.3 + 1.0) s_om^-0.1,
     and Hudson's lines Ns = (K_D cot alpha)^(1/3) for K_D = 6.5 and 7.5.
     Writes DIR/report.md last, through a temporary file.
@@ -144,9 +145,20 @@ def stability_chart(plt, done, folder):
     ax = axes[0][0]
     ns = [c["figures"]["Ns"] for c in points]
     n_od = [c["figures"]["N_od"] for c in points]
-    ax.plot(ns, n_od, "o", label="cases")
+    # A point of the curve: the realisations (seeds) of one set of varied
+    # values, their mean Ns and N_od with 95 % intervals; each realisation dotted.
+    groups = defaultdict(list)
+    for c in points:
+        groups[json.dumps(c.get("values", {}), sort_keys=True)].append(c["figures"])
+    means = [(mean_interval([f["Ns"] for f in g]), mean_interval([f["N_od"] for f in g]), len(g))
+             for g in groups.values()]
+    ax.plot(ns, n_od, ".", color="0.6", label="each realisation")
+    ax.errorbar([m[0][0] for m in means], [m[1][0] for m in means], xerr=[m[0][1] for m in means],
+                yerr=[m[1][1] for m in means], fmt="o", capsize=3, label="mean, 95 % interval")
     top = max(2.0, 1.3 * max(n_od))
-    text = []
+    counts = sorted({m[2] for m in means})
+    text = [f"{len(means)} points, each the mean of {'/'.join(map(str, counts))} realisation(s) with its 95 % "
+            "interval (Student t) in Ns and N_od; grey dots: each realisation"]
     if waves and steep:
         n, s = median(waves), median(steep)
         grid = [top * i / 200 for i in range(201)]
