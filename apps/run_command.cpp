@@ -366,6 +366,24 @@ Scene settle_scene(const Scene &scene, const SceneSetup &setup) {
 
 // The scene the coupled run starts from after the settle: the same scene
 // with every unit an explicit [[body]] (`bodies`: at the settled poses).
+std::vector<SceneBody> bodies_at_rest(const Scene &scene, const SceneSetup &setup,
+                                      const std::vector<BodyState> &states) {
+    std::vector<SceneBody> bodies;
+    for (std::size_t i = 0; i < states.size(); ++i) {
+        SceneBody b;
+        if (i < scene.bodies.size())
+            b = scene.bodies[i]; // explicit bodies keep their held axes
+        b.unit = setup.units[static_cast<std::size_t>(setup.bodies[i].unit)].name;
+        b.position = states[i].pose.position;
+        const Eigen::Quaterniond q = states[i].pose.orientation.normalized();
+        b.orientation = Eigen::Vector4d(q.w(), q.x(), q.y(), q.z());
+        b.velocity.setZero();
+        b.angular_velocity.setZero();
+        bodies.push_back(b);
+    }
+    return bodies;
+}
+
 Scene settled_scene(const Scene &scene, std::vector<SceneBody> bodies) {
     Scene settled = scene;
     settled.fluid->settle_time = 0.0;
@@ -420,22 +438,12 @@ Scene settle_before_coupling(const RunRequest &r, OutputFolder &folder, const Sc
                                  std::to_string(setup.bodies.size()));
             run_dem(settle_folder, dry, dry_setup, &states, &water);
 
-            std::vector<SceneBody> bodies;
+            std::vector<SceneBody> bodies = bodies_at_rest(scene, setup, states);
             double speed = 0.0, displacement = 0.0;
             for (std::size_t i = 0; i < states.size(); ++i) {
-                const BodyInit &init = setup.bodies[i];
-                SceneBody b;
-                if (i < scene.bodies.size())
-                    b = scene.bodies[i]; // explicit bodies keep their held axes
-                b.unit = setup.units[init.unit].name;
-                b.position = states[i].pose.position;
-                const Eigen::Quaterniond q = states[i].pose.orientation.normalized();
-                b.orientation = Eigen::Vector4d(q.w(), q.x(), q.y(), q.z());
-                b.velocity.setZero();
-                b.angular_velocity.setZero();
-                bodies.push_back(b);
                 speed = std::max(speed, states[i].velocity.norm());
-                displacement = std::max(displacement, (states[i].pose.position - init.pose.position).norm());
+                displacement =
+                    std::max(displacement, (states[i].pose.position - setup.bodies[i].pose.position).norm());
             }
             write_text_file(settle_folder.claim(settled_file.filename().string()),
                             resolved_scene_toml(settled_scene(scene, std::move(bodies))));

@@ -25,6 +25,10 @@ int with_settle_report(OutputFolder &folder, int status, nlohmann::json report);
 // The settle's own scene (OUT/settle/scene.resolved.toml): the scene without
 // its fluid and waves, in fluid.settle_engine, with fluid.settle_friction.
 Scene settle_scene(const Scene &scene, const SceneSetup &setup);
+// Every unit as an explicit [[body]] at its state's pose, at rest (a
+// settle's end, a series step's end); the scene's explicit bodies keep their held axes.
+std::vector<SceneBody> bodies_at_rest(const Scene &scene, const SceneSetup &setup,
+                                      const std::vector<BodyState> &states);
 // The scene the waves start from after the settle: every unit an explicit
 // [[body]] at `bodies`, no settle.
 Scene settled_scene(const Scene &scene, std::vector<SceneBody> bodies);

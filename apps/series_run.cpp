@@ -57,20 +57,7 @@ std::vector<SceneBody> bodies_at_end(const fs::path &dir, const Scene &scene, co
                          std::to_string(setup.bodies.size()) + " units of the series");
     std::vector<BodyState> states(rec.bodies());
     rec.states_at(rec.steps() - 1, states);
-    std::vector<SceneBody> bodies;
-    for (std::size_t i = 0; i < states.size(); ++i) {
-        SceneBody b;
-        if (i < scene.bodies.size())
-            b = scene.bodies[i];
-        b.unit = setup.units[static_cast<std::size_t>(setup.bodies[i].unit)].name;
-        b.position = states[i].pose.position;
-        const Eigen::Quaterniond q = states[i].pose.orientation.normalized();
-        b.orientation = Eigen::Vector4d(q.w(), q.x(), q.y(), q.z());
-        b.velocity.setZero();
-        b.angular_velocity.setZero();
-        bodies.push_back(b);
-    }
-    return bodies;
+    return bodies_at_rest(scene, setup, states);
 }
 
 std::string step_text(const SceneSeriesStep &s) {
