@@ -131,6 +131,7 @@ const std::vector<Key<SceneDrop>> &drop_keys();
 const std::vector<Key<ScenePattern>> &pattern_keys();
 const std::vector<Key<SceneWaves>> &wave_keys();
 const std::vector<Key<ScenePorous>> &porous_keys();
+const std::vector<Key<SceneRefine>> &refine_keys();
 
 // A key described in words, whatever struct it fills.
 struct KeyInfo {
