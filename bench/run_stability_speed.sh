@@ -107,13 +107,13 @@ tm02 = 1.53
 g, depth = 9.81, 0.40
 load = [open(f"{out}/loadavg_{w}").read().split() for w in ("before", "after")]
 
-def clock(case, t0):
-    """interFoam's (steps, wall s, CPU s, simulated s) from the first step at or after t0 to the last."""
+def clock(case, t0, t1):
+    """interFoam's (steps, wall s, CPU s, simulated s) from the first step at or after t0 to the last at or before t1."""
     text = open(f"{case}/log.interFoam").read()
     times = [float(t) for t in re.findall(r"^Time = ([0-9.eE+-]+)", text, re.M)]
     clocks = [tuple(map(float, p)) for p in
               re.findall(r"ExecutionTime = ([0-9.eE+-]+) s\s+ClockTime = ([0-9.eE+-]+) s", text)]
-    pairs = list(zip(times, clocks))
+    pairs = [(t, c) for t, c in zip(times, clocks) if t <= t1 + 1e-9]
     first = next(i for i, (t, _) in enumerate(pairs) if t >= t0)
     (ta, (ca, wa)), (tb, (cb, wb)) = pairs[first], pairs[-1]
     return len(pairs) - 1 - first, wb - wa, cb - ca, tb - ta
@@ -131,7 +131,7 @@ def gauge_data(name):
             rows.append([float(v) for v in line.split()])
     return np.array(rows)
 
-# Every row's gauges over the same window: from waves_from to the shortest row's end.
+# Every row's gauges and clock over the same windows: to the shortest row's end.
 waves_to = min(gauge_data(name)[-1, 0] for name in names)
 
 def incident_hm0(name, summary):
@@ -170,7 +170,7 @@ print(f"{'mesh':>15s} {'cells':>7s} {'steps':>5s} {'wall s/step':>11s} {'wall s/
 for name in names:
     s = read_summary(f"{out}/{name}")
     f = s["fluid"]
-    steps, wall, cpu, simulated = clock(f"{out}/{name}/case", load_from)
+    steps, wall, cpu, simulated = clock(f"{out}/{name}/case", load_from, waves_to)
     hi, hr, gauges = incident_hm0(name, s)
     row = {"row": name, "mesh": f.get("mesh", "graded"), "ranks": f["np"], "units": s["units"],
            "cells": f["cells_total"], "block_cells": f["cells"], "fine_cell_size": f["cell_size"],
