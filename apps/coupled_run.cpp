@@ -10,6 +10,7 @@
 #include "flume_mesh.h"
 #include "foam_restart.h"
 #include "foam_tool.h"
+#include "mesh_refinement.h"
 #include "openfoam_environment.h"
 #include "output_folder.h"
 #include "report_command.h"
@@ -194,6 +195,25 @@ std::string waves_library(const std::string &plugin) {
     if (const char *env = std::getenv("ARMOUR_WAVES_LIB"); env && *env)
         return env;
     return (fs::path(plugin).parent_path() / "waves" / "libarmourWaves.so").string();
+}
+
+// A refined mesh (fluid.mesh "refined"): refineMesh splits the block's
+// cells in the [[refine]] regions, one pass per level (mesh_refinement.h),
+// before any zone is made, so the porous zones are the refined cells'.
+void refine_flume_mesh(const Scene &scene, const fs::path &case_dir) {
+    const int levels = refine_levels(scene);
+    if (levels == 0)
+        return;
+    write_refine_dicts(scene, case_dir);
+    for (int pass = 1; pass <= levels; ++pass) {
+        const std::string k = std::to_string(pass);
+        run_tool("topoSet.refine" + k, {"topoSet", "-dict", "system/topoSetDict.refine" + k}, case_dir,
+                 scene.duration, false);
+        run_tool("refineMesh." + k, {"refineMesh", "-overwrite"}, case_dir, scene.duration, false);
+    }
+    // refineMesh -overwrite leaves its cell map in 0/polyMesh: the mesh is constant/polyMesh's.
+    std::error_code ec;
+    fs::remove_all(case_dir / "0" / "polyMesh", ec);
 }
 
 // nCells of the mesh as written (the note in constant/polyMesh/owner): templates
@@ -516,11 +536,14 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
         fill_tokens(case_dir, tokens);
         write_fluid_models(scene, case_dir);
 
-        std::fprintf(stderr, "run: %s: %d x %d x %d cells%s, %d rank%s, engine %s -> %s\n",
-                     scene.name.c_str(), mesh.axes[0].cells, mesh.axes[1].cells, mesh.axes[2].cells,
-                     mesh.graded ? " (graded)" : "", f.np, f.np > 1 ? "s" : "", scene.engine.c_str(),
-                     case_dir.c_str());
+        const int levels = refine_levels(scene);
+        std::fprintf(
+            stderr, "run: %s: %d x %d x %d cells%s%s, %d rank%s, engine %s -> %s\n", scene.name.c_str(),
+            mesh.axes[0].cells, mesh.axes[1].cells, mesh.axes[2].cells, mesh.graded ? " (graded)" : "",
+            levels > 0 ? (", refined " + std::to_string(levels) + "x in x and y in [[refine]]").c_str() : "",
+            f.np, f.np > 1 ? "s" : "", scene.engine.c_str(), case_dir.c_str());
         run_tool("blockMesh", {"blockMesh"}, case_dir, scene.duration, false);
+        refine_flume_mesh(scene, case_dir);
         // system/topoSetDict: the cellSet "fluid" (porous zones join it) that the mesh keeps (slope_waves).
         const bool blocked = fs::is_regular_file(case_dir / "system" / "topoSetDict");
         if (blocked)
@@ -592,6 +615,8 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
         {"warnings", warnings},
         {"fluid",
          {{"case", f.case_name},
+          {"mesh", f.mesh},
+          {"refine_levels", refine_levels(scene)},
           {"cells", {mesh.axes[0].cells, mesh.axes[1].cells, mesh.axes[2].cells}},
           {"cells_total", mesh_cells(case_dir) > 0 ? mesh_cells(case_dir) : mesh.cells()},
           {"cell_size", {h.x(), h.y(), h.z()}},

@@ -1,5 +1,6 @@
 #include "flume_mesh.h"
 
+#include "mesh_refinement.h"
 #include "scene_keys.h"
 #include "scene_setup.h"
 
@@ -144,11 +145,15 @@ FlumeMesh flume_mesh(const Scene &scene) {
     const SceneFluid &f = *scene.fluid;
     FlumeMesh mesh;
     const bool box = f.refine_min.has_value();
+    const int levels = refine_levels(scene);
     for (int i = 0; i < 3; ++i) {
         const double lo = scene.domain_min[i], hi = scene.domain_max[i];
         const double a = box ? (*f.refine_min)[i] : lo, b = box ? (*f.refine_max)[i] : hi;
-        const double coarsen = box ? std::max(1.0, f.coarse_cell_size[i] / fine_cell_size(scene)[i]) : 1.0;
-        mesh.axes[i] = axis_of(lo, hi, f.cells[i], a, b, coarsen);
+        // A refined mesh's block: 2^L times the fine cells in x and y (mesh_refinement.h).
+        const int cells = i < 2 ? f.cells[i] >> levels : f.cells[i];
+        const double h = (hi - lo) / cells;
+        const double coarsen = box ? std::max(1.0, f.coarse_cell_size[i] / h) : 1.0;
+        mesh.axes[i] = axis_of(lo, hi, cells, a, b, coarsen);
         mesh.graded = mesh.graded || mesh.axes[i].grading != "1";
     }
     return mesh;
@@ -156,9 +161,14 @@ FlumeMesh flume_mesh(const Scene &scene) {
 
 void check_flume_grading(const Scene &scene, const SceneSetup &setup, const std::string &template_text) {
     const SceneFluid &f = *scene.fluid;
+    const bool fixed = template_text.find("@GRADING@") == std::string::npos;
+    if (refine_levels(scene) > 0 && fixed)
+        throw InputError(scene.file + ": key 'fluid.mesh': fluid.case \"" + f.case_name +
+                         "\" has a fixed block structure; a refined mesh needs fluid.case \"wave_flume\"");
+    check_units_refined(scene, setup);
     if (!f.refine_min)
         return;
-    if (template_text.find("@GRADING@") == std::string::npos)
+    if (fixed)
         throw InputError(scene.file + ": key 'fluid.refine_min': fluid.case \"" + f.case_name +
                          "\" has a fixed block structure; a graded mesh needs fluid.case \"wave_flume\"");
     // A unit resting on a side wall or the slope reaches into it by its contact

@@ -58,12 +58,14 @@ struct FlumeMesh {
 // size of every cell of a uniform mesh and of those in a graded one's box.
 Eigen::Vector3d fine_cell_size(const Scene &scene);
 
-// The mesh of a scene's [fluid] (uniform when it has no refine box).
+// The blockMesh block of a scene's [fluid] (uniform when it has no refine
+// box; a refined mesh's base block: mesh_refinement.h).
 FlumeMesh flume_mesh(const Scene &scene);
 
-// Throws InputError when a graded scene cannot run: its template has no
-// @GRADING@ token (a fixed block structure), or a unit starts outside the
-// refined box (its cells would be coarser than the loads need).
+// Throws InputError when a graded or refined scene cannot run: its template
+// has no @GRADING@ token (a fixed block structure), or a unit starts outside
+// the refined box or the deepest [[refine]] regions (its cells would be
+// coarser than the loads need).
 void check_flume_grading(const Scene &scene, const SceneSetup &setup, const std::string &template_text);
 
 } // namespace armour

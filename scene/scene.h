@@ -184,8 +184,15 @@ struct SceneFluid {
     std::string turbulence = "laminar";
     double turbulence_intensity = 1e-4; // I [-]: k = 1.5 (I sqrt(g depth))^2
     double turbulence_length = 0.01;    // m, l: omega = sqrt(k) / (Cmu^0.25 l)
+    // graded: one blockMesh block of `cells` (graded by refine_min/max), the
+    // [[refine]] regions unused; refined: that block with cells 2^L times
+    // larger in x and y, split back to `cells` in the [[refine]] regions of
+    // level L (apps/mesh_refinement.h). The parser's default: refined when the
+    // scene has [[refine]] regions.
+    std::string mesh = "graded";
 
-    // m along x, y, z: the cell inside refine_min .. refine_max (everywhere on a uniform mesh).
+    // m along x, y, z: the cell inside refine_min .. refine_max (everywhere on a uniform mesh),
+    // and in the finest [[refine]] regions of a refined mesh.
     Eigen::Vector3d fine_cell(const Eigen::Vector3d &domain_extent) const {
         return domain_extent.cwiseQuotient(Eigen::Vector3d(cells[0], cells[1], cells[2]));
     }
@@ -205,6 +212,20 @@ struct ScenePorous {
     double porosity = 0.4;           // n [-]
     double alpha = 1000.0;           // van Gent's laminar coefficient [-]
     double beta = 1.1;               // van Gent's turbulent coefficient [-]
+};
+
+// [[refine]]: a region of a refined wave-flume mesh (fluid.mesh "refined",
+// apps/mesh_refinement.h) whose cells are halved in x and y `level` times
+// from the base cells: a box, or a band about a slope wall's face and crest
+// from `below` under them to `above` over them (along their normals).
+struct SceneRefine {
+    std::string name;
+    std::string type = "box";                                                     // box | slope_band
+    Eigen::Vector3d min = Eigen::Vector3d::Zero(), max = Eigen::Vector3d::Zero(); // m, box
+    std::string wall;   // slope_band: a [[wall]] of type "slope"
+    double below = 0.0; // m, slope_band: under the face and crest
+    double above = 0.0; // m, slope_band: over them
+    int level = 1;      // halvings in x and y
 };
 
 // [waves]: the wave train at the inlet of a wave template (docs/waves.md).
@@ -289,6 +310,7 @@ struct Scene {
     std::optional<SceneWaves> waves;     // [waves]: needs [fluid]
     std::vector<ScenePorous> porous;     // [[porous]]: needs [fluid]
     std::vector<SceneSeriesStep> series; // [[series]]: needs [waves] type "irregular"
+    std::vector<SceneRefine> refine;     // [[refine]]: needs [fluid]
 
     // m: fluid.water_level above the flume's floor run.domain_min.z (a scene with [fluid]).
     double still_water_depth() const { return fluid->water_level - domain_min.z(); }

@@ -157,6 +157,15 @@ const std::vector<Key<SceneFluid>> &fluid_keys() {
             "cell keeps that axis uniform")
             .custom("none")
             .written_if([](const F &f) { return f.refine_min.has_value(); }),
+        key("mesh", &F::mesh, "",
+            "graded: one blockMesh block (graded by refine_min/max), [[refine]] unused (the reference); "
+            "refined: that block with cells 2^L times larger in x and y (L the deepest [[refine]] level), "
+            "split back to `cells` by refineMesh in the [[refine]] regions; x and y only, so the free "
+            "surface never crosses a face between cells of different heights (such faces drove 1 m/s air "
+            "jets in still water: openfoam.md); fluid.case \"wave_flume\"; every unit starts in the "
+            "deepest regions")
+            .one_of({"graded", "refined"})
+            .defaults("`\"refined\"` with [[refine]] regions, else `\"graded\"`"),
         key("penalty", &F::penalty, "1/s",
             "K of the penalisation -rho K chi (U - U_body); implicit, any K is stable")
             .in(Range::above(0)),
@@ -557,6 +566,36 @@ const std::vector<Key<ScenePorous>> &porous_keys() {
     return keys;
 }
 
+const std::vector<Key<SceneRefine>> &refine_keys() {
+    using R = SceneRefine;
+    static const std::vector<Key<R>> keys = {
+        key("name", &R::name, "", "names the region; unique").required(),
+        key("type", &R::type, "", "the region's shape").one_of({"box", "slope_band"}),
+        key("min", &R::min, "m", "a corner of the box, inside run.domain_min .. domain_max")
+            .required(" for type \"box\"")
+            .only_for("box"),
+        key("max", &R::max, "m", "the opposite corner; > min").required(" for type \"box\"").only_for("box"),
+        key("wall", &R::wall, "", "a [[wall]] of type \"slope\": the band follows its face and crest")
+            .required(" for type \"slope_band\"")
+            .only_for("slope_band"),
+        key("below", &R::below, "m",
+            "the band reaches this far under the face and crest, along their normals (into the "
+            "underlayer; the core beyond keeps the base cells)")
+            .in(Range::at_least(0))
+            .only_for("slope_band"),
+        key("above", &R::above, "m",
+            "and this far over them (the armour layer, the flow about it and the run-up)")
+            .in(Range::above(0))
+            .required(" for type \"slope_band\"")
+            .only_for("slope_band"),
+        key("level", &R::level, "",
+            "halvings of the base cells in x and y: the deepest level's regions get fluid.cells; a region "
+            "of a lower level gets one layer of its cells around each deeper one")
+            .in(Range::closed(1, 3)),
+    };
+    return keys;
+}
+
 bool Range::bounded() const {
     return std::isfinite(lo) || std::isfinite(hi);
 }
@@ -727,6 +766,14 @@ const std::vector<SceneSection> &scene_sections() {
            "the cells under a slope wall's face and crest whose centre lies between `depth` and "
            "`depth + thickness` below them (porous.md)"}},
          [] { return describe_all("porous", porous_keys()); }},
+        {"refine",
+         SectionKind::ArrayOfTables,
+         "type",
+         {{"box", "the cells whose centre lies in a box"},
+          {"slope_band",
+           "the cells whose centre lies between `below` under and `above` over a slope wall's face and "
+           "crest, and no lower than `below` under its floor"}},
+         [] { return describe_all("refine", refine_keys()); }},
     };
     return sections;
 }

@@ -132,6 +132,7 @@ const std::vector<Key<ScenePattern>> &pattern_keys();
 const std::vector<Key<SceneWaves>> &wave_keys();
 const std::vector<Key<ScenePorous>> &porous_keys();
 const std::vector<Key<SceneSeriesStep>> &series_keys();
+const std::vector<Key<SceneRefine>> &refine_keys();
 
 // A key described in words, whatever struct it fills.
 struct KeyInfo {

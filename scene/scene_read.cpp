@@ -589,6 +589,64 @@ void read_porous(const Table &root, Scene &s) {
     }
 }
 
+// [[refine]] after [fluid] and the walls: boxes inside the fluid mesh, or
+// bands about a slope wall; unique names. fluid.mesh defaults to "refined"
+// with regions; a refined mesh halves its base cells L times in x and y (L
+// the deepest level), so fluid.cells must hold 2^L whole base cells there.
+void read_refine(const Table &root, Scene &s) {
+    const auto &keys = refine_keys();
+    for (const Table &t : root.entries("refine")) {
+        t.only(names_of(keys));
+        SceneRefine r;
+        read_value(t, key_named(keys, "type"), r);
+        forbid_other_variants(t, keys, r.type, "refine type");
+        read_keys(t, keys, r, r.type);
+        // read_value checks an integer's lower bound only.
+        t.check(r.level <= 3, "level", "must be in [1, 3]", r.level);
+        if (!s.fluid)
+            t.fail("name", "a refined region is in the fluid mesh: the scene needs a [fluid] table");
+        if (r.name.empty() || r.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                                       "0123456789_") != std::string::npos)
+            t.fail("name", "letters, digits and _ only (got " + toml_string(r.name) + ")");
+        for (const SceneRefine &other : s.refine)
+            if (other.name == r.name)
+                t.fail("name", "a second [[refine]] named " + toml_string(r.name));
+        if (r.type == "slope_band") {
+            const auto wall = std::find_if(s.walls.begin(), s.walls.end(),
+                                           [&](const SceneWall &w) { return w.name == r.wall; });
+            if (wall == s.walls.end() || wall->type != "slope")
+                t.fail("wall", "no [[wall]] of type \"slope\" named " + toml_string(r.wall));
+        } else {
+            check_box(t, r.min, r.max, s);
+        }
+        s.refine.push_back(r);
+    }
+    if (!s.fluid)
+        return;
+    SceneFluid &f = *s.fluid;
+    const Table fluid = root.section("fluid");
+    if (!fluid.has("mesh"))
+        f.mesh = s.refine.empty() ? "graded" : "refined";
+    if (f.mesh != "refined")
+        return;
+    if (s.refine.empty())
+        fluid.fail("mesh", "\"refined\" splits the cells of [[refine]] regions: the scene has none (add "
+                           "[[refine]] tables, or mesh = \"graded\")");
+    int levels = 0;
+    for (const SceneRefine &r : s.refine)
+        levels = std::max(levels, r.level);
+    const int split = 1 << levels;
+    if (f.cells[0] % split != 0 || f.cells[1] % split != 0)
+        fluid.fail(fluid.has("cells") ? "cells" : "cell_size",
+                   "a refined mesh of [[refine]] level " + std::to_string(levels) +
+                       " splits its base cells " + std::to_string(split) +
+                       " times along x and y: the fine cells along x and y must be "
+                       "multiples of " +
+                       std::to_string(split) + " (got [" + std::to_string(f.cells[0]) + ", " +
+                       std::to_string(f.cells[1]) + ", " + std::to_string(f.cells[2]) +
+                       "]); or fluid.mesh = \"graded\"");
+}
+
 void read_placements(const Table &root, Scene &s) {
     const std::string domain = "run.domain_min " + vector_text(s.domain_min) + " .. run.domain_max " +
                                vector_text(s.domain_max) + " m";
@@ -903,6 +961,7 @@ Scene load_scene(const std::string &path, const std::vector<std::string> &overri
     read_units(root, s);
     read_walls(root, s);
     read_porous(root, s);
+    read_refine(root, s);
     read_series(root, s);
     check_surface_band(root, s);
     if (s.analysis == "damage" &&

@@ -99,6 +99,7 @@ std::string resolved_scene_toml(const Scene &s) {
     write_entries(o, "pattern", pattern_keys(), s.patterns, none);
     write_entries(o, "porous", porous_keys(), s.porous, [](const ScenePorous &p) { return p.type; });
     write_entries(o, "series", series_keys(), s.series, none);
+    write_entries(o, "refine", refine_keys(), s.refine, [](const SceneRefine &r) { return r.type; });
     return o.str();
 }
 

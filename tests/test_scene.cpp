@@ -1002,8 +1002,11 @@ TEST_F(SceneFile, EveryTableKeyIsRead) {
                   "\n[fluid]\nwater_level = 0.5\ncell_size = 0.5\n[waves]\ntype = \"regular\"\n"
                   "height = 0.1\nperiod = 1.6\n[[porous]]\nname = \"core\"\nmin = [0, 0, -1]\n"
                   "max = [1, 1, 0]\nstone_size = 0.02\n[[porous]]\nname = \"underlayer\"\n"
-                  "type = \"slope_layer\"\nwall = \"slope\"\nthickness = 0.1\nstone_size = 0.02\n",
+                  "type = \"slope_layer\"\nwall = \"slope\"\nthickness = 0.1\nstone_size = 0.02\n"
+                  "[[refine]]\nname = \"front\"\nmin = [0, 0, -1]\nmax = [1, 1, 0]\n[[refine]]\n"
+                  "name = \"armour\"\ntype = \"slope_band\"\nwall = \"slope\"\nabove = 0.1\n",
               "waves.toml"),
+
         // A test series: irregular waves and the damage analysis.
         write(replaced(kFull, "kind = \"tilt\"\ntilt_rate = 5\ntilt_max = 45.5", "kind = \"damage\"") +
                   "\n[fluid]\nwater_level = 0.5\ncell_size = 0.5\n[waves]\ntype = \"irregular\"\nHs = 0.1\n"
@@ -1021,10 +1024,13 @@ TEST_F(SceneFile, EveryTableKeyIsRead) {
             if (section.kind == armour::SectionKind::Table)
                 path = k.section + "." + k.name;
             if (section.kind == armour::SectionKind::ArrayOfTables) {
-                int index = k.when.empty() || k.section == "porous" ? 0 : variant_index.at(k.when);
+                const bool regions = k.section == "porous" || k.section == "refine";
+                int index = k.when.empty() || regions ? 0 : variant_index.at(k.when);
                 if (k.section == "wall" && k.when == "stl")
                     index = 3;
                 if (k.section == "porous" && k.when == "slope_layer") // the second is a slope_layer
+                    index = 1;
+                if (k.section == "refine" && k.when == "slope_band") // the second is a slope_band
                     index = 1;
                 path = k.section + "." + std::to_string(index) + "." + k.name;
             }
