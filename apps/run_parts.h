@@ -42,6 +42,9 @@ Scene settle_before_coupling(const RunRequest &r, OutputFolder &folder, const Sc
 void warn_if_no_checkpoint(const Scene &scene);
 // fluid.settle_friction or fluid.settle_engine without a settle: one warning each.
 void warn_if_settle_friction_unused(const Scene &scene);
+// fluid.settle_engine of sphere clumps handing its layer to exact hulls: one
+// warning (measured: the hulls slump off it before the waves).
+void warn_if_settle_hands_clumps_to_hulls(const Scene &scene);
 // The options that do not fit the scene (--np without [fluid], --resume of
 // an engine that cannot restore its state): InputError.
 void check_options(const RunRequest &r, const Scene &scene);

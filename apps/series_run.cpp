@@ -266,6 +266,7 @@ int dry_run_series(const RunRequest &r, const Scene &scene) {
     if (r.resume)
         checked_series_start(r, scene, setup, out);
     warn_if_settle_friction_unused(scene);
+    warn_if_settle_hands_clumps_to_hulls(scene);
     warn_if_steps_unresumable(scene);
     if (!settles) // the layer the waves meet is known (a settle's is not yet)
         for (const std::string &w : warnings)
@@ -306,6 +307,7 @@ int run_series(const RunRequest &r, const Scene &scene) {
     check_options(r, scene);
     SceneSetup setup = build_scene(scene, cache_of(r), true);
     warn_if_settle_friction_unused(scene);
+    warn_if_settle_hands_clumps_to_hulls(scene);
     check_steps(r, scene, setup); // every step's case, before anything is written
     warn_if_steps_unresumable(scene);
     const fs::path out = folder.target();

@@ -187,6 +187,10 @@ TEST(StabilitySeries, KilledInItsSecondStepItResumesAndEachStepStartsWhereTheLas
     ASSERT_FALSE(fs::exists(out / "series" / "2" / "summary.json"));
     ASSERT_FALSE(fs::exists(out / "summary.json"));
     const std::string step1 = read_text(out / "series" / "1" / "summary.json");
+    // Clumps' layer handed to hulls: said, not silent (the hulls slump off it).
+    EXPECT_NE(read_text(dir / "killed.log").find("the hulls slump off a clump-settled layer"),
+              std::string::npos)
+        << read_text(dir / "killed.log");
 
     ASSERT_EQ(run(scene, out, sets, {"--engine", "bullet", "--resume"}, dir / "resumed.log"), 0)
         << read_text(dir / "resumed.log");
