@@ -13,6 +13,7 @@
 #include "bodies_file.h"
 #include "checkpoints.h"
 #include "cli.h"
+#include "lock_wait.h"
 #include "output_folder.h"
 
 #include <gtest/gtest.h>
@@ -112,23 +113,7 @@ json summary_of(const fs::path &out) {
     return json::parse(in);
 }
 
-// Waits until nothing holds OUT's lock: after SIGKILL, interFoam (which
-// inherited the lock's descriptor) may outlive the reaped armour process for
-// a moment, and a resume started then is refused as "in use".
-bool wait_unlocked(const fs::path &out) {
-    const auto t0 = std::chrono::steady_clock::now();
-    while (since(t0) < 30.0) {
-        const int fd = ::open((out / ".armour-lock").c_str(), O_RDWR);
-        if (fd < 0)
-            return true;
-        const bool free = ::flock(fd, LOCK_EX | LOCK_NB) == 0;
-        ::close(fd);
-        if (free)
-            return true;
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    return false;
-}
+using armour_test::wait_unlocked;
 
 // Waits until no process runs in OUT/case: mpirun's ranks are not in
 // armour's process group and do not hold OUT's lock; after a SIGKILL of that

@@ -4,6 +4,7 @@
 // rows, 45 cubes, 4 cm mesh): two steps of 2 s. Needs Debian's openfoam.
 // ~4-5 min on the shared 2-core machine in all.
 #include "bodies_file.h"
+#include "lock_wait.h"
 #include "series_damage.h"
 
 #include <gtest/gtest.h>
@@ -124,21 +125,7 @@ bool has_checkpoint(const fs::path &out) {
     return false;
 }
 
-// Waits until nothing holds DIR's lock (interFoam, which inherits it, may
-// outlive a killed armour for a moment).
-bool wait_unlocked(const fs::path &dir) {
-    for (int i = 0; i < 3000; ++i) {
-        const int fd = ::open((dir / ".armour-lock").c_str(), O_RDWR);
-        if (fd < 0)
-            return true;
-        const bool free = ::flock(fd, LOCK_EX | LOCK_NB) == 0;
-        ::close(fd);
-        if (free)
-            return true;
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    return false;
-}
+using armour_test::wait_unlocked;
 
 // Units at least one Dn from where they were at the series' start (the
 // first record of step 1) at the end of each step, from the steps' records.
