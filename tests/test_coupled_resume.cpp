@@ -13,8 +13,8 @@
 #include "bodies_file.h"
 #include "checkpoints.h"
 #include "cli.h"
-#include "lock_wait.h"
 #include "output_folder.h"
+#include "process_wait.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -62,12 +62,7 @@ pid_t start(const std::vector<std::string> &a) {
     return pid;
 }
 
-int wait_for(pid_t pid) {
-    int status = 0;
-    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-    }
-    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-}
+using armour_test::wait_for;
 
 // Waits until `ready` holds or process `pid` ends, however slow the machine
 // (no time limit: a run that hangs is left to ctest's timeout). True while

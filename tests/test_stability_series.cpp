@@ -4,7 +4,7 @@
 // rows, 45 cubes, 4 cm mesh): two steps of 2 s. Needs Debian's openfoam.
 // ~4-5 min on the shared 2-core machine in all.
 #include "bodies_file.h"
-#include "lock_wait.h"
+#include "process_wait.h"
 #include "series_damage.h"
 
 #include <gtest/gtest.h>
@@ -103,12 +103,7 @@ pid_t start(const fs::path &scene, const fs::path &out, const std::vector<std::s
     return pid;
 }
 
-int wait_for(pid_t pid) {
-    int status = 0;
-    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-    }
-    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-}
+using armour_test::wait_for;
 
 int run(const fs::path &scene, const fs::path &out, const std::vector<std::string> &sets,
         const std::vector<std::string> &flags, const fs::path &log) {

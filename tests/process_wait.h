@@ -1,15 +1,25 @@
-// Waits for an output folder's lock (docs/outputs.md) to be free, for the
-// tests that kill a run and resume it.
+// Waits on what the tests that kill a run and resume it started: a child's
+// exit, and an output folder's lock (docs/outputs.md) being let go.
 #pragma once
 
+#include <cerrno>
 #include <chrono>
 #include <fcntl.h>
 #include <filesystem>
 #include <sys/file.h>
+#include <sys/wait.h>
 #include <thread>
 #include <unistd.h>
 
 namespace armour_test {
+
+// The exit status of child `pid` once it ends; 128 + the signal that killed it.
+inline int wait_for(pid_t pid) {
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
 
 // True once nothing holds DIR/.armour-lock (or there is none): after SIGKILL,
 // interFoam, which inherited the lock's descriptor, may outlive the reaped
