@@ -1,6 +1,6 @@
 #include "checkpoints.h"
 
-#include "mesh.h"
+#include "input_error.h"
 
 #include <algorithm>
 #include <cerrno>

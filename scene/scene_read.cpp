@@ -5,8 +5,8 @@
 #include "scene.h"
 
 #include "engine_registry.h"
+#include "input_error.h"
 #include "jonswap.h"
-#include "mesh.h"
 #include "scene_keys.h"
 #include "toml_table.h"
 #include "wave_theory.h"

@@ -6,6 +6,7 @@
 
 #include "Pstream.H"
 #include "error.H"
+#include "input_error.h"
 
 #include <chrono>
 #include <cmath>
