@@ -408,15 +408,7 @@ WaveConditions wave_conditions(const json &summary, const Scene &scene, double d
     const SceneWaves *train = scene.waves && scene.waves->type != "solitary" ? &*scene.waves : nullptr;
     if (scene.wave_height <= 0.0 && train) {
         const bool regular = train->type == "regular";
-        double tm = train->period;
-        if (!regular) {
-            const IrregularWaves c =
-                jonswap_components(train->hs, train->tp, train->gamma, train->components, train->seed);
-            std::vector<double> density; // m^2/Hz, each component's a^2/2 over its bin
-            for (const double a : c.amplitude)
-                density.push_back(0.5 * a * a / c.frequency_step);
-            tm = spectral_parameters(c.frequency, density, c.frequency.front(), c.frequency.back()).tm02;
-        }
+        const double tm = regular ? train->period : target_tm02(jonswap_components(train->jonswap_sea()));
         w.Hs = regular ? train->height : train->hs;
         w.s_om = 2.0 * kPi * *w.Hs / (g * tm * tm);
         w.waves = duration / tm;

@@ -46,10 +46,6 @@ std::vector<double> gauge_positions(const Scene &scene) {
     return x;
 }
 
-IrregularWaves components_of(const SceneWaves &w) {
-    return jonswap_components(w.hs, w.tp, w.gamma, w.components, w.seed);
-}
-
 std::string list_of(const std::vector<double> &v, bool one_per_row) {
     std::string s = std::to_string(v.size()) + "(";
     for (std::size_t i = 0; i < v.size(); ++i)
@@ -82,7 +78,7 @@ std::string wave_properties(const SceneWaves &w) {
     } else {
         // One direction (0 deg) per frequency: irregularMultiDirectional sums
         // H/2 cos(k x - w t + phase) over the lists.
-        const IrregularWaves c = components_of(w);
+        const IrregularWaves c = jonswap_components(w.jonswap_sea());
         std::vector<double> periods, heights, zeros(c.frequency.size(), 0.0);
         for (std::size_t j = 0; j < c.frequency.size(); ++j) {
             periods.push_back(1.0 / c.frequency[j]);
@@ -196,7 +192,7 @@ void add_wave_summary(const Scene &scene, const fs::path &case_dir, OutputFolder
             return;
         }
     } else {
-        comps = components_of(w);
+        comps = jonswap_components(w.jonswap_sea());
         const double repeat = 1.0 / comps.frequency_step;
         out["repeat_period"] = repeat;
         if (end > 2.0 * repeat)
