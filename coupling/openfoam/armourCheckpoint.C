@@ -46,13 +46,7 @@ armourFoam::checkpointing::checkpointing
 :
     outDir_(outDir),
     interval_(interval),
-    checkpoints_(outDir, interval, t0),
-    next_
-    (
-        interval > 0
-      ? (std::floor(t0/interval + 1e-9) + 1)*interval
-      : HUGE_VAL
-    )
+    checkpoints_(outDir, interval, t0)
 {
     if (t0 <= 0)
     {
@@ -213,18 +207,11 @@ bool armourFoam::checkpointing::step
         return true;
     }
     // Two more steps must fit before the end: the run is whole then.
-    if
-    (
-        t >= next_ - 1e-9*interval_
-     && t + 2.5*dt < runTime.endTime().value()
-    )
+    if (checkpoints_.due_ahead(t, dt, runTime.endTime().value(), 2))
     {
         runTime.writeOnce();
         phase_ = 1;
-        while (next_ <= t + 1e-9*interval_)
-        {
-            next_ += interval_;
-        }
+        checkpoints_.started(t);
     }
     return false;
 }
