@@ -55,7 +55,7 @@ armourFoam::checkpointing::checkpointing
     const std::optional<armour::Checkpoint> last =
         armour::last_checkpoint(outDir);
     // The case names its time folders with 17 digits when it checkpoints
-    // (apps/foam_restart.h), so OpenFOAM restarts at the exact time.
+    // (fluid_case/foam_restart.h), so OpenFOAM restarts at the exact time.
     if (!last || std::abs(last->time - t0) > 1e-9*std::max(1.0, t0))
     {
         FatalErrorInFunction
