@@ -59,6 +59,9 @@ struct AnalysisContext {
     // s: the end of what the analysis reads besides the samples (a coupled
     // run's gauges), for `armour report --until` and a record still being written.
     double until = HUGE_VAL;
+    // m: x of a wave train's gauges as the case writer placed them
+    // (fluid_case/wave_case.h); empty when the run makes no wave train.
+    std::vector<double> gauge_x = {};
 };
 
 class Analysis {

@@ -1,6 +1,6 @@
 #include "bodies_file.h"
 
-#include "mesh.h"
+#include "input_error.h"
 
 #include "hdf5_handles.h"
 

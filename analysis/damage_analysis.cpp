@@ -1,11 +1,11 @@
 #include "damage_analysis.h"
 
 #include "analysis.h"
+#include "incident_waves.h"
 #include "jonswap.h"
 #include "rock_manual_layer.h"
 #include "slope_profile.h"
 #include "standard_conditions.h"
-#include "wave_separation.h"
 #include "wave_theory.h"
 
 #include <nlohmann/json.hpp>
@@ -97,7 +97,8 @@ std::string damage_refusal(const Scene &scene, const SceneSetup &setup) {
 class DamageAnalysis : public Analysis {
   public:
     explicit DamageAnalysis(const AnalysisContext &c)
-        : scene_(c.scene), setup_(c.setup), out_dir_(c.out_dir), claim_(c.claim), settle_(c.scene, c.setup) {
+        : scene_(c.scene), setup_(c.setup), out_dir_(c.out_dir), case_dir_(c.case_dir), gauge_x_(c.gauge_x),
+          until_(c.until), claim_(c.claim), settle_(c.scene, c.setup) {
         const std::optional<SlopeFrame> frame = slope_frame(c.scene);
         if (!frame)
             throw InputError(c.scene.file + ": key 'analysis.kind': kind \"damage\" counts units on a slope: "
@@ -164,8 +165,12 @@ class DamageAnalysis : public Analysis {
             add_rock_manual_verdict(rock_manual_verdict(scene_, setup_, f), settled_layer, summary);
         }
 
+        // The waves the run measured at its gauges (a wave train), else its targets.
+        const json measured = gauge_x_.empty()
+                                  ? json::object()
+                                  : measure_incident_waves(scene_, gauge_x_, case_dir_, until_).figures;
         const WaveConditions w =
-            wave_conditions(summary, scene_, acting_seconds(scene_, frame_.origin.x(), start_, end_));
+            wave_conditions(measured, scene_, acting_seconds(scene_, frame_.origin.x(), start_, end_));
         const double rho_s = unit_density();
         const double rho_w = scene_.fluid ? scene_.fluid->fluid_density : kFreshWaterDensity;
         std::optional<double> Ns, vdm, vdm_n_od, vdm_units;
@@ -285,6 +290,9 @@ class DamageAnalysis : public Analysis {
     const Scene &scene_;
     const SceneSetup &setup_;
     std::string out_dir_;
+    std::string case_dir_;        // a coupled run's case: the gauges' record
+    std::vector<double> gauge_x_; // m; empty: no wave train to measure
+    double until_;                // s, the end of the gauges' record read
     std::function<std::string(const std::string &)> claim_;
     SlopeFrame frame_;
     SettleWatch settle_;
@@ -387,36 +395,25 @@ double hudson_ns(double K_D, double cot) {
     return std::cbrt(K_D * cot);
 }
 
-WaveConditions wave_conditions(const json &summary, const Scene &scene, double duration) {
+WaveConditions wave_conditions(const json &measured, const Scene &scene, double duration) {
     WaveConditions w;
     const auto number = [](const json &o, const char *key) -> std::optional<double> {
         if (o.is_object() && o.contains(key) && o[key].is_number())
             return o[key].get<double>();
         return std::nullopt;
     };
-    if (summary.contains("waves") && summary["waves"].is_object()) {
-        const json &m = summary["waves"];
-        if (const std::optional<double> Hs = number(m, "incident_height")) {
-            w.Hs = Hs;
-            w.s_om = number(m, "s_om");
-            w.waves = number(m, "waves");
-            w.source = "measured";
-            return w;
-        }
+    if (const std::optional<double> Hs = number(measured, "incident_height")) {
+        w.Hs = Hs;
+        w.s_om = number(measured, "s_om");
+        w.waves = number(measured, "waves");
+        w.source = "measured";
+        return w;
     }
     const double g = scene.gravity.norm();
     const SceneWaves *train = scene.waves && scene.waves->type != "solitary" ? &*scene.waves : nullptr;
     if (scene.wave_height <= 0.0 && train) {
         const bool regular = train->type == "regular";
-        double tm = train->period;
-        if (!regular) {
-            const IrregularWaves c =
-                jonswap_components(train->hs, train->tp, train->gamma, train->components, train->seed);
-            std::vector<double> density; // m^2/Hz, each component's a^2/2 over its bin
-            for (const double a : c.amplitude)
-                density.push_back(0.5 * a * a / c.frequency_step);
-            tm = spectral_parameters(c.frequency, density, c.frequency.front(), c.frequency.back()).tm02;
-        }
+        const double tm = regular ? train->period : target_tm02(jonswap_components(train->jonswap_sea()));
         w.Hs = regular ? train->height : train->hs;
         w.s_om = 2.0 * kPi * *w.Hs / (g * tm * tm);
         w.waves = duration / tm;

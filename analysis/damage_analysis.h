@@ -20,8 +20,8 @@
 //     Hudson (K_D 6.5 and 7.5).
 //
 //     The wave figures come from WaveConditions: measured ones when the run
-//     reports an incident-wave analysis (summary `waves`: incident_height,
-//     s_om, waves), else analysis.wave_height (analysis.wave_period for s_om
+//     has a wave train's gauges (incident_waves.h: incident_height, s_om,
+//     waves), else analysis.wave_height (analysis.wave_period for s_om
 //     and N), else the [waves] train's target, else fluid.wave_height; a
 //     figure with no source is null. `damage.waves` is the N the figures
 //     used, whatever its source.
@@ -106,12 +106,13 @@ struct WaveConditions {
     std::string source;          // "measured" | "scene" | "target" | "none"
 };
 
-// From the run's summary `waves` object when it has one ("measured"), else
+// From the incident-wave analysis' figures (incident_waves.h) when they hold
+// a measured incident_height ("measured"), else
 // analysis.wave_height and wave_period ("scene"), else the [waves] train's
 // target at the maker ("target": H and T, or Hs and the Tm0,2 of its
 // JONSWAP components), else fluid.wave_height ("scene"); `duration` s of
 // waves at the structure give N (acting_seconds).
-WaveConditions wave_conditions(const nlohmann::json &summary, const Scene &scene, double duration);
+WaveConditions wave_conditions(const nlohmann::json &measured, const Scene &scene, double duration);
 
 // s: how long the waves have acted on a structure whose toe is at toe_x (m)
 // over a record from `start` to `end` (s): from the front's arrival at the

@@ -4,7 +4,7 @@
 #include "clump_command.h"
 #include "compare_command.h"
 #include "engine_registry.h"
-#include "mesh.h"
+#include "input_error.h"
 #include "report_command.h"
 #include "run_command.h"
 #include "scene_keys.h"

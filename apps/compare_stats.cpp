@@ -1,6 +1,6 @@
 #include "compare_stats.h"
 
-#include "mesh.h" // InputError
+#include "input_error.h"
 
 #include <algorithm>
 #include <cmath>

@@ -2,7 +2,8 @@
 
 #include "analysis.h"
 #include "bodies_file.h"
-#include "mesh.h"
+#include "incident_waves.h"
+#include "input_error.h"
 #include "scene.h"
 #include "scene_keys.h"
 #include "scene_setup.h"
@@ -27,14 +28,16 @@ std::string analyse_coupled_record(const Scene &scene, const SceneSetup &setup, 
     AnalysisContext context{scene, setup, run_dir.string(), case_dir.string(),
                             [&](const std::string &name) { return folder.claim(name).string(); }};
     context.until = until;
+    context.gauge_x = wave_gauge_positions(scene); // where the case put them; none without a wave train
     const std::unique_ptr<Analysis> analysis = make_analysis(context);
     std::vector<BodyState> states(record.bodies());
     for (std::size_t s = 0; s < record.steps() && record.time[s] <= until; ++s) {
         record.states_at(s, states);
         analysis->sample(record.time[s], states);
     }
-    if (makes_wave_train(scene)) // first: the damage analysis reads the incident Hm0, s_om and N
-        add_wave_summary(scene, case_dir, folder, summary, until);
+    if (!context.gauge_x.empty())
+        add_incident_waves(measure_incident_waves(scene, context.gauge_x, case_dir, until), context.claim,
+                           summary);
     return analysis->write(summary);
 }
 

@@ -51,8 +51,9 @@ int run_report(const ReportRequest &request);
 
 // What a coupled run computes from its record after the solver, shared by
 // `armour run` and `armour report`: the wave figures from the gauges in
-// `case_dir` (wave trains), then the scene's analysis sampling `record` up
-// to `until` (s), into `summary`; files through `folder`. `run_dir` holds
+// `case_dir` (wave trains: analysis/incident_waves.h), then the scene's
+// analysis sampling `record` up to `until` (s), into `summary`; files
+// through `folder`. `run_dir` holds
 // the plugin's fluid.csv. Returns the analysis' one-line result.
 std::string analyse_coupled_record(const Scene &scene, const SceneSetup &setup, const BodiesFile &record,
                                    const std::filesystem::path &run_dir,

@@ -2,7 +2,7 @@
 # Cost and accuracy of the stability scene's mesh (scenes/stability_cubes.toml,
 # issues 16 and 34; docs/stability.md, Cost): the scene on a refined mesh (its
 # [[refine]] band, or while it ships graded the candidate band below: Dn/4
-# cells about the armour layer only, apps/mesh_refinement.h) against today's
+# cells about the armour layer only, fluid_case/mesh_refinement.h) against today's
 # graded Dn/4 mesh (one blockMesh block, Dn/4 in the whole box
 # x > 1.15 m, z > 0.18 m: fluid.mesh = "graded", fluid.cells = [200, 25, 62]),
 # both with --np 2, over the same waves from the same settled layer: the first

@@ -7,11 +7,12 @@
 //     inside a few .cpp files to keep the build short.
 #pragma once
 
+#include "input_error.h" // what its readers throw
+
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
 #include <optional>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -20,12 +21,6 @@ namespace armour {
 struct TriangleMesh {
     std::vector<Eigen::Vector3d> vertices;     // m
     std::vector<std::array<int, 3>> triangles; // outward (counter-clockwise)
-};
-
-// Bad user input (a file, a key, a value). The message is one line that names
-// the file or option and the reason; the CLI prints it and exits non-zero.
-struct InputError : std::runtime_error {
-    using std::runtime_error::runtime_error;
 };
 
 // Signed volume enclosed by the mesh (m^3); positive for an outward mesh.

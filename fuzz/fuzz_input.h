@@ -13,7 +13,7 @@
 //     }
 #pragma once
 
-#include "mesh.h"
+#include "input_error.h"
 
 #include <cstddef>
 #include <cstdint>

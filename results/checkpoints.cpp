@@ -1,6 +1,6 @@
 #include "checkpoints.h"
 
-#include "mesh.h"
+#include "input_error.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -79,7 +79,9 @@ Checkpoints::Checkpoints(const fs::path &out, double interval, double after)
 fs::path Checkpoints::write(const Checkpoint &at, const std::function<void(const fs::path &)> &fill) {
     const fs::path partial = begin();
     fill(partial);
-    return commit(at, partial);
+    const fs::path dir = commit(at, partial);
+    started(at.time);
+    return dir;
 }
 
 fs::path Checkpoints::begin() {
@@ -134,9 +136,12 @@ fs::path Checkpoints::commit(const Checkpoint &at, const fs::path &partial) {
         for (const Checkpoint &c : doomed)
             if (c.dir != final_dir)
                 drop(c.dir);
-    while (next_ <= at.time + 1e-9 * interval_)
-        next_ += interval_;
     return final_dir;
+}
+
+void Checkpoints::started(double t) {
+    while (next_ <= t + 1e-9 * interval_)
+        next_ += interval_;
 }
 
 // A folder goes by a rename to a partial name first (atomic: the checkpoint

@@ -58,6 +58,17 @@ class Checkpoints {
 
     bool due(double t) const { return interval_ > 0.0 && t >= next_ - 1e-9 * interval_; }
 
+    // For a writer whose checkpoint is whole `steps` steps of dt after it is
+    // asked for (the interFoam plugin: 2, armourCheckpoint.H): one is due at
+    // t and those steps end before `end` (s), half a step to spare, so the
+    // run that ends is whole. Such a writer calls started(t) when it asks
+    // (on every rank: commit() does not move the due time, write() does):
+    // the next one is then due after t.
+    bool due_ahead(double t, double dt, double end, int steps) const {
+        return due(t) && t + (steps + 0.5) * dt < end;
+    }
+    void started(double t);
+
     // Writes the checkpoint `at`: `fill` writes the states into the folder it
     // is given (engine/ already exists), then checkpoint.json, the removal
     // of the older one(s) and the rename into place. Returns its folder.
@@ -67,7 +78,7 @@ class Checkpoints {
     // The same in two parts, for a writer whose states are ready at
     // different times (the interFoam plugin: the fluid's fields one step
     // after the engine's): begin() makes the partial folder (with engine/),
-    // commit() finishes it as write() does.
+    // commit() finishes it as write() does, leaving the due time to started().
     std::filesystem::path begin();
     std::filesystem::path commit(const Checkpoint &at, const std::filesystem::path &partial);
 

@@ -17,6 +17,7 @@
 //     std::string resolved = resolved_scene_toml(scene); // OUT/scene.resolved.toml
 #pragma once
 
+#include "jonswap.h"
 #include "shapes.h"
 #include "standard_conditions.h"
 
@@ -252,6 +253,8 @@ struct SceneWaves {
     // The train's own period (s) and height (m): T and H regular, Tp and Hs irregular.
     double target_period() const { return type == "regular" ? period : tp; }
     double target_height() const { return type == "regular" ? height : hs; }
+    // The irregular train's sea state (waves/jonswap.h builds its components).
+    JonswapSea jonswap_sea() const { return {hs, tp, gamma, components, seed}; }
 };
 
 // [[series]]: one sea state of a test series (docs/stability.md, "Test

@@ -1,7 +1,7 @@
 #include "scene_keys.h"
 
 #include "engine_registry.h"
-#include "mesh.h"
+#include "input_error.h"
 #include "shapes.h"
 
 #include <cmath>

@@ -3,7 +3,7 @@
 // Usage
 //     scene_keys --markdown              every section's table, to stdout
 //     scene_keys --update docs/scenes.md regenerate the marked blocks in place
-#include "mesh.h"
+#include "input_error.h"
 #include "scene_keys.h"
 
 #include <cstdio>

@@ -5,8 +5,8 @@
 #include "scene.h"
 
 #include "engine_registry.h"
+#include "input_error.h"
 #include "jonswap.h"
-#include "mesh.h"
 #include "scene_keys.h"
 #include "toml_table.h"
 #include "wave_theory.h"
@@ -454,7 +454,7 @@ void read_series(const Table &root, Scene &s) {
             step.ramp_time = root.section("waves").has("ramp_time") ? w.ramp_time : 2.0 * step.tp;
         if (step.waves > 0.0) {
             const IrregularWaves c =
-                jonswap_components(step.hs, step.tp, step.gamma, w.components, step.seed);
+                jonswap_components(JonswapSea{step.hs, step.tp, step.gamma, w.components, step.seed});
             step.duration = front_travel(s, step.tp) + step.waves * target_tm02(c);
         } else if (!t.has("duration")) {
             step.duration = s.duration;

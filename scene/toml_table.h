@@ -3,7 +3,7 @@
 // library: it includes toml++).
 #pragma once
 
-#include "mesh.h"
+#include "input_error.h"
 #include "scene_keys.h"
 
 #include <toml++/toml.h>

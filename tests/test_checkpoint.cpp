@@ -435,3 +435,30 @@ TEST(CheckpointRotation, AKillAtAnyStepLeavesAtMostTwoWholeCheckpoints) {
     if (!::testing::Test::HasFailure())
         fs::remove_all(dir);
 }
+
+// The interFoam plugin asks for a checkpoint two steps before it is whole
+// (Checkpoints::due_ahead): one per interval, at the first step at or after
+// each multiple, and none whose two further steps would not end before the
+// run does. Steps of 0.01 s over 0.1 s intervals; no folder is written.
+std::vector<double> started_times(double end) {
+    armour::Checkpoints timing(fs::path("/nonexistent"), 0.1);
+    std::vector<double> started;
+    for (int k = 0; k * 0.01 < end; ++k) {
+        const double t = k * 0.01;
+        if (timing.due_ahead(t, 0.01, end, 2)) {
+            started.push_back(t);
+            timing.started(t);
+        }
+    }
+    return started;
+}
+
+TEST(CheckpointTiming, AWriterThatCommitsLaterStartsOncePerIntervalAndNotAtTheEnd) {
+    const std::vector<double> whole = started_times(0.5);
+    ASSERT_EQ(whole.size(), 4u); // 0.1 .. 0.4: at 0.5 the run ends
+    for (std::size_t i = 0; i < whole.size(); ++i)
+        EXPECT_NEAR(whole[i], 0.1 * static_cast<double>(i + 1), 1e-12);
+    // At 0.4 the two steps (and half a step to spare) end at 0.425 > 0.42.
+    EXPECT_EQ(started_times(0.42).size(), 3u);
+    EXPECT_EQ(started_times(0.43).size(), 4u);
+}

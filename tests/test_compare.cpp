@@ -138,7 +138,7 @@ TEST(Compare, KeepsTheUsersFiles) {
 // ---- Statistics and advice on synthetic run sets (no engine runs) ----
 
 #include "compare_stats.h"
-#include "mesh.h" // InputError
+#include "input_error.h"
 
 #include <cmath>
 #include <unistd.h>

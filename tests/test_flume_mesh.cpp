@@ -1,4 +1,4 @@
-// The wave flume's graded mesh lines (apps/flume_mesh.h): fine cells inside
+// The wave flume's graded mesh lines (fluid_case/flume_mesh.h): fine cells inside
 // the refined box, growth of at most kMaxCellGrowth per cell outside it, up
 // to coarse_cell_size, on the shipped stability scene with the box's
 // edges off the fine grid's nodes. blockMesh's own points are checked

@@ -1,5 +1,5 @@
 // A refined wave flume (fluid.mesh = "refined", [[refine]] regions;
-// apps/mesh_refinement.h): the regions' geometry, the keys' one-line errors,
+// fluid_case/mesh_refinement.h): the regions' geometry, the keys' one-line errors,
 // and, with Debian's openfoam, the mesh `armour run` makes for the stability
 // scene (read back from constant/polyMesh: fine cells about the units, the
 // base cells elsewhere, z never split) and a short coupled window on it.

@@ -1,7 +1,7 @@
 // One command at a time in an output folder (docs/outputs.md): the lock on
 // --out, and what a killed command leaves (its staging folder, its lock file)
 // going with the next command into the folder, never anything of the user's.
-#include "mesh.h"
+#include "input_error.h"
 #include "output_folder.h"
 #include "output_folder_rule.h"
 

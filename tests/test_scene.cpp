@@ -2,7 +2,7 @@
 // rejected with one line naming file, line and key, --set overrides checked
 // like the file, and the resolved scene reloading to the same Scene.
 #include "engine_registry.h"
-#include "mesh.h"
+#include "input_error.h"
 #include "scene.h"
 #include "scene_keys.h"
 

@@ -437,7 +437,7 @@ TEST(Damage, WaveConditionsPreferTheMeasuredIncidentWave) {
     EXPECT_DOUBLE_EQ(*target.Hs, 0.3);
     EXPECT_NEAR(*target.s_om, 2 * M_PI * 0.3 / (9.81 * 4.0), 1e-3);
     EXPECT_DOUBLE_EQ(*target.waves, 50.0);
-    const nlohmann::json measured = {{"waves", {{"incident_height", 0.25}, {"s_om", 0.03}, {"waves", 480}}}};
+    const nlohmann::json measured = {{"incident_height", 0.25}, {"s_om", 0.03}, {"waves", 480}};
     const armour::WaveConditions m = armour::wave_conditions(measured, scene, 100.0);
     EXPECT_EQ(m.source, "measured");
     EXPECT_DOUBLE_EQ(*m.Hs, 0.25);
@@ -447,7 +447,7 @@ TEST(Damage, WaveConditionsPreferTheMeasuredIncidentWave) {
     EXPECT_EQ(armour::wave_conditions(nlohmann::json::object(), scene, 100.0).source, "none");
     // A waves object without a measured height (a record too short for the
     // analysis) lends none of its figures.
-    const nlohmann::json unmeasured = {{"waves", {{"s_om", 0.03}, {"waves", 480}}}};
+    const nlohmann::json unmeasured = {{"s_om", 0.03}, {"waves", 480}};
     const armour::WaveConditions none = armour::wave_conditions(unmeasured, scene, 100.0);
     EXPECT_EQ(none.source, "none");
     EXPECT_FALSE(none.s_om || none.waves || none.Hs);

@@ -87,7 +87,7 @@ CellSet turned_with_faces(const CellSet &grid, double h, const Eigen::Vector3d &
 }
 
 // The mesh refineMesh makes when it splits cells in x and y only (a refined
-// wave flume, apps/mesh_refinement.h): cells of edge h about `centre`, those
+// wave flume, fluid_case/mesh_refinement.h): cells of edge h about `centre`, those
 // whose centre lies at x > x_cut split into four h/2 x h/2 x h cells. Each
 // cell is given by its own faces, as OpenFOAM gives it: a coarse cell's side
 // facing two fine cells is two faces, and its faces that meet the cut carry
@@ -287,7 +287,7 @@ TEST(SolidFraction, DolosVolumeExactAtAnyPose) {
 }
 
 // A refined flume's cells (x and y split on one side of a cut, hanging
-// points on the coarse cells' faces: apps/mesh_refinement.h) are convex
+// points on the coarse cells' faces: fluid_case/mesh_refinement.h) are convex
 // polyhedra with more than six faces and points in a line: the fractions
 // still sum to the unit's volume, with the cut through the unit.
 TEST(SolidFraction, CubeVolumeExactOnARefinedMeshWithHangingPoints) {

@@ -95,7 +95,7 @@ TEST(WaveFlume, IrregularHm0AndTp) {
         fs::remove_all(run.dir);
 }
 
-// The regular wave on a graded mesh (apps/flume_mesh.h) laid out as the
+// The regular wave on a graded mesh (fluid_case/flume_mesh.h) laid out as the
 // stability scene's: fine cells (dx 0.025 m) from x = 5 m to the outlet, where
 // the structure would be, growing by <= 10 % a cell to 2 dx = 0.05 m towards
 // the wave maker, and dz 0.01 m above z = 0.25 m growing to 3 dz towards the

@@ -40,6 +40,10 @@ IrregularWaves jonswap_components(double hs, double tp, double gamma, int count,
     return w;
 }
 
+IrregularWaves jonswap_components(const JonswapSea &sea) {
+    return jonswap_components(sea.hs, sea.tp, sea.gamma, sea.components, sea.seed);
+}
+
 double target_tm02(const IrregularWaves &waves) {
     double m0 = 0.0, m2 = 0.0;
     for (std::size_t j = 0; j < waves.frequency.size(); ++j) {

@@ -17,6 +17,7 @@
 //
 // Usage
 //     const IrregularWaves w = jonswap_components(0.06, 1.6, 3.3, 40, 7);
+//     const IrregularWaves v = jonswap_components(scene.waves->jonswap_sea());
 //     // w.frequency[j] (Hz), w.amplitude[j] (m), w.phase[j] (rad)
 #pragma once
 
@@ -35,11 +36,24 @@ struct IrregularWaves {
     double shape_scale = 0.0;      // m^2/Hz: the target density is shape_scale * jonswap_shape(f, fp, gamma)
 };
 
+// A JONSWAP sea state as a scene gives it ([waves] irregular, a [[series]]
+// step): Hm0 (m), Tp (s), peak enhancement, component count (even), phase seed.
+struct JonswapSea {
+    double hs = 0.0;
+    double tp = 0.0;
+    double gamma = 3.3;
+    int components = 40;
+    std::uint64_t seed = 1;
+};
+
 // Unnormalised JONSWAP shape (alpha = 1, g = 1): only ratios matter here.
 double jonswap_shape(double f, double peak_frequency, double gamma);
 
 // count even, >= 4, <= kMaxWaveComponents (checked by the scene).
 IrregularWaves jonswap_components(double hs, double tp, double gamma, int count, std::uint64_t seed);
+// The one train of a sea state: the case writer's inlet components, the
+// damage analysis' target Tm0,2 and a series step's length all come from it.
+IrregularWaves jonswap_components(const JonswapSea &sea);
 
 // s: the train's mean period Tm0,2 = sqrt(m0 / m2) over its components
 // (Van der Meer's Tm of s_om and N for a target train).

@@ -1,7 +1,7 @@
 #include "case_runner.h"
 
 #include "checkpoints.h"
-#include "mesh.h"
+#include "input_error.h"
 #include "output_folder.h"
 
 #include <cerrno>

@@ -1,7 +1,7 @@
 // The local executor: a pool of case processes on this machine.
 #include "executors.h"
 
-#include "mesh.h"
+#include "input_error.h"
 #include "output_folder.h"
 
 #include <chrono>

@@ -1,7 +1,7 @@
 // The Slurm executor: one job array, followed with squeue, ended with sacct or scontrol.
 #include "executors.h"
 
-#include "mesh.h"
+#include "input_error.h"
 #include "output_folder.h"
 
 #include <array>

@@ -1,6 +1,6 @@
 #include "sweep_cases.h"
 
-#include "mesh.h"
+#include "input_error.h"
 #include "scene.h"
 #include "sweep_toml.h"
 

@@ -2,7 +2,7 @@
 
 #include "cli_checks.h"
 #include "executors.h"
-#include "mesh.h"
+#include "input_error.h"
 #include "output_folder.h"
 #include "run_command.h"
 #include "scene.h"

@@ -1,6 +1,6 @@
 #include "sweep_file.h"
 
-#include "mesh.h"
+#include "input_error.h"
 #include "sweep_toml.h"
 
 #include <cmath>

@@ -6,6 +6,7 @@
 
 #include "Pstream.H"
 #include "error.H"
+#include "input_error.h"
 
 #include <chrono>
 #include <cmath>
@@ -45,13 +46,7 @@ armourFoam::checkpointing::checkpointing
 :
     outDir_(outDir),
     interval_(interval),
-    checkpoints_(outDir, interval, t0),
-    next_
-    (
-        interval > 0
-      ? (std::floor(t0/interval + 1e-9) + 1)*interval
-      : HUGE_VAL
-    )
+    checkpoints_(outDir, interval, t0)
 {
     if (t0 <= 0)
     {
@@ -60,7 +55,7 @@ armourFoam::checkpointing::checkpointing
     const std::optional<armour::Checkpoint> last =
         armour::last_checkpoint(outDir);
     // The case names its time folders with 17 digits when it checkpoints
-    // (apps/foam_restart.h), so OpenFOAM restarts at the exact time.
+    // (fluid_case/foam_restart.h), so OpenFOAM restarts at the exact time.
     if (!last || std::abs(last->time - t0) > 1e-9*std::max(1.0, t0))
     {
         FatalErrorInFunction
@@ -212,18 +207,11 @@ bool armourFoam::checkpointing::step
         return true;
     }
     // Two more steps must fit before the end: the run is whole then.
-    if
-    (
-        t >= next_ - 1e-9*interval_
-     && t + 2.5*dt < runTime.endTime().value()
-    )
+    if (checkpoints_.due_ahead(t, dt, runTime.endTime().value(), 2))
     {
         runTime.writeOnce();
         phase_ = 1;
-        while (next_ <= t + 1e-9*interval_)
-        {
-            next_ += interval_;
-        }
+        checkpoints_.started(t);
     }
     return false;
 }

@@ -1,5 +1,6 @@
 // Regular and irregular waves of a scene's [waves] in a wave template
-// (foam_cases/wave_flume), and the incident-wave analysis of its gauges.
+// (foam_cases/wave_flume): what the case needs to make them and where its
+// gauges stand.
 //
 // Description
 //     Before the case runs, wave_tokens() writes what the template needs:
@@ -11,28 +12,19 @@
 //     with a wave maker needs [waves] regular or irregular, and such waves
 //     need such a template: either mismatch is an InputError naming the key.
 //
-//     After the run, add_wave_summary() reads the gauges
-//     (postProcessing/gauges/<start>/surfaceElevation.dat, whole across
-//     resumes: gauge_rows.h), separates incident and reflected waves
-//     over the analysis window (regular: the last whole periods after the
-//     ramp and the front's travel to the last gauge;
-//     irregular: the last repeat period of the train when the run holds
-//     one), adds summary["waves"] and writes OUT/waves_spectrum.csv and
-//     OUT/waves_spectrum.png (chart: analysis/wave_spectrum_chart.py).
+//     After the run, the incident-wave analysis (analysis/incident_waves.h)
+//     reads the gauges at wave_gauge_positions().
 //
 // Usage
 //     wave_tokens(scene, template_text, tokens);                   // before fill_tokens
-//     add_wave_summary(scene, case_dir, folder, summary);          // after interFoam
+//     context.gauge_x = wave_gauge_positions(scene);               // for the analyses
 #pragma once
 
-#include "output_folder.h"
 #include "scene.h"
 
-#include <cmath>
-#include <filesystem>
 #include <map>
-#include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 namespace armour {
 
@@ -42,9 +34,9 @@ bool makes_wave_train(const Scene &scene);
 void wave_tokens(const Scene &scene, const std::string &template_text,
                  std::map<std::string, std::string> &tokens);
 
-// The gauges' record up to `until` (s; `armour report --until`), warnings
-// into summary["warnings"].
-void add_wave_summary(const Scene &scene, const std::filesystem::path &case_dir, OutputFolder &folder,
-                      nlohmann::json &summary, double until = HUGE_VAL);
+// m: x of the Mansard-Funke array (x, x + L/10, x + L/4 from waves.gauge_x),
+// each at the centre of its column of cells; empty when the scene makes no
+// wave train.
+std::vector<double> wave_gauge_positions(const Scene &scene);
 
 } // namespace armour

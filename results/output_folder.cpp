@@ -1,6 +1,6 @@
 #include "output_folder.h"
 
-#include "mesh.h"
+#include "input_error.h"
 
 #include <algorithm>
 #include <array>

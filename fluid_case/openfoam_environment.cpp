@@ -1,6 +1,6 @@
 #include "openfoam_environment.h"
 
-#include "mesh.h"
+#include "input_error.h"
 
 #include <cstdlib>
 #include <string>
@@ -31,6 +31,10 @@ void check_openfoam_project_dir() {
     throw InputError(std::string("WM_PROJECT_DIR: unset, and ") + kDebianProjectDir +
                      "/etc/controlDict is missing: install OpenFOAM v1912 (Debian: openfoam) or set "
                      "WM_PROJECT_DIR to its folder");
+}
+
+void use_debian_openfoam() {
+    ::setenv("WM_PROJECT_DIR", kDebianProjectDir, 0);
 }
 
 std::vector<std::string> keep_solver_memory() {

@@ -34,6 +34,10 @@ std::filesystem::path openfoam_project_dir();
 // Throws InputError when that folder is not an OpenFOAM installation.
 void check_openfoam_project_dir();
 
+// Sets WM_PROJECT_DIR to Debian's OpenFOAM when unset: Debian's tools find
+// their etc/ files only through it.
+void use_debian_openfoam();
+
 // Sets the allocator's variables in this process's environment (children
 // inherit them); returns the names set there, for mpirun's -x.
 std::vector<std::string> keep_solver_memory();

@@ -1,6 +1,6 @@
 #include "foam_tool.h"
 
-#include "mesh.h"
+#include "input_error.h"
 #include "output_folder.h"
 #include "scene_keys.h"
 #include "solver_log.h"
