@@ -95,6 +95,7 @@ json fluid_figures(const Scene &scene, const SceneSetup &setup, const fs::path &
     const SceneFluid &f = *scene.fluid;
     const Eigen::Vector3d h = fine_cell_size(scene);
     const FlumeMesh mesh = flume_mesh(scene);
+    const long meshed_cells = mesh_cells(case_dir); // the owner file's note, read once
     json across = json::object();
     for (std::size_t k = 0; k < setup.units.size(); ++k)
         across[setup.units[k].name] = setup.unit_Dn[k] / h.maxCoeff();
@@ -102,7 +103,7 @@ json fluid_figures(const Scene &scene, const SceneSetup &setup, const fs::path &
             {"mesh", f.mesh},
             {"refine_levels", refine_levels(scene)},
             {"cells", {mesh.axes[0].cells, mesh.axes[1].cells, mesh.axes[2].cells}},
-            {"cells_total", mesh_cells(case_dir) > 0 ? mesh_cells(case_dir) : mesh.cells()},
+            {"cells_total", meshed_cells > 0 ? meshed_cells : mesh.cells()},
             {"cell_size", {h.x(), h.y(), h.z()}},
             {"largest_cell_size",
              {mesh.axes[0].largest_cell(), mesh.axes[1].largest_cell(), mesh.axes[2].largest_cell()}},
