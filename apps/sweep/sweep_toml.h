@@ -1,8 +1,11 @@
 // TOML values as the text `--set KEY=VALUE` takes (internal to the sweep: it includes toml++).
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <sstream>
 #include <string>
 #include <toml++/toml.h>
@@ -10,13 +13,20 @@
 namespace armour::sweep_detail {
 
 // The shortest text that reads back as the same double, as a TOML float
-// (0.3, not 0.29999999999999999).
+// (0.3, not 0.29999999999999999), written out in full between 1e-4 and 1e15
+// (2050.0, not 2.05e+03: it names a case's column in results.csv).
 inline std::string shortest_float(double v) {
-    char text[32];
-    for (int precision = 1; precision <= 17; ++precision) {
+    char text[48];
+    int precision = 1;
+    for (; precision <= 17; ++precision) {
         std::snprintf(text, sizeof text, "%.*g", precision, v);
         if (std::strtod(text, nullptr) == v)
             break;
+    }
+    const double magnitude = std::fabs(v);
+    if (std::strchr(text, 'e') && magnitude >= 1e-4 && magnitude < 1e15) {
+        const int exponent = static_cast<int>(std::floor(std::log10(magnitude)));
+        std::snprintf(text, sizeof text, "%.*f", std::max(0, precision - 1 - exponent), v);
     }
     std::string s = text;
     if (s.find_first_of(".eEn") == std::string::npos)
