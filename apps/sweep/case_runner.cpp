@@ -70,6 +70,7 @@ CaseRecord read_case_record(const fs::path &case_dir) {
         r.status = j.value("status", "pending");
         r.attempts = j.value("attempts", 0);
         r.wall_seconds = j.value("wall_seconds", 0.0);
+        r.resumed_from = j.value("resumed_from", 0.0);
         r.reason = j.value("reason", "");
         r.started = j.value("started", 0.0);
         r.finished = j.value("finished", 0.0);
@@ -83,18 +84,20 @@ CaseRecord read_case_record(const fs::path &case_dir) {
 }
 
 void write_case_record(const fs::path &case_dir, const CaseRecord &r) {
-    const json j = {{"case", r.id},
-                    {"scene_hash", r.scene_hash},
-                    {"status", r.status},
-                    {"attempts", r.attempts},
-                    {"wall_seconds", r.wall_seconds},
-                    {"reason", r.reason},
-                    {"started", r.started},
-                    {"finished", r.finished},
-                    {"host", r.host},
-                    {"slurm_job", r.slurm_job},
-                    {"slurm_state", r.slurm_state},
-                    {"si_units", {{"wall_seconds", "s"}, {"started", "s since 1970-01-01 UTC"}}}};
+    const json j = {
+        {"case", r.id},
+        {"scene_hash", r.scene_hash},
+        {"status", r.status},
+        {"attempts", r.attempts},
+        {"wall_seconds", r.wall_seconds},
+        {"resumed_from", r.resumed_from},
+        {"reason", r.reason},
+        {"started", r.started},
+        {"finished", r.finished},
+        {"host", r.host},
+        {"slurm_job", r.slurm_job},
+        {"slurm_state", r.slurm_state},
+        {"si_units", {{"wall_seconds", "s"}, {"resumed_from", "s"}, {"started", "s since 1970-01-01 UTC"}}}};
     write_text_file(case_dir / "case.json", j.dump(2) + "\n");
 }
 
@@ -147,6 +150,7 @@ int run_case(const fs::path &case_dir, const std::string &armour_exe) {
     const double timeout = plan.value("timeout", 0.0);
     r.status = "running";
     r.attempts += 1;
+    r.resumed_from = checkpoint ? checkpoint->time : 0.0;
     r.reason.clear();
     r.slurm_state.clear();
     r.started = now_seconds();

@@ -32,6 +32,7 @@ struct CaseRecord {
     std::string status = "pending"; // pending | running | done | failed
     int attempts = 0;               // times the case was started
     double wall_seconds = 0.0;      // s, of the last attempt
+    double resumed_from = 0.0;      // s of simulated time the last attempt resumed from (0: from the start)
     std::string reason;             // why the last attempt failed, e.g. "exit status 2", "timeout after 60 s"
     double started = 0.0, finished = 0.0; // s since the epoch
     std::string host;

@@ -49,8 +49,9 @@ std::string slurm_job_in_queue(const std::filesystem::path &out);
 // Follows the job until Slurm no longer lists it, then records each task's end.
 void follow_slurm(const SweepContext &ctx, const std::set<std::string> &skipped);
 
-// Seconds an ETA estimate expects: mean wall time of the finished cases of
-// this invocation x cases left / parallel workers; -1 before any finishes.
+// Seconds an ETA estimate expects: mean wall time of the cases of this
+// invocation that ran whole (not resumed from a checkpoint) x cases left /
+// parallel workers; -1 before any such case finishes.
 double estimate_eta(const std::vector<double> &finished_walls, int left, int parallel);
 
 } // namespace armour

@@ -100,7 +100,7 @@ void run_local(const SweepContext &ctx, const std::vector<std::size_t> &to_run, 
                 ++elsewhere;
                 std::fprintf(stderr, "sweep: case %s is running in another sweep, left to it\n",
                              c.id.c_str());
-            } else if (r.status == "done") {
+            } else if (r.status == "done" && r.resumed_from == 0.0) { // a resumed case ran only its end
                 walls.push_back(r.wall_seconds);
             } else if (r.status == "failed") {
                 std::fprintf(stderr, "%ssweep: case %s failed (%s); log %s:\n%s", terminal ? "\n" : "",

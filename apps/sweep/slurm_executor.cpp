@@ -178,7 +178,8 @@ void follow_slurm(const SweepContext &ctx, const std::set<std::string> &skipped)
         int left = 0;
         for (const auto &row : table.rows)
             if (std::find(ids.begin(), ids.end(), row.record.id) != ids.end()) {
-                if (row.status == "done" && finished.insert(row.record.id).second)
+                if (row.status == "done" && finished.insert(row.record.id).second &&
+                    row.record.resumed_from == 0.0) // a resumed case ran only its end
                     walls.push_back(row.record.wall_seconds);
                 left += row.status == "pending" || row.status == "running";
             }
