@@ -236,6 +236,7 @@ class BulletEngine final : public RigidBodyEngine {
         solver_ = std::make_unique<btSequentialImpulseConstraintSolver>();
         world_ = std::make_unique<World>(dispatcher_.get(), broadphase_.get(), solver_.get(), config_.get());
         world_->setGravity(bt(settings_.gravity));
+        scene_gravity_ = settings_.gravity.norm();
         btContactSolverInfo &info = world_->getSolverInfo();
         info.m_numIterations = options_.solver_iterations;
         // Penetration is always removed by split impulses (position only), so
@@ -269,6 +270,7 @@ class BulletEngine final : public RigidBodyEngine {
         u->moments = unit.props.principal_moments;
         u->centroid = unit.props.centroid;
         u->radius = std::cbrt(3.0 * unit.props.volume / (4.0 * kPi));
+        u->nominal_diameter = std::cbrt(unit.props.volume);
         Eigen::Matrix3d axes = unit.props.principal_axes;
         if (axes.determinant() < 0.0)
             axes.col(2) = -axes.col(2);
@@ -566,7 +568,7 @@ class BulletEngine final : public RigidBodyEngine {
     struct Unit {
         std::string name;
         int material = 0;
-        double mass = 0.0, radius = 0.0, margin = 0.0;
+        double mass = 0.0, radius = 0.0, margin = 0.0, nominal_diameter = 0.0;
         Eigen::Vector3d moments, centroid;
         Eigen::Quaterniond principal_to_unit;
         std::vector<Eigen::Vector3d> extent; // every part vertex, unit frame
@@ -621,10 +623,10 @@ class BulletEngine final : public RigidBodyEngine {
         std::ostringstream rule;
         rule << "Bullet: sequential-impulse solver, rigid contacts (no contact spring), so no "
                 "spring-dashpot limit applies; limit = 1/60 s (Bullet's own step; above it contacts tunnel "
-                "and "
-                "resting contacts jitter); default = "
-             << kBulletDefaultStep << " s; " << options_.solver_iterations
-             << " solver iterations; contact stiffness: rigid (Bullet's own)";
+                "and resting contacts jitter); default = min("
+             << kBulletDefaultStep << " s, sqrt(Dn / g) / " << kBulletStepsPerUnitTime
+             << " for the smallest Dn: resting layers creep at coarser steps) = " << default_step() << " s; "
+             << options_.solver_iterations << " solver iterations; contact stiffness: rigid (Bullet's own)";
         bool spheres = false;
         for (const auto &u : dem_templates_)
             spheres = spheres || !u.clump.empty();
@@ -643,7 +645,7 @@ class BulletEngine final : public RigidBodyEngine {
         r.rule = rule.str();
         r.limit = kBulletMaxStep;
         if (settings_.time_step <= 0.0) {
-            r.used = kBulletDefaultStep;
+            r.used = default_step();
         } else {
             r.used = settings_.time_step;
             if (settings_.time_step > r.limit) {
@@ -658,6 +660,20 @@ class BulletEngine final : public RigidBodyEngine {
             }
         }
         return r;
+    }
+
+    // A unit's own time sqrt(Dn / g) over kBulletStepsPerUnitTime, for the
+    // smallest unit, at most kBulletDefaultStep: a resting layer of 4 cm cubes
+    // crept 7 mm in 5 s at 1 ms and 1.3 mm at 0.25 ms (docs/validation/stability.md).
+    // The scene's gravity, not a later set_gravity: a restored engine must
+    // take the step of the one that saved it.
+    double default_step() const {
+        const double g = scene_gravity_;
+        double step = kBulletDefaultStep;
+        for (const auto &u : units_)
+            if (g > 0.0)
+                step = std::min(step, std::sqrt(u->nominal_diameter / g) / kBulletStepsPerUnitTime);
+        return step;
     }
 
     void collect_contact_forces(double dt) {
@@ -706,6 +722,7 @@ class BulletEngine final : public RigidBodyEngine {
     std::unique_ptr<World> world_;
     TimeStepReport report_;
     bool frozen_ = false;
+    double scene_gravity_ = 0.0; // m/s^2, |run.gravity| at construction (the default step's g)
 };
 
 const BulletEngine &as_bullet(const RigidBodyEngine &engine) {

@@ -65,7 +65,11 @@ struct BulletOptions {
 };
 
 constexpr double kBulletMarginFraction = 0.005;
-constexpr double kBulletDefaultStep = 0.001;  // s
+constexpr double kBulletDefaultStep = 0.001; // s, the largest default step
+// The default step is min(kBulletDefaultStep, sqrt(Dn / g) / kBulletStepsPerUnitTime)
+// for the smallest unit: Froude-scaled, so a scene and its model at another
+// scale take the same steps per unit of their own time (docs/bullet.md "Time step").
+constexpr double kBulletStepsPerUnitTime = 256.0;
 constexpr double kBulletMaxStep = 1.0 / 60.0; // s, refused above unless force_time_step
 
 std::unique_ptr<RigidBodyEngine> make_bullet_engine(const EngineSettings &settings);
