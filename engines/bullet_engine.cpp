@@ -215,7 +215,7 @@ class World final : public btDiscreteDynamicsWorld {
 class BulletEngine final : public RigidBodyEngine {
   public:
     BulletEngine(const EngineSettings &settings, const BulletOptions &options)
-        : settings_(settings), options_(options) {
+        : settings_(settings), options_(options), scene_gravity_(settings.gravity.norm()) {
         check_materials(settings_);
         if (!(settings_.domain_max.array() > settings_.domain_min.array()).all())
             throw InputError("run.domain: domain_max must exceed domain_min in x, y and z");
@@ -236,7 +236,6 @@ class BulletEngine final : public RigidBodyEngine {
         solver_ = std::make_unique<btSequentialImpulseConstraintSolver>();
         world_ = std::make_unique<World>(dispatcher_.get(), broadphase_.get(), solver_.get(), config_.get());
         world_->setGravity(bt(settings_.gravity));
-        scene_gravity_ = settings_.gravity.norm();
         btContactSolverInfo &info = world_->getSolverInfo();
         info.m_numIterations = options_.solver_iterations;
         // Penetration is always removed by split impulses (position only), so
@@ -668,11 +667,11 @@ class BulletEngine final : public RigidBodyEngine {
     // The scene's gravity, not a later set_gravity: a restored engine must
     // take the step of the one that saved it.
     double default_step() const {
-        const double g = scene_gravity_;
         double step = kBulletDefaultStep;
-        for (const auto &u : units_)
-            if (g > 0.0)
-                step = std::min(step, std::sqrt(u->nominal_diameter / g) / kBulletStepsPerUnitTime);
+        if (scene_gravity_ > 0.0)
+            for (const auto &u : units_)
+                step =
+                    std::min(step, std::sqrt(u->nominal_diameter / scene_gravity_) / kBulletStepsPerUnitTime);
         return step;
     }
 
@@ -722,7 +721,7 @@ class BulletEngine final : public RigidBodyEngine {
     std::unique_ptr<World> world_;
     TimeStepReport report_;
     bool frozen_ = false;
-    double scene_gravity_ = 0.0; // m/s^2, |run.gravity| at construction (the default step's g)
+    const double scene_gravity_; // m/s^2, |run.gravity| at construction (the default step's g)
 };
 
 const BulletEngine &as_bullet(const RigidBodyEngine &engine) {

@@ -45,9 +45,8 @@ const std::vector<Key<Scene>> &run_keys() {
         key("output_interval", &Scene::output_interval, "s", "time between saved frames; <= duration")
             .in(Range::above(0)),
         key("time_step", &Scene::time_step, "s",
-            "engine step; <= output_interval; 0 = the engine's own: LIGGGHTS from the contact stiffness, "
-            "Bullet "
-            "min(1 ms, sqrt(Dn / g) / 256) for the smallest unit")
+            "engine step; <= output_interval; 0 = the engine's own: LIGGGHTS from the contact "
+            "stiffness, Bullet min(1 ms, sqrt(Dn / g) / 256) for the smallest unit")
             .in(Range::at_least(0)),
         key("force_time_step", &Scene::force_time_step, "", "true: use time_step even above the stable step"),
         key("gravity", &Scene::gravity, "m/s^2", "gravitational acceleration"),
