@@ -52,6 +52,6 @@ void follow_slurm(const SweepContext &ctx, const std::set<std::string> &skipped)
 // Seconds an ETA estimate expects: mean wall time of the cases of this
 // invocation that ran whole (not resumed from a checkpoint) x cases left /
 // parallel workers; -1 before any such case finishes.
-double estimate_eta(const std::vector<double> &finished_walls, int left, int parallel);
+double estimate_eta(const std::vector<CaseRecord> &finished, int left, int parallel);
 
 } // namespace armour

@@ -18,11 +18,14 @@ namespace armour {
 
 namespace fs = std::filesystem;
 
-double estimate_eta(const std::vector<double> &finished_walls, int left, int parallel) {
-    if (finished_walls.empty())
+double estimate_eta(const std::vector<CaseRecord> &finished, int left, int parallel) {
+    std::vector<double> walls;
+    for (const CaseRecord &r : finished)
+        if (r.resumed_from == 0.0) // a resumed case ran only its end
+            walls.push_back(r.wall_seconds);
+    if (walls.empty())
         return -1.0;
-    const double mean = std::accumulate(finished_walls.begin(), finished_walls.end(), 0.0) /
-                        static_cast<double>(finished_walls.size());
+    const double mean = std::accumulate(walls.begin(), walls.end(), 0.0) / static_cast<double>(walls.size());
     return mean * static_cast<double>(left) / static_cast<double>(std::max(1, parallel));
 }
 
@@ -60,7 +63,7 @@ pid_t start_case(const SweepContext &ctx, const fs::path &dir) {
 void run_local(const SweepContext &ctx, const std::vector<std::size_t> &to_run, int jobs,
                const std::set<std::string> &skipped) {
     std::map<pid_t, std::size_t> running; // process -> case index
-    std::vector<double> walls;
+    std::vector<CaseRecord> finished;
     std::size_t next = 0;
     int elsewhere = 0;
     auto last_print = std::chrono::steady_clock::now() - std::chrono::seconds(10);
@@ -100,8 +103,8 @@ void run_local(const SweepContext &ctx, const std::vector<std::size_t> &to_run, 
                 ++elsewhere;
                 std::fprintf(stderr, "sweep: case %s is running in another sweep, left to it\n",
                              c.id.c_str());
-            } else if (r.status == "done" && r.resumed_from == 0.0) { // a resumed case ran only its end
-                walls.push_back(r.wall_seconds);
+            } else if (r.status == "done") {
+                finished.push_back(r);
             } else if (r.status == "failed") {
                 std::fprintf(stderr, "%ssweep: case %s failed (%s); log %s:\n%s", terminal ? "\n" : "",
                              c.id.c_str(), r.reason.c_str(), (case_dir(ctx.out, c) / "log.txt").c_str(),
@@ -112,7 +115,7 @@ void run_local(const SweepContext &ctx, const std::vector<std::size_t> &to_run, 
         if (changed || now - last_print > std::chrono::seconds(terminal ? 1 : 30)) {
             const SweepTable table = refresh_tables(ctx, skipped);
             const int left = static_cast<int>(to_run.size() - next) + static_cast<int>(running.size());
-            const std::string line = progress_line(table, estimate_eta(walls, left, jobs));
+            const std::string line = progress_line(table, estimate_eta(finished, left, jobs));
             if (terminal)
                 std::fprintf(stderr, "\r%-78s", line.c_str());
             else if (line != last_line)

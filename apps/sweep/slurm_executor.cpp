@@ -171,21 +171,20 @@ void follow_slurm(const SweepContext &ctx, const std::set<std::string> &skipped)
     const bool terminal = ::isatty(STDERR_FILENO) != 0;
     std::string last_line;
     std::set<std::string> finished;
-    std::vector<double> walls;
+    std::vector<CaseRecord> finished_records;
     for (;;) {
         const bool queued = !slurm_job_in_queue(ctx.out).empty();
         const SweepTable table = refresh_tables(ctx, skipped);
         int left = 0;
         for (const auto &row : table.rows)
             if (std::find(ids.begin(), ids.end(), row.record.id) != ids.end()) {
-                if (row.status == "done" && finished.insert(row.record.id).second &&
-                    row.record.resumed_from == 0.0) // a resumed case ran only its end
-                    walls.push_back(row.record.wall_seconds);
+                if (row.status == "done" && finished.insert(row.record.id).second)
+                    finished_records.push_back(row.record);
                 left += row.status == "pending" || row.status == "running";
             }
         const int parallel = std::max(1, table.count("running"));
         const std::string line =
-            progress_line(table, estimate_eta(walls, left, parallel)) + " (Slurm job " + id + ")";
+            progress_line(table, estimate_eta(finished_records, left, parallel)) + " (Slurm job " + id + ")";
         if (terminal)
             std::fprintf(stderr, "\r%-90s", line.c_str());
         else if (line != last_line)
