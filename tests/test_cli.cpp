@@ -355,6 +355,8 @@ TEST_F(Cli, CommandLineErrorsAreOneLineAndExitTwo) {
         {{"compare", scene, "--out", out, "--dt-sweep-spheres", "-3"}, "--dt-sweep-spheres: must be >= 2"},
         {{"sweep", scene, "--out", out, "--jobs", "0"}, "--jobs: must be >= 1 (got 0)"},
         {{"sweep", scene, "--out", out, "--jobs", "-2"}, "--jobs: must be >= 1 (got -2)"},
+        {{"sweep", scene, "--out", out, "--executor", "slurm", "--jobs", "2"},
+         "--jobs: only with --executor local"},
     };
     for (const auto &[args, what] : cases) {
         std::string command = "armour";

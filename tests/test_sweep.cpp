@@ -506,6 +506,10 @@ TEST_F(SweepTest, ReportDrawsDamageAgainstVanDerMeerAndHudson) {
             write(out / "cases" / id / "scene.toml",
                   "[[wall]]\nname = \"slope\"\ntype = \"slope\"\ncot = 2.0\n");
             const double Ns = hs[k];
+            if (k == 3) // a history as the damage analysis writes it, for two realisations
+                write(out / "cases" / id / "run" / "damage_history.csv",
+                      "# units displaced (>= displaced_threshold Dn) against time\n"
+                      "time_s,units_displaced,N_od,max_displacement_over_Dn\n0,0,0,0\n10,2,0.4,1.5\n");
             cases.push_back({{"case", id},
                              {"folder", "cases/" + id},
                              {"values", {{"fluid.wave_height", hs[k]}}},
@@ -538,6 +542,8 @@ TEST_F(SweepTest, ReportDrawsDamageAgainstVanDerMeerAndHudson) {
     const std::string report = read_text(out / "report.md");
     EXPECT_NE(report.find("Van der Meer curve for N = 1000 waves, s_om = 0.03"), std::string::npos) << report;
     EXPECT_NE(report.find("Hudson lines for cot α = 2"), std::string::npos) << report;
+    EXPECT_GT(fs::file_size(out / "figures" / "stability_Nod_vs_time.png"), 10000u);
+    EXPECT_NE(report.find("2 realisations' damage histories"), std::string::npos) << report;
     // A point per height: the mean of its two realisations (seeds), with intervals.
     EXPECT_NE(report.find("4 points, each the mean of 2 realisation(s) with its 95 % interval"),
               std::string::npos)

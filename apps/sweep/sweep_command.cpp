@@ -170,7 +170,8 @@ CLI::App *add_sweep_command(CLI::App &app, SweepRequest &r) {
                     "--set run.duration=0.5 (not a key the sweep varies)");
     cmd->add_option("--executor", r.executor, "local (processes on this machine) or slurm (one job array)")
         ->capture_default_str();
-    cmd->add_option("--jobs", r.jobs, "local: cases run at once, >= 1 (default: cores / run.np)")
+    cmd->add_option("--jobs", r.jobs,
+                    "local: cases run at once, >= 1 (default: cores / run.np); Slurm: [slurm] max_concurrent")
         ->check(integer_at_least(1));
     cmd->add_flag("--dry-run", r.dry_run, "Check every case and list what would run; write nothing");
     cmd->add_flag("--retry-failed", r.retry_failed, "Run failed cases again (finished ones are always kept)");
@@ -205,6 +206,10 @@ int run_sweep(const SweepRequest &r) {
         throw InputError("--jobs: must be >= 1 (got " + std::to_string(r.jobs) + ")");
     if (r.no_wait && r.executor != "slurm")
         throw InputError("--no-wait: only with --executor slurm");
+    if (r.jobs > 0 && r.executor == "slurm") // else it would be ignored without a word
+        throw InputError(
+            "--jobs: only with --executor local (a Slurm array runs [slurm] max_concurrent cases "
+            "at once)");
 
     SweepContext ctx;
     SweepSpec spec = read_sweep_file(r.sweep_file);

@@ -12,6 +12,9 @@ Description
     intervals in Ns and N_od, each realisation dotted), with the Van der Meer curve for cubes at the sweep's N and s_om,
         Ns = (6.7 N_od^0.4 / N^0.3 + 1.0) s_om^-0.1,
     and Hudson's lines Ns = (K_D cot alpha)^(1/3) for K_D = 6.5 and 7.5.
+    Where the cases kept their damage history (cases/<case>/run/damage_history.csv),
+    it also draws N_od against time, a line per realisation coloured by its set
+    of varied values, with Van der Meer's N_od at the run's end as a marker.
     Writes DIR/report.md last, through a temporary file.
 
 Usage
@@ -187,6 +190,52 @@ def stability_chart(plt, done, folder):
     return "figures/stability_Nod_vs_Ns.png", text
 
 
+def read_history(path):
+    """(time s, N_od) columns of a damage_history.csv; None when absent or unreadable."""
+    if not os.path.exists(path):
+        return None
+    with open(path) as f:
+        rows = [line.strip().split(",") for line in f if line.strip() and not line.startswith("#")]
+    if not rows or "time_s" not in rows[0] or "N_od" not in rows[0]:
+        return None
+    t, n = rows[0].index("time_s"), rows[0].index("N_od")
+    return [float(r[t]) for r in rows[1:]], [float(r[n]) for r in rows[1:]]
+
+
+def history_chart(plt, done, folder):
+    """N_od against time per realisation, Van der Meer's end value marked; None without histories."""
+    groups = defaultdict(list)
+    for c in done:
+        history = read_history(os.path.join(folder, c["folder"], "run", "damage_history.csv"))
+        if history:
+            label = ", ".join(f"{k.split('.')[-1]} {v}" for k, v in sorted(c.get("values", {}).items()))
+            groups[label].append((c, history))
+    if not groups:
+        return None
+    fig, ax = plt.subplots(figsize=(7, 4))
+    marked = False
+    for k, (label, members) in enumerate(sorted(groups.items())):
+        colour = f"C{k % 10}"
+        for i, (c, (t, n_od)) in enumerate(members):
+            ax.plot(t, n_od, "-", color=colour, alpha=0.8, label=(label or "N_od") if i == 0 else None)
+            vdm = c["figures"].get("N_od_van_der_meer")
+            if number(vdm) and t:
+                ax.plot([t[-1]], [vdm], "x", color=colour, markersize=8,
+                        label=None if marked else "Van der Meer at the run's end")
+                marked = True
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("N_od [units per Dn width]")
+    ax.set_title("N_od against time, a line per realisation", fontsize=9)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=6)
+    save(fig, os.path.join(folder, "figures", "stability_Nod_vs_time.png"))
+    plt.close(fig)
+    count = sum(len(m) for m in groups.values())
+    return "figures/stability_Nod_vs_time.png", [
+        f"{count} realisations' damage histories (cases/<case>/run/damage_history.csv); "
+        "x: Van der Meer's N_od at the run's own N, Ns and s_om"]
+
+
 def main(folder):
     with open(os.path.join(folder, "summary.json")) as f:
         summary = json.load(f)
@@ -207,6 +256,10 @@ def main(folder):
     if stability:
         lines += ["## Damage against the stability number", "", *[f"- {t}" for t in stability[1]], "",
                   f"![N_od against Ns]({stability[0]})", ""]
+    history = history_chart(plt, done, folder)
+    if history:
+        lines += ["## Damage against time", "", *[f"- {t}" for t in history[1]], "",
+                  f"![N_od against time]({history[0]})", ""]
     charts = figure_charts(plt, summary, done, folder)
     if charts:
         lines += ["## Headline figures against the varied keys", ""]

@@ -1,0 +1,78 @@
+#!/usr/bin/env python3
+"""Keep the small results of an `armour sweep` folder in the repository.
+
+Description
+    Copies what a reader of a study needs from a sweep's output folder (kept
+    outside the repository) into DEST: results.csv, summary.json, report.md,
+    sweep.toml, figures/*.png, and from each case its run's summary.json,
+    damage.csv and damage_history.csv (when the analysis wrote them) under
+    DEST/cases/<case>/run/, where report.md's links point. Paths of the source
+    tree in summary.json (the scene, the sweep file) are written relative to
+    it, so the kept files name no machine's folders. Bodies, fields and
+    checkpoints stay in the sweep folder. DEST is written afresh: files of
+    cases or figures it held before and the sweep no longer has are removed
+    only under DEST/cases and DEST/figures.
+
+Usage
+    python3 studies/keep_results.py RUN docs/results/stability_curve
+"""
+import json
+import os
+import shutil
+import sys
+
+TOP = ("results.csv", "report.md", "sweep.toml")
+PER_CASE = ("summary.json", "damage.csv", "damage_history.csv")
+
+
+def relative_to_source(summary):
+    """The scene and sweep file as paths inside the source tree the sweep ran from."""
+    sweep_file = summary.get("sweep_file", "")
+    if not os.path.isabs(sweep_file):
+        return summary
+    root = os.path.dirname(os.path.dirname(sweep_file))  # studies/<file> -> the tree
+    for key in ("sweep_file", "scene"):
+        path = summary.get(key, "")
+        if os.path.isabs(path) and os.path.commonpath([root, path]) == root:
+            summary[key] = os.path.relpath(path, root)
+    return summary
+
+
+def keep(run, dest):
+    if not os.path.isfile(os.path.join(run, "summary.json")):
+        print(f"armour: error: {os.path.join(run, 'summary.json')}: not found (not an armour sweep folder)",
+              file=sys.stderr)
+        sys.exit(2)
+    with open(os.path.join(run, "summary.json")) as f:
+        summary = relative_to_source(json.load(f))
+    for sub in ("cases", "figures"):
+        shutil.rmtree(os.path.join(dest, sub), ignore_errors=True)
+    os.makedirs(os.path.join(dest, "figures"), exist_ok=True)
+    with open(os.path.join(dest, "summary.json"), "w") as f:
+        json.dump(summary, f, indent=2)
+        f.write("\n")
+    for name in TOP:
+        if os.path.exists(os.path.join(run, name)):
+            shutil.copyfile(os.path.join(run, name), os.path.join(dest, name))
+    figures = os.path.join(run, "figures")
+    for name in sorted(os.listdir(figures)) if os.path.isdir(figures) else []:
+        if name.endswith(".png"):
+            shutil.copyfile(os.path.join(figures, name), os.path.join(dest, "figures", name))
+    kept = 0
+    for case in summary["cases"]:
+        source = os.path.join(run, case["folder"], "run")
+        files = [n for n in PER_CASE if os.path.exists(os.path.join(source, n))]
+        if case["status"] != "done" or not files:
+            continue
+        target = os.path.join(dest, case["folder"], "run")
+        os.makedirs(target, exist_ok=True)
+        for name in files:
+            shutil.copyfile(os.path.join(source, name), os.path.join(target, name))
+        kept += 1
+    print(f"kept {kept} of {len(summary['cases'])} cases' results in {dest}")
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 3:
+        sys.exit("usage: keep_results.py SWEEP_OUTPUT_DIR DEST")
+    keep(sys.argv[1], sys.argv[2])
