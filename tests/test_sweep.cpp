@@ -520,6 +520,8 @@ TEST_F(SweepTest, ReportDrawsDamageAgainstVanDerMeerAndHudson) {
                                {"N_od", 0.1 * std::pow(Ns, 3) * (0.9 + 0.1 * seed)},
                                {"waves", 1000},
                                {"s_om", 0.03},
+                               {"N_od_van_der_meer", 0.05 * Ns},
+                               {"units_displaced_van_der_meer", 0.5 * Ns}, // a 10 Dn wide section
                                {"damage_S", 0.5 * Ns}}}});
         }
     write(out / "summary.json", json{{"sweep_file", "stability.toml"},
@@ -544,19 +546,27 @@ TEST_F(SweepTest, ReportDrawsDamageAgainstVanDerMeerAndHudson) {
     EXPECT_NE(report.find("Hudson lines for cot α = 2"), std::string::npos) << report;
     EXPECT_GT(fs::file_size(out / "figures" / "stability_Nod_vs_time.png"), 10000u);
     EXPECT_NE(report.find("2 realisations' damage histories"), std::string::npos) << report;
+    EXPECT_NE(report.find("band: 90 % of the displaced-unit counts a 10 Dn wide section"), std::string::npos)
+        << report;
     // A point per height: the mean of its two realisations (seeds), with intervals.
     EXPECT_NE(report.find("4 points, each the mean of 2 realisation(s) with its 95 % interval"),
               std::string::npos)
         << report;
 
     // The formulas the chart draws (stability.md): Van der Meer for cubes and Hudson.
-    const Result f = run("cd " + kSource +
-                         "/apps/sweep && /usr/bin/python3 -c 'import sweep_report as s; "
-                         "print(\"%.12f %.12f\" % (s.van_der_meer_ns(0.5, 1000, 0.03), "
-                         "s.hudson_ns(6.5, 1.5)))'");
+    const Result f =
+        run("cd " + kSource +
+            "/apps/sweep && /usr/bin/python3 -c 'import sweep_report as s; "
+            "print(\"%.12f %.12f %d %d\" % (s.van_der_meer_ns(0.5, 1000, 0.03), "
+            "s.hudson_ns(6.5, 1.5), s.poisson_quantile(3, 0.05), s.poisson_quantile(3, 0.95)))'");
     ASSERT_EQ(f.status, 0) << f.output;
     double vdm = 0.0, hudson = 0.0;
-    ASSERT_EQ(std::sscanf(f.output.c_str(), "%lf %lf", &vdm, &hudson), 2) << f.output;
+    int low = -1, high = -1;
+    ASSERT_EQ(std::sscanf(f.output.c_str(), "%lf %lf %d %d", &vdm, &hudson, &low, &high), 4) << f.output;
+    // Poisson(3): P(X <= 0) = 0.0498 < 0.05 <= P(X <= 1) = 0.199; P(X <= 5) = 0.916 < 0.95 <= P(X <= 6) =
+    // 0.966.
+    EXPECT_EQ(low, 1);
+    EXPECT_EQ(high, 6);
     EXPECT_NEAR(vdm, (6.7 * std::pow(0.5, 0.4) / std::pow(1000.0, 0.3) + 1.0) * std::pow(0.03, -0.1), 1e-9);
     EXPECT_NEAR(vdm, 2.3277, 1e-3);
     EXPECT_NEAR(hudson, std::cbrt(6.5 * 1.5), 1e-9);

@@ -11,7 +11,12 @@ Description
     a point per set of varied values (the mean of its realisations, with 95 %
     intervals in Ns and N_od, each realisation dotted), with the Van der Meer curve for cubes at the sweep's N and s_om,
         Ns = (6.7 N_od^0.4 / N^0.3 + 1.0) s_om^-0.1,
-    and Hudson's lines Ns = (K_D cot alpha)^(1/3) for K_D = 6.5 and 7.5.
+    and Hudson's lines Ns = (K_D cot alpha)^(1/3) for K_D = 6.5 and 7.5. Around
+    the curve, a band: where 90 % of the counts of displaced units fall in a
+    section as wide as the cases' (units per N_od) if the formula's N_od is the
+    mean (Poisson). A narrow flume sees few units, and 0 or 1 of them can agree
+    with the formula or not; the band says which. It is not the formula's own
+    scatter (Van der Meer's spread for cubes is not in the sources we read).
     Where the cases kept their damage history (cases/<case>/run/damage_history.csv),
     it also draws N_od against time, a line per realisation coloured by its set
     of varied values, with Van der Meer's N_od at the run's end as a marker.
@@ -37,6 +42,25 @@ HUDSON_KD = (6.5, 7.5)  # cubes, breaking and non-breaking waves (stability.md)
 def van_der_meer_ns(n_od, waves, s_om):
     """Stability number of cubes for damage N_od after `waves` waves of steepness s_om."""
     return (6.7 * n_od ** 0.4 / waves ** 0.3 + 1.0) * s_om ** -0.1
+
+
+def poisson_quantile(mean, p):
+    """Smallest count k with P(X <= k) >= p for X ~ Poisson(mean)."""
+    term = total = math.exp(-mean)
+    k = 0
+    while total < p and k < 10000:
+        k += 1
+        term *= mean / k
+        total += term
+    return k
+
+
+def section_width(points):
+    """Width of the test section in Dn (units per N_od), from Van der Meer's two figures of the cases."""
+    widths = [c["figures"]["units_displaced_van_der_meer"] / c["figures"]["N_od_van_der_meer"]
+              for c in points if number(c["figures"].get("units_displaced_van_der_meer"))
+              and number(c["figures"].get("N_od_van_der_meer")) and c["figures"]["N_od_van_der_meer"] > 0]
+    return median(widths) if widths else None
 
 
 def hudson_ns(k_d, cot_alpha):
@@ -165,9 +189,21 @@ def stability_chart(plt, done, folder):
     if waves and steep:
         n, s = median(waves), median(steep)
         grid = [top * i / 200 for i in range(201)]
-        ax.plot([van_der_meer_ns(d, n, s) for d in grid], grid, "-",
-                label=f"Van der Meer cubes (N = {n:g}, s_om = {s:.3g})")
+        curve = ax.plot([van_der_meer_ns(d, n, s) for d in grid], grid, "-",
+                        label=f"Van der Meer cubes (N = {n:g}, s_om = {s:.3g})")
         text.append(f"Van der Meer curve for N = {n:g} waves, s_om = {s:.3g} (medians of the cases)")
+        width = section_width(points)
+        if width:
+            # The count a section this narrow sees scatters about the formula's
+            # mean even if the formula is exact: Poisson, 5 % and 95 % quantiles.
+            xs = [van_der_meer_ns(d, n, s) for d in grid]
+            ax.fill_between(xs, [poisson_quantile(d * width, 0.05) / width for d in grid],
+                            [poisson_quantile(d * width, 0.95) / width for d in grid], step="mid",
+                            color=curve[0].get_color(), alpha=0.15,
+                            label=f"90 % of counts in a {width:.3g} Dn wide section (Poisson)")
+            text.append(f"band: 90 % of the displaced-unit counts a {width:.3g} Dn wide section sees when "
+                        "Van der Meer's N_od is the mean (Poisson; the formula's own scatter for cubes is "
+                        "not in it)")
     if cots:
         cot = median(cots)
         for k_d, style in zip(HUDSON_KD, (":", "-.")):
