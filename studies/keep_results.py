@@ -25,15 +25,17 @@ TOP = ("results.csv", "report.md", "sweep.toml")
 PER_CASE = ("summary.json", "damage.csv", "damage_history.csv")
 
 
-def relative_to_source(summary):
-    """The scene and sweep file as paths inside the source tree the sweep ran from."""
+def source_tree(summary):
+    """The source tree the sweep ran from (studies/<file> -> the tree), or None."""
     sweep_file = summary.get("sweep_file", "")
-    if not os.path.isabs(sweep_file):
-        return summary
-    root = os.path.dirname(os.path.dirname(sweep_file))  # studies/<file> -> the tree
+    return os.path.dirname(os.path.dirname(sweep_file)) if os.path.isabs(sweep_file) else None
+
+
+def relative_to_source(summary, root):
+    """The scene and sweep file as paths inside the source tree the sweep ran from."""
     for key in ("sweep_file", "scene"):
         path = summary.get(key, "")
-        if os.path.isabs(path) and os.path.commonpath([root, path]) == root:
+        if root and os.path.isabs(path) and os.path.commonpath([root, path]) == root:
             summary[key] = os.path.relpath(path, root)
     return summary
 
@@ -44,7 +46,9 @@ def keep(run, dest):
               file=sys.stderr)
         sys.exit(2)
     with open(os.path.join(run, "summary.json")) as f:
-        summary = relative_to_source(json.load(f))
+        summary = json.load(f)
+    root = source_tree(summary)
+    summary = relative_to_source(summary, root)
     for sub in ("cases", "figures"):
         shutil.rmtree(os.path.join(dest, sub), ignore_errors=True)
     os.makedirs(os.path.join(dest, "figures"), exist_ok=True)
@@ -53,7 +57,10 @@ def keep(run, dest):
         f.write("\n")
     for name in TOP:
         if os.path.exists(os.path.join(run, name)):
-            shutil.copyfile(os.path.join(run, name), os.path.join(dest, name))
+            with open(os.path.join(run, name)) as f:
+                text = f.read()
+            with open(os.path.join(dest, name), "w") as f:
+                f.write(text.replace(root + os.sep, "") if root else text)  # the report names the scene
     figures = os.path.join(run, "figures")
     for name in sorted(os.listdir(figures)) if os.path.isdir(figures) else []:
         if name.endswith(".png"):
