@@ -51,6 +51,7 @@ inline const std::map<std::string, Smoke> kSmoke = {
     {"tilt_cube_pair.toml",
      {{"run.duration=5.9"}}}, // slides at 28.2 deg (5.65 s); by 5.95 s it has slid a Dn and the run ends
     {"wave_flume.toml", {{"run.duration=0.1"}}},
+    {"wave_load_cube.toml", {{"run.duration=0.05"}}},
 };
 
 // --set options as the shell reads them.

@@ -159,6 +159,30 @@ TEST(CoupledRun, ArchimedesOnFixedCube) {
     clean(r);
 }
 
+// The body-fitted load reference (bench/run_body_fitted_loads.sh) on its own
+// scene for 0.3 s, before the first wave reaches the cube: the stock case
+// with the cube's cells cut out runs, and both the forces function object on
+// its wall patch and the coupling's immersed load give rho g V. Guards the
+// bench's case preparation (a template change that breaks it fails here).
+TEST(CoupledRun, BodyFittedReferenceHoldsArchimedesInStillWater) {
+    const fs::path out = temp_dir("body_fitted") / "out";
+    const std::string command = "bash " + std::string(ARMOUR_SOURCE_DIR) +
+                                "/bench/run_body_fitted_loads.sh --build " + ARMOUR_BUILD_DIR + " --out " +
+                                out.string() + " --duration 0.3 --from 0.1 > " + out.string() + ".log 2>&1";
+    ASSERT_EQ(std::system(command.c_str()), 0) << command;
+    std::ifstream in(out / "summary.json");
+    ASSERT_TRUE(in) << (out / "summary.json");
+    const json s = json::parse(in);
+    const double rho_g_v = 1000 * 9.81 * 0.1 * 0.1 * 0.1; // the scene's 0.1 m cube in fresh water
+    // "loads": the immersed run ("mean") against the body-fitted one ("reference_mean").
+    EXPECT_NEAR(s["loads"]["Fz"]["reference_mean"].get<double>(), rho_g_v, 1e-3 * rho_g_v);
+    EXPECT_NEAR(s["loads"]["Fz"]["mean"].get<double>(), rho_g_v, 1e-3 * rho_g_v);
+    EXPECT_LT(std::abs(s["loads"]["Fx"]["reference_mean"].get<double>()), 1e-3 * rho_g_v);
+    EXPECT_LT(std::abs(s["loads"]["Fx"]["mean"].get<double>()), 1e-3 * rho_g_v);
+    if (!::testing::Test::HasFailure())
+        fs::remove_all(out.parent_path());
+}
+
 // Issue 15's contract: with its faces on planes of cell centres (where the
 // former sampled ramp over-counted most: +18.75 % at 4 cells across, +33.3 %
 // at 3) the exact solid fraction gives the buoyancy within 2 % and 3 %.
