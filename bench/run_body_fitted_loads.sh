@@ -19,11 +19,13 @@
 # also compared with that run's body-fitted loads (summary.json "vs_reference").
 # Usage: bash bench/run_body_fitted_loads.sh [--build DIR] [--out DIR]
 #            [--cells-across 2|4|8] [--duration S] [--from S] [--reference DIR]
-#            [--only body_fitted]
+#            [--only body_fitted] [--set KEY=VALUE]
 #   --cells-across  cells across the cube: 4 is the scene's (Dn/4, 2.5 cm),
 #                   2 and 8 scale the cells along each axis. Default 4.
 #   --duration      simulated s, default the scene's 12
 #   --from          start of the compared window, s, default 6
+#   --set           one scene key for the immersed run only (e.g. fluid.penalty=1e4:
+#                   the body-fitted run has no mask, so it does not change)
 #   --only body_fitted  the stock run alone (a reference for coarser runs; the
 #                   coupled run makes only its case, 0.02 s), no comparison
 # Cost (2 shared cores, the other busy): ~14 min at 4 across (7 per run),
@@ -31,7 +33,7 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 bench_name=body_fitted_loads bench_targets="armour armourFoamCoupling armourWaves"
-bench_options="cells-across duration from reference only"
+bench_options="cells-across duration from reference only set"
 source "$root/bench/common.sh"
 bench_args "$@"
 across="${opt_cells_across:-4}"
@@ -59,6 +61,7 @@ esac
 # 1. The coupled run: its case folder is also the stock run's start.
 rm -rf "$out/immersed" "$out/body_fitted"
 start=$(date +%s.%N)
+[ -z "${opt_set:-}" ] || sets+=(--set "$opt_set")
 "$armour" run "$scene" --out "$out/immersed" "${sets[@]}" 2>"$out/immersed.log" ||
   { tail -n 3 "$out/immersed.log" >&2; exit 1; }
 $py -c "import sys; print(float(sys.argv[1]) - float(sys.argv[2]))" "$(date +%s.%N)" "$start" \
