@@ -151,6 +151,7 @@ def compare(out, start, reference=None):
                "loads": {}}
     for k in ours:
         summary["loads"][k] = differences(ours[k][window], theirs[k][window])
+    finest = None
     if reference:  # over the part of the window the reference covers
         finest, end = body_fitted_series(f"{reference}/body_fitted", t)
         both = window & (t <= end + 1e-9)
@@ -162,12 +163,20 @@ def compare(out, start, reference=None):
         f.write("\n")
     fig, axes = plt.subplots(3, 1, figsize=(8, 8), sharex=True)
     units = {"Fx": "N", "Fz": "N", "My": "N m"}
+    still = np.searchsorted(t, 1.0)  # before the first wave: the buoyancy alone
     for ax, k in zip(axes, ours):
-        ax.plot(t, theirs[k], "k-", lw=1, label="body-fitted (stock interFoam, no-slip wall)")
-        ax.plot(t, ours[k], "r-", lw=1, label="immersed (armour coupling)")
+        # Fz less its still-water value (rho g V), so that the waves' swing shows.
+        offset = theirs[k][still] if k == "Fz" else 0.0
+        loaded = t > 0  # the first record comes before the first load
+        ax.plot(t[loaded], theirs[k][loaded] - offset, "k-", lw=1, label="body-fitted (stock interFoam, no-slip wall)")
+        ax.plot(t[loaded], ours[k][loaded] - offset, "r-", lw=1, label="immersed (armour coupling)")
+        if finest is not None:
+            shown = loaded & (t <= end + 1e-9)
+            ax.plot(t[shown], finest[k][shown] - offset, "--", color="0.5", lw=1,
+                    label="body-fitted on the reference's finer mesh")
         ax.axvline(start, color="grey", ls=":")
         s = summary["loads"][k]
-        ax.set_ylabel(f"{k} [{units[k]}]")
+        ax.set_ylabel(f"{k} less its still-water value [N]" if k == "Fz" else f"{k} [{units[k]}]")
         ax.set_title(f"{k}: rms difference {100 * s['rms_difference_over_changing_part']:.1f} % of the changing "
                      f"part, peak ratio {s['peak_ratio']:.3f}", fontsize=9)
         ax.grid(alpha=0.3)
