@@ -163,7 +163,7 @@ def compare(out, start, reference=None):
         f.write("\n")
     fig, axes = plt.subplots(3, 1, figsize=(8, 8), sharex=True)
     units = {"Fx": "N", "Fz": "N", "My": "N m"}
-    still = np.searchsorted(t, 1.0)  # before the first wave: the buoyancy alone
+    still = min(np.searchsorted(t, 1.0), len(t) - 1)  # before the first wave: the buoyancy alone
     for ax, k in zip(axes, ours):
         # Fz less its still-water value (rho g V), so that the waves' swing shows.
         offset = theirs[k][still] if k == "Fz" else 0.0
