@@ -189,14 +189,13 @@ def stability_chart(plt, done, folder):
     if waves and steep:
         n, s = median(waves), median(steep)
         grid = [top * i / 200 for i in range(201)]
-        curve = ax.plot([van_der_meer_ns(d, n, s) for d in grid], grid, "-",
-                        label=f"Van der Meer cubes (N = {n:g}, s_om = {s:.3g})")
+        xs = [van_der_meer_ns(d, n, s) for d in grid]
+        curve = ax.plot(xs, grid, "-", label=f"Van der Meer cubes (N = {n:g}, s_om = {s:.3g})")
         text.append(f"Van der Meer curve for N = {n:g} waves, s_om = {s:.3g} (medians of the cases)")
         width = section_width(points)
         if width:
             # The count a section this narrow sees scatters about the formula's
             # mean even if the formula is exact: Poisson, 5 % and 95 % quantiles.
-            xs = [van_der_meer_ns(d, n, s) for d in grid]
             ax.fill_between(xs, [poisson_quantile(d * width, 0.05) / width for d in grid],
                             [poisson_quantile(d * width, 0.95) / width for d in grid], step="mid",
                             color=curve[0].get_color(), alpha=0.15,
