@@ -57,11 +57,11 @@ case "$across" in # the scene's [240, 12, 24] fine cells scaled: the cube's face
   8) sets+=(--set 'fluid.cells=[480,24,48]') ;;
   *) bench_fail "--cells-across: 2, 4 or 8 (got $across)" ;;
 esac
+[ -z "${opt_set:-}" ] || sets+=(--set "$opt_set") # the immersed run's only: the stock run has no mask
 
 # 1. The coupled run: its case folder is also the stock run's start.
 rm -rf "$out/immersed" "$out/body_fitted"
 start=$(date +%s.%N)
-[ -z "${opt_set:-}" ] || sets+=(--set "$opt_set")
 "$armour" run "$scene" --out "$out/immersed" "${sets[@]}" 2>"$out/immersed.log" ||
   { tail -n 3 "$out/immersed.log" >&2; exit 1; }
 $py -c "import sys; print(float(sys.argv[1]) - float(sys.argv[2]))" "$(date +%s.%N)" "$start" \
