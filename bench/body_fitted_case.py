@@ -96,15 +96,11 @@ def stock_loads(case):
     loads = {}
     for kind in ("force", "moment"):
         names, rows = table(f"{folder}/{kind}.dat")
-        if names and "total_x" in names:
-            i = names.index("total_x")
-        else:  # (pressure) (viscous) [(porous)] triples: the total is their sum
-            i = None
+        if not names or "total_x" not in names:  # v1912 writes (total) (pressure) (viscous) triples
+            sys.exit(f"body_fitted_case.py: {folder}/{kind}.dat: no total_x column in its header")
+        i = names.index("total_x")
         loads["time"] = [r[0] for r in rows]
-        if i is not None:
-            loads[kind] = [r[i:i + 3] for r in rows]
-        else:
-            loads[kind] = [[r[1 + k] + r[4 + k] for k in range(3)] for r in rows]
+        loads[kind] = [r[i:i + 3] for r in rows]
     return loads
 
 
