@@ -1,6 +1,5 @@
 #include "flume_mesh.h"
 
-#include "mesh_refinement.h"
 #include "scene_keys.h"
 #include "scene_setup.h"
 
@@ -137,6 +136,15 @@ double MeshAxis::column_centre(double at) const {
     return 0.5 * (*(upper - 1) + *upper);
 }
 
+int refine_levels(const Scene &scene) {
+    if (!scene.fluid || scene.fluid->mesh != "refined")
+        return 0;
+    int levels = 0;
+    for (const SceneRefine &r : scene.refine)
+        levels = std::max(levels, r.level);
+    return levels;
+}
+
 Eigen::Vector3d fine_cell_size(const Scene &scene) {
     return scene.fluid->fine_cell(scene.domain_max - scene.domain_min);
 }
@@ -165,7 +173,6 @@ void check_flume_grading(const Scene &scene, const SceneSetup &setup, const std:
     if (refine_levels(scene) > 0 && fixed)
         throw InputError(scene.file + ": key 'fluid.mesh': fluid.case \"" + f.case_name +
                          "\" has a fixed block structure; a refined mesh needs fluid.case \"wave_flume\"");
-    check_units_refined(scene, setup);
     if (!f.refine_min)
         return;
     if (fixed)

@@ -58,14 +58,18 @@ struct FlumeMesh {
 // size of every cell of a uniform mesh and of those in a graded one's box.
 Eigen::Vector3d fine_cell_size(const Scene &scene);
 
+// L: the deepest [[refine]] level of a refined mesh (fluid.mesh = "refined");
+// 0 for a graded or uniform one. The block's x and y cells are fluid.cells / 2^L.
+int refine_levels(const Scene &scene);
+
 // The blockMesh block of a scene's [fluid] (uniform when it has no refine
 // box; a refined mesh's base block: mesh_refinement.h).
 FlumeMesh flume_mesh(const Scene &scene);
 
 // Throws InputError when a graded or refined scene cannot run: its template
 // has no @GRADING@ token (a fixed block structure), or a unit starts outside
-// the refined box or the deepest [[refine]] regions (its cells would be
-// coarser than the loads need).
+// the refined box (its cells would be coarser than the loads need; the
+// [[refine]] regions' own check: check_units_refined, mesh_refinement.h).
 void check_flume_grading(const Scene &scene, const SceneSetup &setup, const std::string &template_text);
 
 } // namespace armour

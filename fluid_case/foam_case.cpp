@@ -278,6 +278,7 @@ void check_case_template(const Scene &scene, const SceneSetup &setup, int np) {
                              "\" makes a solitary wave: give its height (> 0 m)");
     }
     check_flume_grading(scene, setup, used);
+    check_units_refined(scene, setup);
     const std::string plugin = plugin_path();
     if (!fs::is_regular_file(plugin))
         throw InputError("OpenFOAM plugin " + plugin + " not found: build the target armourFoamCoupling");

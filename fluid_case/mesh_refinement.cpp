@@ -82,15 +82,6 @@ std::string region_actions(const Scene &scene, const SceneRefine &r, const std::
 
 } // namespace
 
-int refine_levels(const Scene &scene) {
-    if (!scene.fluid || scene.fluid->mesh != "refined")
-        return 0;
-    int levels = 0;
-    for (const SceneRefine &r : scene.refine)
-        levels = std::max(levels, r.level);
-    return levels;
-}
-
 bool in_refine_region(const Scene &scene, const SceneRefine &r, const Eigen::Vector3d &p, double tolerance) {
     if (r.type == "box")
         return (p.array() >= r.min.array() - tolerance).all() &&

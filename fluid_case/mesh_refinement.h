@@ -16,7 +16,7 @@
 //     before the porous zones are made, so the zones are the refined cells'.
 //
 // Usage
-//     const int passes = refine_levels(scene);          // 0: not refined
+//     const int passes = refine_levels(scene);          // 0: not refined (flume_mesh.h)
 //     write_refine_dicts(scene, case_dir);             // system/topoSetDict.refine<k>, refineMeshDict
 //     run_tool(...topoSet -dict system/topoSetDict.refine1...); run_tool(...refineMesh -overwrite...);
 //     check_units_refined(scene, setup);               // every unit in the finest regions
@@ -31,9 +31,6 @@
 namespace armour {
 
 struct SceneSetup;
-
-// L: the deepest [[refine]] level of a refined mesh; 0 for a graded one.
-int refine_levels(const Scene &scene);
 
 // True when p lies in the region (to `tolerance`, m, outward).
 bool in_refine_region(const Scene &scene, const SceneRefine &region, const Eigen::Vector3d &p,
