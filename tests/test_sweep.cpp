@@ -223,6 +223,9 @@ TEST_F(SweepTest, ASeriesSweepVariesTheStepsSeedsAndTheLayersSeed) {
         hashes.insert(r.output.substr(at + std::string(id).size() + 8, 16));
     }
     EXPECT_EQ(hashes.size(), 4u) << r.output;
+    // Realisation-major: every height's first realisation before any second,
+    // so a sweep stopped part-way already spans the curve.
+    EXPECT_LT(r.output.find("Hs-0.12_seed-1  scene "), r.output.find("Hs-0.11_seed-2  scene ")) << r.output;
     EXPECT_FALSE(fs::exists(dir_ / "out"));
     const Result with_layer = run(sweep_file(R"("series.0.seed", "series.1.seed", "pattern.0.seed")"));
     EXPECT_EQ(with_layer.status, 0) << with_layer.output;
@@ -230,6 +233,47 @@ TEST_F(SweepTest, ASeriesSweepVariesTheStepsSeedsAndTheLayersSeed) {
     EXPECT_EQ(bad.status, 2) << bad.output;
     EXPECT_NE(bad.output.find("series.2.seed"), std::string::npos) << bad.output;
     EXPECT_FALSE(fs::exists(dir_ / "out"));
+}
+
+// A case's scene hash is of the resolved scene's keys, not of where the scene
+// file lies: the same sweep from another checkout (or a cluster's copy) skips
+// the cases done. A case recorded under the hash earlier versions took (over
+// the text with its header, which names the scene's path) is still done.
+TEST_F(SweepTest, DoneCasesStayDoneFromAnotherFolderAndUnderTheEarlierHash) {
+    const auto sweep_in = [&](const std::string &folder) {
+        const fs::path scene = dir_ / folder / "tilt_cube.toml", sweep = dir_ / folder / "tilt.toml";
+        fs::create_directories(scene.parent_path());
+        fs::copy_file(fs::path(kSource) / "scenes" / "tilt_cube.toml", scene,
+                      fs::copy_options::overwrite_existing);
+        write(sweep, "scene = \"" + scene.string() + "\"\n[set]\n\"run.duration\" = 3.0\n" +
+                         "[vary]\n\"material.0.friction\" = [0.5]\n");
+        return kArmour + " sweep " + sweep.string() + " --out " + (dir_ / "out").string();
+    };
+    // The listing's action for the one case: "run" or "skip: done".
+    const auto action = [&](const std::string &folder) {
+        const Result r = run(sweep_in(folder) + " --dry-run");
+        const std::size_t at = r.output.find("friction-0.5  scene ");
+        EXPECT_EQ(r.status, 0) << r.output;
+        if (at == std::string::npos)
+            return "no listing: " + r.output;
+        const std::size_t from = at + std::string("friction-0.5  scene ").size() + 18;
+        return r.output.substr(from, r.output.find('\n', from) - from);
+    };
+    const Result first = run(sweep_in("a"));
+    ASSERT_EQ(first.status, 0) << first.output;
+    EXPECT_EQ(action("b"), "skip: done");
+
+    const fs::path record = dir_ / "out" / "cases" / "friction-0.5" / "case.json";
+    const json plan = json::parse(read_text(record.parent_path() / "plan.json"));
+    ASSERT_TRUE(plan.contains("earlier_scene_hash")) << plan.dump();
+    ASSERT_NE(plan["earlier_scene_hash"], plan["scene_hash"]);
+    json r = json::parse(read_text(record));
+    r["scene_hash"] = plan["earlier_scene_hash"]; // as an earlier version recorded it, from folder a
+    write(record, r.dump(2));
+    EXPECT_EQ(action("a"), "skip: done");
+    r["scene_hash"] = "0123456789abcdef"; // another scene
+    write(record, r.dump(2));
+    EXPECT_EQ(action("a"), "run");
 }
 
 // The shipped studies as a user starts them: every case passes what

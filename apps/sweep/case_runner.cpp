@@ -143,8 +143,10 @@ int run_case(const fs::path &case_dir, const std::string &armour_exe) {
     // A case stopped before it ended (killed, timed out, a Slurm time limit)
     // goes on from its run's last checkpoint when its scene is the same.
     const std::optional<Checkpoint> checkpoint =
-        r.attempts > 0 && r.scene_hash == plan.value("scene_hash", "") ? last_checkpoint(case_dir / "run")
-                                                                       : std::nullopt;
+        r.attempts > 0 && (r.scene_hash == plan.value("scene_hash", "") ||
+                           r.scene_hash == plan.value("earlier_scene_hash", "-"))
+            ? last_checkpoint(case_dir / "run")
+            : std::nullopt;
     r.scene_hash = plan.value("scene_hash", "");
     const int np = plan.value("np", 0);
     const double timeout = plan.value("timeout", 0.0);

@@ -71,7 +71,9 @@ std::vector<std::vector<KeyValue>> product(const SweepSpec &spec) {
 
 } // namespace
 
-std::string scene_hash(const std::string &text) {
+namespace {
+
+std::string fnv1a_hex(const std::string &text) {
     std::uint64_t h = 1469598103934665603ull;
     for (const unsigned char ch : text) {
         h ^= ch;
@@ -80,6 +82,22 @@ std::string scene_hash(const std::string &text) {
     char hex[17];
     std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
     return hex;
+}
+
+} // namespace
+
+std::string scene_hash(const std::string &text) {
+    std::string keys;
+    std::istringstream lines(text);
+    for (std::string line; std::getline(lines, line);)
+        if (line.rfind('#', 0) != 0)
+            keys += line + '\n';
+    return fnv1a_hex(keys);
+}
+
+bool same_scene(const std::string &recorded_hash, const SweepCase &c) {
+    return recorded_hash == c.scene_hash ||
+           (!c.earlier_scene_hash.empty() && recorded_hash == c.earlier_scene_hash);
 }
 
 std::string toml_value_at(const std::string &document, const std::string &key) {
@@ -155,9 +173,12 @@ SweepPlan plan_sweep(const SweepSpec &spec) {
     if (seeds.empty())
         seeds.emplace_back();
 
+    // Realisation-major: every point's first realisation runs before any
+    // point's second, so a sweep stopped part-way (or an array half-run)
+    // already spans the whole curve.
     std::set<std::string> ids;
-    for (const auto &combo : combos)
-        for (const auto &seed : seeds) {
+    for (const auto &seed : seeds)
+        for (const auto &combo : combos) {
             SweepCase c;
             c.seed = seed;
             for (const auto &[key, value] : spec.fixed)
@@ -188,6 +209,7 @@ SweepPlan plan_sweep(const SweepSpec &spec) {
                 plan.analysis = scene.analysis;
             c.scene_text = resolved_scene_toml(scene);
             c.scene_hash = scene_hash(c.scene_text);
+            c.earlier_scene_hash = fnv1a_hex(c.scene_text);
             for (const auto &key : plan.columns)
                 c.column_values.push_back(toml_value_at(c.scene_text, key));
             plan.cases.push_back(std::move(c));

@@ -29,7 +29,11 @@ struct SweepCase {
     std::optional<std::int64_t> seed;
     std::vector<std::string> overrides; // KEY=VALUE, as `armour run --set` takes them
     std::string scene_text;             // the resolved scene
-    std::string scene_hash;             // 16 hex digits
+    std::string scene_hash;             // 16 hex digits, of the resolved scene's keys
+    // The hash versions before this one took, over the text with its header
+    // comment (which names the scene's absolute path): a case done under it
+    // is still done when the sweep resumes from the same checkout.
+    std::string earlier_scene_hash;
 };
 
 struct SweepPlan {
@@ -41,7 +45,12 @@ struct SweepPlan {
 
 SweepPlan plan_sweep(const SweepSpec &spec);
 
+// FNV-1a of a resolved scene's keys: its comment lines are left out, so the
+// same keys from another checkout or machine hash alike.
 std::string scene_hash(const std::string &text);
+
+// True when a case's record was written for this case's scene.
+bool same_scene(const std::string &recorded_hash, const SweepCase &c);
 
 // The value at a dotted key ("unit.0.size") of a TOML document, as plain text
 // (strings unquoted); "" when absent.

@@ -305,6 +305,7 @@ int run_sweep(const SweepRequest &r) {
                                                 {"seed", c.seed ? json(*c.seed) : json(nullptr)},
                                                 {"overrides", c.overrides},
                                                 {"scene_hash", c.scene_hash},
+                                                {"earlier_scene_hash", c.earlier_scene_hash},
                                                 {"np", ctx.plan.spec.np},
                                                 {"timeout", ctx.plan.spec.timeout},
                                                 {"si_units", {{"timeout", "s"}}}}

@@ -118,7 +118,7 @@ SweepTable read_sweep_table(const fs::path &out, const SweepPlan &plan) {
         row.record.id = c.id;
         row.status = row.record.status;
         const fs::path summary = dir / "run" / "summary.json";
-        if (row.status == "done" && (row.record.scene_hash != c.scene_hash || !fs::is_regular_file(summary)))
+        if (row.status == "done" && (!same_scene(row.record.scene_hash, c) || !fs::is_regular_file(summary)))
             row.status = "pending"; // another scene now, or its result was removed
         if (row.status == "running" && !case_is_locked(dir))
             row.status = "pending"; // its sweep was killed
