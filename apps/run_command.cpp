@@ -388,6 +388,8 @@ Scene settled_scene(const Scene &scene, std::vector<SceneBody> bodies) {
     Scene settled = scene;
     settled.fluid->settle_time = 0.0;
     settled.fluid->settle_friction.reset();
+    settled.fluid->settled_by =
+        scene.fluid->settle_engine.empty() ? scene.engine : scene.fluid->settle_engine;
     settled.fluid->settle_engine.clear();
     settled.drops.clear();
     settled.patterns.clear();
@@ -618,17 +620,23 @@ void warn_if_settle_friction_unused(const Scene &scene) {
 }
 
 void warn_if_settle_hands_clumps_to_hulls(const Scene &scene) {
-    if (!scene.fluid || scene.fluid->settle_time <= 0.0 || scene.fluid->settle_engine.empty())
+    if (!scene.fluid)
         return;
-    const ShapeModel settle = engine_style(scene.fluid->settle_engine).capabilities.shape,
+    // This run's settle, or the one that wrote a settled scene run now.
+    const bool settles_here = scene.fluid->settle_time > 0.0 && !scene.fluid->settle_engine.empty();
+    const std::string &settled_by = settles_here ? scene.fluid->settle_engine : scene.fluid->settled_by;
+    if (settled_by.empty() || (!settles_here && scene.fluid->settle_time > 0.0))
+        return;
+    const ShapeModel settle = engine_style(settled_by).capabilities.shape,
                      run = engine_style(scene.engine).capabilities.shape;
     if (settle == ShapeModel::sphere_clumps && run == ShapeModel::convex_hulls)
         std::fprintf(stderr,
-                     "armour: warning: fluid.settle_engine %s settles sphere clumps and run.engine %s "
+                     "armour: warning: %s %s settled sphere clumps and run.engine %s "
                      "runs exact hulls from their poses: the hulls slump off a clump-settled layer "
                      "before any wave (dry, 52 of 99 units displaced in 5 s: docs/validation/stability.md), "
                      "so their damage is not the waves' alone\n",
-                     scene.fluid->settle_engine.c_str(), scene.engine.c_str());
+                     settles_here ? "fluid.settle_engine" : "fluid.settled_by", settled_by.c_str(),
+                     scene.engine.c_str());
 }
 
 namespace {

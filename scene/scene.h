@@ -179,6 +179,11 @@ struct SceneFluid {
     // The engine of the settle ("" = run.engine): clumps settle a layer that
     // exact hulls then meet the waves in, so both engines start from one layer.
     std::string settle_engine;
+    // The engine that settled the bodies ("" = not settled by armour): a
+    // settle writes it into RUN/settle/scene.settled.toml, so a run of that
+    // scene with another unit model is warned that it inherits a layer its
+    // units did not settle into.
+    std::string settled_by;
     // Turbulence closure (docs/turbulence.md): laminar, or OpenFOAM's RAS
     // kOmegaSST with k and omega at the start from an intensity of the
     // shallow-water celerity sqrt(g depth) and a length scale.

@@ -237,6 +237,13 @@ const std::vector<Key<SceneFluid>> &fluid_keys() {
             .one_of(engine_names())
             .defaults("`run.engine`")
             .written_if([](const F &f) { return !f.settle_engine.empty(); }),
+        key("settled_by", &F::settled_by, "",
+            "the engine that settled the bodies, written by a settle into its scene.settled.toml: run with "
+            "exact hulls (bullet) after clumps (liggghts), a warning (the hulls slump off a clump-settled "
+            "layer)")
+            .one_of(engine_names())
+            .defaults("not settled by armour")
+            .written_if([](const F &f) { return !f.settled_by.empty(); }),
         key("turbulence", &F::turbulence, "",
             "laminar, or OpenFOAM's RAS kOmegaSST with wall functions (over-damps waves in propagation: "
             "turbulence.md)")
