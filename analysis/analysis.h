@@ -59,9 +59,10 @@ struct AnalysisContext {
     // s: the end of what the analysis reads besides the samples (a coupled
     // run's gauges), for `armour report --until` and a record still being written.
     double until = HUGE_VAL;
-    // m: x of a wave train's gauges as the case writer placed them
-    // (fluid_case/wave_case.h); empty when the run makes no wave train.
-    std::vector<double> gauge_x = {};
+    // summary["waves"] as the driver measured it once at the wave train's
+    // gauges (incident_waves.h: incident height, period, s_om, waves at the
+    // toe); null when the run makes no wave train.
+    const nlohmann::json *incident_waves = nullptr;
 };
 
 class Analysis {

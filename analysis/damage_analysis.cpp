@@ -1,7 +1,6 @@
 #include "damage_analysis.h"
 
 #include "analysis.h"
-#include "incident_waves.h"
 #include "jonswap.h"
 #include "rock_manual_layer.h"
 #include "slope_profile.h"
@@ -97,8 +96,9 @@ std::string damage_refusal(const Scene &scene, const SceneSetup &setup) {
 class DamageAnalysis : public Analysis {
   public:
     explicit DamageAnalysis(const AnalysisContext &c)
-        : scene_(c.scene), setup_(c.setup), out_dir_(c.out_dir), case_dir_(c.case_dir), gauge_x_(c.gauge_x),
-          until_(c.until), claim_(c.claim), settle_(c.scene, c.setup) {
+        : scene_(c.scene), setup_(c.setup), out_dir_(c.out_dir),
+          measured_waves_(c.incident_waves ? *c.incident_waves : json::object()), claim_(c.claim),
+          settle_(c.scene, c.setup) {
         const std::optional<SlopeFrame> frame = slope_frame(c.scene);
         if (!frame)
             throw InputError(c.scene.file + ": key 'analysis.kind': kind \"damage\" counts units on a slope: "
@@ -166,11 +166,8 @@ class DamageAnalysis : public Analysis {
         }
 
         // The waves the run measured at its gauges (a wave train), else its targets.
-        const json measured = gauge_x_.empty()
-                                  ? json::object()
-                                  : measure_incident_waves(scene_, gauge_x_, case_dir_, until_).figures;
         const WaveConditions w =
-            wave_conditions(measured, scene_, acting_seconds(scene_, frame_.origin.x(), start_, end_));
+            wave_conditions(measured_waves_, scene_, acting_seconds(scene_, frame_.origin.x(), start_, end_));
         const double rho_s = unit_density();
         const double rho_w = scene_.fluid ? scene_.fluid->fluid_density : kFreshWaterDensity;
         std::optional<double> Ns, vdm, vdm_n_od, vdm_units;
@@ -290,9 +287,7 @@ class DamageAnalysis : public Analysis {
     const Scene &scene_;
     const SceneSetup &setup_;
     std::string out_dir_;
-    std::string case_dir_;        // a coupled run's case: the gauges' record
-    std::vector<double> gauge_x_; // m; empty: no wave train to measure
-    double until_;                // s, the end of the gauges' record read
+    json measured_waves_; // the gauges' figures (AnalysisContext::incident_waves); empty: none
     std::function<std::string(const std::string &)> claim_;
     SlopeFrame frame_;
     SettleWatch settle_;

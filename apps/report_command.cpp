@@ -28,16 +28,21 @@ std::string analyse_coupled_record(const Scene &scene, const SceneSetup &setup, 
     AnalysisContext context{scene, setup, run_dir.string(), case_dir.string(),
                             [&](const std::string &name) { return folder.claim(name).string(); }};
     context.until = until;
-    context.gauge_x = wave_gauge_positions(scene); // where the case put them; none without a wave train
+    // The gauges where the case put them (none without a wave train), read once.
+    const std::vector<double> gauge_x = wave_gauge_positions(scene);
+    const std::optional<IncidentWaves> waves =
+        gauge_x.empty() ? std::nullopt
+                        : std::optional(measure_incident_waves(scene, gauge_x, case_dir, until));
+    if (waves)
+        context.incident_waves = &waves->figures;
     const std::unique_ptr<Analysis> analysis = make_analysis(context);
     std::vector<BodyState> states(record.bodies());
     for (std::size_t s = 0; s < record.steps() && record.time[s] <= until; ++s) {
         record.states_at(s, states);
         analysis->sample(record.time[s], states);
     }
-    if (!context.gauge_x.empty())
-        add_incident_waves(measure_incident_waves(scene, context.gauge_x, case_dir, until), context.claim,
-                           summary);
+    if (waves)
+        add_incident_waves(*waves, context.claim, summary);
     return analysis->write(summary);
 }
 
