@@ -187,7 +187,8 @@ TEST(StabilitySeries, KilledInItsSecondStepItResumesAndEachStepStartsWhereTheLas
     // The settle's engine and the run's.
     EXPECT_EQ(read_json(out / "settle" / "summary.json")["engine"], "liggghts");
     // The settled scene says who settled it, so running it with hulls later
-    // is warned too; with the clumps that settled it, not.
+    // (its own run.engine here, or --engine bullet) is warned too; with the
+    // clumps that settled it, not.
     const fs::path settled = out / "settle" / "scene.settled.toml";
     EXPECT_NE(read_text(settled).find("settled_by = \"liggghts\""), std::string::npos);
     ASSERT_EQ(run(settled, dir / "handed", {}, {"--engine", "bullet", "--dry-run"}, dir / "handed.log"), 0)
@@ -195,7 +196,7 @@ TEST(StabilitySeries, KilledInItsSecondStepItResumesAndEachStepStartsWhereTheLas
     EXPECT_NE(read_text(dir / "handed.log").find("fluid.settled_by liggghts settled sphere clumps"),
               std::string::npos)
         << read_text(dir / "handed.log");
-    ASSERT_EQ(run(settled, dir / "same", {}, {"--dry-run"}, dir / "same.log"), 0)
+    ASSERT_EQ(run(settled, dir / "same", {}, {"--engine", "liggghts", "--dry-run"}, dir / "same.log"), 0)
         << read_text(dir / "same.log");
     EXPECT_EQ(read_text(dir / "same.log").find("slump"), std::string::npos) << read_text(dir / "same.log");
     const json s = read_json(out / "summary.json");
