@@ -2,7 +2,8 @@
 """What set each interFoam step of a run: the cap (maxDeltaT), the Courant
 limit (maxCo) or the interface Courant limit (maxAlphaCo).
 
-Usage: python3 bench/step_limits.py RUN/case   (a coupled run's case folder)
+Usage: python3 bench/step_limits.py RUN/case [--from T]   (a coupled run's case folder;
+       --from: only the steps from simulated time T (s) on, e.g. once the waves reach the armour)
 
 Reads RUN/case/system/controlDict for the three limits and RUN/case/log.interFoam
 for each step's Courant numbers and deltaT (s); a step is put down to the limit
@@ -20,26 +21,34 @@ def limits(control_dict):
     return get("maxCo"), get("maxAlphaCo"), get("maxDeltaT")
 
 
-def steps(log):
+def steps(log, start=0.0):
     co = alpha = None
+    t = 0.0
     for line in open(log):
-        if line.startswith("Courant Number mean"):
+        if line.startswith("Time = "):
+            t = float(line.split("=")[1])
+        elif line.startswith("Courant Number mean"):
             co = float(line.split("max:")[1])
         elif line.startswith("Interface Courant Number mean"):
             alpha = float(line.split("max:")[1])
         elif line.startswith("deltaT =") and co is not None and alpha is not None:
-            yield co, alpha, float(line.split("=")[1])
+            yield t >= start, co, alpha, float(line.split("=")[1])
 
 
 def main():
-    if len(sys.argv) != 2:
-        sys.exit("usage: python3 bench/step_limits.py RUN/case")
-    case = Path(sys.argv[1])
+    args = sys.argv[1:]
+    start = 0.0
+    if len(args) == 3 and args[1] == "--from":
+        start = float(args[2])
+        args = args[:1]
+    if len(args) != 1:
+        sys.exit("usage: python3 bench/step_limits.py RUN/case [--from T]")
+    case = Path(args[0])
     max_co, max_alpha, cap = limits(case / "system" / "controlDict")
     counts = {"maxDeltaT": 0, "maxCo": 0, "maxAlphaCo": 0}
     dts = []
-    for k, (co, alpha, dt) in enumerate(steps(case / "log.interFoam")):
-        if k < 100:
+    for k, (inside, co, alpha, dt) in enumerate(steps(case / "log.interFoam", start)):
+        if k < 100 or not inside:
             continue
         dts.append(dt)
         if dt >= 0.999 * cap:
@@ -50,7 +59,7 @@ def main():
     if n == 0:
         sys.exit(f"{case}: no steps past the first 100 in log.interFoam")
     share = ", ".join(f"{k} {v / n:.1%}" for k, v in counts.items())
-    print(f"{n} steps, mean deltaT {sum(dts) / n:.3g} s; set by: {share} "
+    print(f"{n} steps{f' from t = {start:g} s' if start else ''}, mean deltaT {sum(dts) / n:.3g} s; set by: {share} "
           f"(maxCo {max_co:g}, maxAlphaCo {max_alpha:g}, maxDeltaT {cap:g} s)")
 
 
