@@ -505,6 +505,8 @@ void warn_if_no_checkpoint(const Scene &scene) {
 // The scene as far as a resume may not change it: the keys a resume may
 // change (docs/checkpoints.md) set to fixed values.
 std::string resumable_form(Scene s, bool resumable_keys) {
+    if (s.fluid)
+        s.fluid->settled_by.clear(); // a record of who settled the layer (runs before it lack it)
     if (resumable_keys) {
         s.duration = 1.0;
         s.checkpoint_interval = 0.0;

@@ -11,9 +11,16 @@ Description
     in deg) and OUT/compare_damage.png (run B against run A, unit by unit).
     Refuses runs with different body counts or units; reports how far their
     first poses differ (the same settled layer gives ~0).
+    With --loads-from T, the units' fluid loads too (bodies/external_force,
+    N) at the records from T to the window's end, as bench/run_stability_speed.sh
+    compares them: the rms of B - A over the rms of A's changing part (each
+    unit's load less its mean over the window), for every unit and for the
+    units that moved less than 0.1 Dn in both runs (whose loads are the
+    mesh's, not their moves'), and each unit's largest load swing about its
+    mean, B over A (median and quartiles): summary.json "loads".
 
 Usage
-    /usr/bin/python3 bench/compare_damage.py RUN_A RUN_B --out OUT [--until S] [--dn M]
+    /usr/bin/python3 bench/compare_damage.py RUN_A RUN_B --out OUT [--until S] [--dn M] [--loads-from S]
     (RUN_A, RUN_B: `armour run` output folders; Dn from RUN_A's summary.json
     damage.Dn, or --dn in m when the run has not finished)
 """
@@ -38,6 +45,30 @@ def unit_motion(b, until, dn):
     return disp, rot, b.time[n - 1]
 
 
+def compare_loads(ba, bb, start, until, moved):
+    """The loads of B against A at the records in [start, until] (see --loads-from)."""
+    import numpy as np
+
+    n = min(int(np.searchsorted(ba.time, until, side="right")), int(np.searchsorted(bb.time, until, side="right")))
+    keep = np.flatnonzero(ba.time[:n] >= start - 1e-9)
+    if len(keep) < 2:
+        sys.exit(f"compare_damage: --loads-from {start}: fewer than 2 records before {until} s")
+    out = {"window": [float(ba.time[keep[0]]), float(ba.time[keep[-1]])], "records": int(len(keep)),
+           "record_time_shift": float(np.abs(ba.time[keep] - bb.time[keep]).max())}
+    for name, sel in (("all_units", np.ones(ba.bodies, bool)), ("units_that_stayed", ~moved)):
+        fa, fb = ba.external_force[keep][:, sel], bb.external_force[keep][:, sel]
+        swing_a = np.linalg.norm(fa - fa.mean(axis=0), axis=2)
+        swing_b = np.linalg.norm(fb - fb.mean(axis=0), axis=2)
+        ratio = swing_b.max(axis=0) / swing_a.max(axis=0)
+        out[name] = {"units": int(sel.sum()),
+                     "rms_difference_over_changing_part": float(np.sqrt(((fb - fa) ** 2).sum(axis=2).mean()) /
+                                                                np.sqrt((swing_a**2).mean())),
+                     "peak_swing_ratio": {"median": float(np.median(ratio)), "quartiles": [
+                         float(np.percentile(ratio, 25)), float(np.percentile(ratio, 75))]},
+                     "mean_peak_swing": [float(swing_a.max(axis=0).mean()), float(swing_b.max(axis=0).mean())]}
+    return out
+
+
 def stats(x):
     import numpy as np
 
@@ -54,6 +85,7 @@ def main():
     p.add_argument("--out", required=True, help="output folder (summary.json, compare_damage.png)")
     p.add_argument("--until", type=float, help="end of the window, s (default: the shorter record)")
     p.add_argument("--dn", type=float, help="Dn, m (default: RUN_A's summary.json damage.Dn)")
+    p.add_argument("--loads-from", type=float, help="compare the units' fluid loads from this time on, s")
     a = p.parse_args()
     try:
         dn = a.dn or read_summary(a.run_a)["damage"]["Dn"]
@@ -74,8 +106,11 @@ def main():
         "max_rotation_deg": {"a": stats(ra), "b": stats(rb)},
         "unit_by_unit": {"mean_abs_difference_Dn": float(rel.mean()), "largest_abs_difference_Dn": float(rel.max()),
                          "correlation": float(np.corrcoef(da, db)[0, 1]) if da.std() > 0 and db.std() > 0 else None},
-        "si_units": {"Dn": "m", "window_end": "s", "recorded_end": "s", "first_pose_gap": "m"},
+        "si_units": {"Dn": "m", "window_end": "s", "recorded_end": "s", "first_pose_gap": "m",
+                     "loads": {"window": "s", "record_time_shift": "s", "mean_peak_swing": "N"}},
     }
+    if a.loads_from is not None:
+        summary["loads"] = compare_loads(ba, bb, a.loads_from, until, (da >= 0.1) | (db >= 0.1))
     os.makedirs(a.out, exist_ok=True)
     tmp = os.path.join(a.out, "summary.json.tmp")
     with open(tmp, "w") as f:
@@ -88,6 +123,14 @@ def main():
             v = s[run]
             print(f"  largest {name:18s} {run}: mean {v['mean']:.4f}, median {v['median']:.4f}, "
                   f"largest {v['largest']:.4f}, >=0.1: {v['above_0.1']}, >=0.5: {v['above_0.5']}, >=1: {v['above_1']}")
+    if "loads" in summary:
+        lo = summary["loads"]
+        for name in ("all_units", "units_that_stayed"):
+            v = lo[name]
+            print(f"  loads, {lo['records']} records {lo['window'][0]:g} .. {lo['window'][1]:g} s, {v['units']} "
+                  f"{name.replace('_', ' ')}: rms of b - a {v['rms_difference_over_changing_part']:.3f} of a's "
+                  f"changing part; largest swing b / a median {v['peak_swing_ratio']['median']:.3f} (quartiles "
+                  f"{v['peak_swing_ratio']['quartiles'][0]:.3f}-{v['peak_swing_ratio']['quartiles'][1]:.3f})")
     u = summary["unit_by_unit"]
     print(f"  unit by unit: mean |b - a| {u['mean_abs_difference_Dn']:.4f} Dn, largest "
           f"{u['largest_abs_difference_Dn']:.4f} Dn, correlation {u['correlation']}")
