@@ -14,6 +14,7 @@
 #include "output_folder.h"
 #include "run_parts.h"
 #include "scene_keys.h"
+#include "scene_text.h"
 #include "scene_setup.h"
 #include "series_run.h"
 #include "stl_io.h"
@@ -520,12 +521,7 @@ std::string resumable_form(Scene s, bool resumable_keys) {
             s.fluid->min_time_step = 0.0; // a watch on the solver; its default follows the limits
         }
     }
-    std::istringstream text(resolved_scene_toml(s));
-    std::string form;
-    for (std::string line; std::getline(text, line);)
-        if (line.rfind('#', 0) != 0) // comments name the file
-            form += line + "\n";
-    return form;
+    return scene_keys_text(resolved_scene_toml(s)); // comments name the file
 }
 
 void refuse_if_differs(const std::string &scene_file, const std::string &now, const std::string &before,

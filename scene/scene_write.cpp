@@ -3,6 +3,7 @@
 #include "scene.h"
 
 #include "scene_keys.h"
+#include "scene_text.h"
 #include "toml_table.h"
 
 #include <optional>
@@ -75,6 +76,15 @@ void write_entries(std::ostream &o, const char *name, const std::vector<Key<S>> 
 }
 
 } // namespace
+
+std::string scene_keys_text(const std::string &resolved_toml) {
+    std::istringstream lines(resolved_toml);
+    std::string keys;
+    for (std::string line; std::getline(lines, line);)
+        if (line.rfind('#', 0) != 0)
+            keys += line + '\n';
+    return keys;
+}
 
 std::string resolved_scene_toml(const Scene &s) {
     std::ostringstream o;

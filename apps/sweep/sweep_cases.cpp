@@ -2,6 +2,7 @@
 
 #include "input_error.h"
 #include "scene.h"
+#include "scene_text.h"
 #include "sweep_toml.h"
 
 #include <algorithm>
@@ -87,12 +88,7 @@ std::string fnv1a_hex(const std::string &text) {
 } // namespace
 
 std::string scene_hash(const std::string &text) {
-    std::string keys;
-    std::istringstream lines(text);
-    for (std::string line; std::getline(lines, line);)
-        if (line.rfind('#', 0) != 0)
-            keys += line + '\n';
-    return fnv1a_hex(keys);
+    return fnv1a_hex(scene_keys_text(text));
 }
 
 bool same_scene(const std::string &recorded_hash, const SweepCase &c) {
