@@ -119,5 +119,6 @@ AnalysisStyle dambreak_analysis_style();
 AnalysisStyle platform_analysis_style();
 AnalysisStyle slope_waves_analysis_style();
 AnalysisStyle damage_analysis_style();
+AnalysisStyle pull_analysis_style();
 
 } // namespace armour

@@ -11,7 +11,7 @@ const std::vector<AnalysisStyle> &analysis_styles() {
         none_analysis_style(),        tilt_analysis_style(),     slope_analysis_style(),
         bounce_analysis_style(),      buoyancy_analysis_style(), float_analysis_style(),
         still_analysis_style(),       dambreak_analysis_style(), platform_analysis_style(),
-        slope_waves_analysis_style(), damage_analysis_style(),
+        slope_waves_analysis_style(), damage_analysis_style(),   pull_analysis_style(),
     };
     return styles;
 }

@@ -294,9 +294,14 @@ struct Scene {
     double characteristic_velocity = 1.0; // m/s
     // [analysis]: what the summary reports
     std::string analysis = "none"; // none | tilt | slope | bounce | buoyancy | float | still | dambreak |
-                                   // platform | slope_waves | damage
+                                   // platform | slope_waves | damage | pull
     double tilt_rate = 0.0;        // deg/s, tilt: gravity turns about +y at this rate
     double tilt_max = 60.0;        // deg, tilt: stop here
+    // pull (pull_analysis.cpp): a dry pull-out test of the layer's units
+    double pull_rate = 0.0;  // unit weights per second: the pull grows at this rate
+    double pull_max = 3.0;   // unit weights: the pull stops growing here
+    double pull_angle = 0.0; // deg from the face's outward normal toward down the face
+    int pull_round = 0;      // which set of outer-layer units, >= 3 Dn apart, is pulled
     // slope and damage: the settle criterion (slope_profile.h) and the layer
     int layers = 2;              // n of k_t = t / (n Dn)
     double settle_speed = 0.01;  // m/s, every unit's centre slower

@@ -19,9 +19,9 @@ std::vector<std::string> engine_names() {
         names.push_back(style.name);
     return names;
 }
-const std::vector<std::string> kAnalyses = {"none",     "tilt",        "slope", "bounce",
-                                            "buoyancy", "float",       "still", "dambreak",
-                                            "platform", "slope_waves", "damage"};
+const std::vector<std::string> kAnalyses = {"none",     "tilt",        "slope",  "bounce",
+                                            "buoyancy", "float",       "still",  "dambreak",
+                                            "platform", "slope_waves", "damage", "pull"};
 
 } // namespace
 
@@ -82,6 +82,19 @@ const std::vector<Key<Scene>> &analysis_keys() {
             "tilt: gravity turns about +y at this rate; required and > 0 for tilt")
             .in(Range::at_least(0)),
         key("tilt_max", &Scene::tilt_max, "deg", "tilt: tilting stops here").in(Range::open_closed(0, 90)),
+        key("pull_rate", &Scene::pull_rate, "1/s",
+            "pull: the outward pull on each pulled unit grows by this many of its weights (m g) per "
+            "second; required and > 0 for pull")
+            .in(Range::at_least(0)),
+        key("pull_max", &Scene::pull_max, "", "pull: the pull stops growing at this many unit weights")
+            .in(Range::above(0)),
+        key("pull_angle", &Scene::pull_angle, "deg",
+            "pull: the pull's direction, turned from the slope face's outward normal toward down the face")
+            .in(Range::closed(0, 90)),
+        key("pull_round", &Scene::pull_round, "",
+            "pull: which set of outer-layer units is pulled (each set's units >= 3 Dn apart; rounds 0, 1, "
+            "... together pull every outer unit once)")
+            .in(Range::at_least(0)),
         key("layers", &Scene::layers, "", "slope: the layer is meant to be this many units thick (n of k_t)")
             .in(Range::at_least(1)),
         key("settle_speed", &Scene::settle_speed, "m/s",

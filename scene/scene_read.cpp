@@ -95,6 +95,14 @@ void read_contact_and_analysis(const Table &root, Scene &s) {
         analysis.require("tilt_rate", " for kind \"tilt\"");
         analysis.check(s.tilt_rate > 0, "tilt_rate", "must be > 0 deg/s for kind \"tilt\"", s.tilt_rate);
     }
+    if (s.analysis == "pull") {
+        analysis.require("pull_rate", " for kind \"pull\"");
+        analysis.check(s.pull_rate > 0, "pull_rate", "must be > 0 weights/s for kind \"pull\"", s.pull_rate);
+        if (root.has("fluid"))
+            analysis.fail("kind", "kind \"pull\" is a dry test and the fluid would set the units' loads: "
+                                  "remove [fluid], [waves], [[porous]], [[series]] and [[refine]] "
+                                  "(bench/run_pull_test.sh does)");
+    }
 }
 
 void read_materials(const Table &root, Scene &s) {

@@ -1,0 +1,132 @@
+"""Each pulled unit's resistance (bench/run_pull_test.sh) beside the fluid loads a coupled run put on it.
+
+Description
+    PULL is a pull test's folder (pull.csv: each pulled unit's resistance in
+    its own weights), RUN a coupled `armour run` of the same settled layer
+    (bodies.h5, the same bodies in the same order). For every pulled unit:
+    its fluid load's swing along the test's pull (out of the face, turned by
+    the test's pull_angle toward down the face), d . (F(t) - F_still), largest
+    over the window [--from, --until]; F_still is its mean load over the
+    still-water records [--still-from, --still-until] (before the waves reach
+    the armour), so the swing is what the waves add to buoyancy. It is given
+    in the unit's weight on its seat at rest, m g - F_still,z (the submerged
+    weight under water, the full weight above it), the measure the pull
+    test's resistance uses. Beside it the unit's motion in the run (largest
+    displacement of its centre, Dn). A unit whose swing never reached its
+    resistance was never pulled out of its seat the way the test pulls.
+
+    Forces in unit weights (-), displacements in Dn (-), times in s; writes
+    OUT/summary.json, OUT/pull_vs_loads.csv and OUT/pull_vs_loads.png.
+
+Usage
+    /usr/bin/python3 bench/pull_vs_loads.py PULL RUN --out OUT [--from 4.5] [--until T]
+"""
+import argparse
+import csv
+import json
+import os
+import re
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "analysis"))
+from armour_results import read_bodies, read_summary  # noqa: E402
+
+
+def scene_value(path, key):
+    """The first `key = number` in a resolved scene (its [[wall]] slope's cot, the fluid's density)."""
+    with open(path) as f:
+        for line in f:
+            m = re.match(rf"\s*{key}\s*=\s*([-0-9.eE+]+)", line)
+            if m:
+                return float(m.group(1))
+    sys.exit(f"pull_vs_loads: {path}: no key {key}")
+
+
+def main():
+    import numpy as np
+
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("pull")
+    p.add_argument("run")
+    p.add_argument("--out", required=True)
+    p.add_argument("--from", dest="start", type=float, default=4.5, help="window start, s")
+    p.add_argument("--until", type=float, help="window end, s (default: the record's end)")
+    p.add_argument("--still-from", type=float, default=0.5, help="still-water records from, s")
+    p.add_argument("--still-until", type=float, default=3.0, help="still-water records until, s")
+    a = p.parse_args()
+    os.makedirs(a.out, exist_ok=True)
+    with open(os.path.join(a.pull, "pull.csv")) as f:
+        pulled = list(csv.DictReader(line for line in f if not line.startswith("#")))
+    damage = read_summary(a.run)["damage"]
+    dn, delta = damage["Dn"], damage["delta"]
+    scene = os.path.join(a.run, "scene.resolved.toml")
+    rho_w = scene_value(scene, "fluid_density")
+    cot = scene_value(scene, "cot")
+    alpha = np.arctan2(1.0, cot)
+    # The pull test's direction: the face's outward normal turned by its angle toward down the face.
+    try:
+        pull_summary = read_summary(a.pull)
+    except OSError:
+        pull_summary = {}
+    beta = np.radians(pull_summary.get("pull_angle_deg", 0.0))
+    normal = np.cos(beta) * np.array([-np.sin(alpha), 0.0, np.cos(alpha)]) - np.sin(beta) * np.array(
+        [np.cos(alpha), 0.0, np.sin(alpha)])
+    weight = (delta + 1.0) * rho_w * dn**3 * 9.81  # N, a cube of edge Dn
+    b = read_bodies(a.run)
+    until = b.time[-1] if a.until is None else a.until
+    still = (b.time >= a.still_from) & (b.time <= a.still_until)
+    window = (b.time >= a.start) & (b.time <= until)
+    if still.sum() < 2 or window.sum() < 2:
+        sys.exit("pull_vs_loads: fewer than 2 records in the still-water window or the window")
+    rows = []
+    for r in pulled:
+        i = int(r["body"])
+        f_still = b.external_force[still, i].mean(axis=0)
+        seat = weight - f_still[2]
+        swing = (b.external_force[window, i] - f_still) @ normal / seat
+        moved = np.linalg.norm(b.position[b.time <= until, i] - b.position[0, i], axis=1).max() / dn
+        resistance = float(r["resistance_weights"]) if r["resistance_weights"] else None
+        rows.append({"body": i, "s_over_Dn": float(r["s_over_Dn"]), "resistance_weights": resistance,
+                     "stayed_in_pull": r["stayed"] == "1", "seat_weight_N": float(seat),
+                     "peak_swing_out_weights": float(swing.max()), "largest_move_in_run_Dn": float(moved)})
+    reached = [r for r in rows if r["resistance_weights"] is not None and r["peak_swing_out_weights"] >= r["resistance_weights"]]
+    summary = {
+        "command": "bench/pull_vs_loads.py", "pull": a.pull, "run": a.run, "window": [a.start, float(until)],
+        "still_window": [a.still_from, a.still_until], "pulled_units": len(rows),
+        "peak_swing_out_median": float(np.median([r["peak_swing_out_weights"] for r in rows])),
+        "peak_swing_out_largest": float(max(r["peak_swing_out_weights"] for r in rows)),
+        "units_whose_swing_reached_their_resistance": len(reached),
+        "of_those_moved_0.25_Dn_in_run": sum(1 for r in reached if r["largest_move_in_run_Dn"] >= 0.25),
+        "units_that_moved_0.25_Dn_in_run": sum(1 for r in rows if r["largest_move_in_run_Dn"] >= 0.25),
+        "si_units": {"forces": "unit weights on the seat at rest (-)", "seat_weight_N": "N", "moves": "Dn (-)",
+                     "window": "s"},
+    }
+    json.dump(summary, open(os.path.join(a.out, "summary.json"), "w"), indent=2)
+    with open(os.path.join(a.out, "pull_vs_loads.csv"), "w", newline="") as f:
+        f.write("# forces in unit weights on the seat at rest (-), moves in Dn (-)\n")
+        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
+        w.writeheader()
+        w.writerows(rows)
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(5.5, 5))
+    top = max([r["resistance_weights"] or 0 for r in rows] + [r["peak_swing_out_weights"] for r in rows]) * 1.1
+    for r in rows:
+        # A unit that held the test's largest pull sits at it (a lower bound).
+        y = r["resistance_weights"] if r["resistance_weights"] is not None else pull_summary.get("pull_max", top)
+        ax.scatter(r["peak_swing_out_weights"], y, marker="^" if r["stayed_in_pull"] else "o",
+                   color="tab:red" if r["largest_move_in_run_Dn"] >= 0.25 else "tab:blue", s=22)
+    ax.plot([0, top], [0, top], "k--", lw=0.8, label="load = resistance")
+    ax.set_xlabel("largest wave load out of the face [unit weights]")
+    ax.set_ylabel("pull held in the pull test [unit weights]")
+    ax.set_title("red: moved >= 0.25 Dn in the run; triangles: held the test's largest pull", fontsize=8)
+    ax.legend(fontsize=8)
+    ax.grid(True, lw=0.3)
+    fig.tight_layout()
+    fig.savefig(os.path.join(a.out, "pull_vs_loads.png"), dpi=110)
+    print(json.dumps({k: summary[k] for k in summary if k.startswith(("units", "of_", "peak"))}))
+
+
+if __name__ == "__main__":
+    main()
