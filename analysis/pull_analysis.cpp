@@ -35,8 +35,14 @@
 //         lift:  F cos(beta) = W cos(alpha)
 //         slide: F sin(beta) + W sin(alpha) = mu (W cos(alpha) - F cos(beta))
 //     (alpha the slope's angle, beta = pull_angle, mu the friction between
-//     units, W = m |g|), whichever comes first; 0 where it slides unaided
-//     (mu < tan alpha: on the stability scene's 1:1.5 face at mu 0.6).
+//     units, W = m |g|): the slide comes first for any beta in [0, 90] deg,
+//     and is 0 where the unit slides unaided (mu < tan alpha: the stability
+//     scene's 1:1.5 face at mu 0.6). The lift is that of a unit held against
+//     sliding (by the units below it, the toe) but not clamped: what a unit
+//     in a layer holds above it is its neighbours' clamping and wedging.
+//     The test starts from the poses as given: a unit that the dry start
+//     itself unseats (a layer settled under buoyancy, now at full weight)
+//     shows a resistance of about 0.
 //     A unit in a layer held by its neighbours and the toe needs more; how
 //     much more is what the test measures. Forces in a dry run are in dry
 //     weights: frictional holding scales with the weight, so the same ratio
@@ -137,7 +143,9 @@ class PullAnalysis : public Analysis {
         const int material = setup_.units.empty() ? 0 : setup_.units[0].material;
         mu_ = pair_value(setup_.settings, material, material, &Material::friction, &MaterialPair::friction);
         const double alpha = std::atan2(1.0, frame_.cot);
-        lift_ = std::cos(alpha) / std::max(std::cos(beta), 1e-12);
+        // Pulled along the face (beta = 90 deg) a unit never lifts off.
+        lift_ =
+            std::cos(beta) > 1e-9 ? std::optional<double>(std::cos(alpha) / std::cos(beta)) : std::nullopt;
         slide_ = std::max(0.0, (mu_ * std::cos(alpha) - std::sin(alpha)) /
                                    (std::sin(beta) + mu_ * std::cos(beta)));
     }
@@ -210,7 +218,7 @@ class PullAnalysis : public Analysis {
         summary["pull_stayed"] = stayed;
         summary["pull_resistance_median"] = quantile(0.5);
         summary["pull_resistance_quartiles"] = {quantile(0.25), quantile(0.75)};
-        summary["pull_lone_unit_lift"] = lift_;
+        summary["pull_lone_unit_lift"] = lift_ ? json(*lift_) : json(nullptr);
         summary["pull_lone_unit_slide"] = slide_;
         summary["pull_friction"] = mu_;
         if (!csv_.empty()) {
@@ -219,8 +227,8 @@ class PullAnalysis : public Analysis {
         }
         std::ostringstream line;
         line << "pull: " << units_.size() << " units, resistance median " << quantile(0.5).dump()
-             << " weights (" << stayed << " held " << max_ << "); a lone unit lifts at " << lift_
-             << ", slides at " << slide_;
+             << " weights (" << stayed << " held " << max_ << "); a lone unit slides at " << slide_
+             << ", held against sliding lifts at " << (lift_ ? json(*lift_).dump() : std::string("never"));
         return line.str();
     }
 
@@ -234,7 +242,8 @@ class PullAnalysis : public Analysis {
     double g_;
     std::string csv_;
     Eigen::Vector3d direction_;
-    double lift_ = 0.0, slide_ = 0.0, mu_ = 0.0;
+    std::optional<double> lift_;
+    double slide_ = 0.0, mu_ = 0.0;
     std::vector<PulledUnit> units_;
     bool chosen_ = false, finished_ = false;
 };

@@ -21,7 +21,7 @@ def main():
 
     if len(sys.argv) < 3 or any("=" not in a for a in sys.argv[2:]):
         sys.exit(__doc__)
-    fig, ax = plt.subplots(figsize=(7.5, 4.5))
+    fig, ax = plt.subplots(figsize=(7.5, 5.2))
     lone = None
     for k, arg in enumerate(sys.argv[2:]):
         folder, label = arg.split("=", 1)
@@ -37,11 +37,12 @@ def main():
                    label=f"{label}: median {summary['resistance_median']:.2f} ({len(r)} units)")
         ax.scatter(s[held], r[held], facecolors="none", edgecolors=colour, s=20)
         lone = summary["lone_unit_lift"]
-    ax.axhline(lone, color="k", lw=0.8, ls="--", label=f"a lone cube lifts off ({lone:.2f})")
+    if lone is not None:
+        ax.axhline(lone, color="k", lw=0.8, ls="--", label=f"a cube held against sliding lifts off ({lone:.2f})")
     ax.set_xlabel("s: up the face from its toe [Dn]")
     ax.set_ylabel("pull held [unit weights m|g|]")
     ax.set_title("pull-out tests of settled layers (hollow: held the largest pull)", fontsize=10)
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=2)
     ax.grid(True, lw=0.3)
     fig.tight_layout()
     fig.savefig(sys.argv[1], dpi=110)

@@ -71,7 +71,10 @@ def main():
     beta = np.radians(pull_summary.get("pull_angle_deg", 0.0))
     normal = np.cos(beta) * np.array([-np.sin(alpha), 0.0, np.cos(alpha)]) - np.sin(beta) * np.array(
         [np.cos(alpha), 0.0, np.sin(alpha)])
-    weight = (delta + 1.0) * rho_w * dn**3 * 9.81  # N, a cube of edge Dn
+    with open(scene) as f:
+        gravity = re.search(r"^gravity\s*=\s*\[([^]]*)\]", f.read(), re.M)
+    g = float(np.linalg.norm([float(x) for x in gravity.group(1).split(",")])) if gravity else 9.81
+    weight = (delta + 1.0) * rho_w * dn**3 * g  # N, a cube of edge Dn
     b = read_bodies(a.run)
     until = b.time[-1] if a.until is None else a.until
     still = (b.time >= a.still_from) & (b.time <= a.still_until)

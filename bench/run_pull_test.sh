@@ -4,10 +4,11 @@
 # waves. SCENE is a settled scene (an `armour run` folder's
 # settle/scene.settled.toml); the script writes OUT/dry.toml (the scene
 # without its [fluid], [waves], [[porous]], [[series]] and [[refine]] tables:
-# the layer, its walls and materials, dry) and runs every round of units
-# (each round's units >= 3 Dn apart) into OUT/round_K, ROUNDS at a time side
-# by side, until a round finds no unit left (run again, it keeps the rounds
-# that finished and runs the rest). Writes OUT/pull.csv (every
+# the layer, its walls and materials, dry; a scene as `armour run` resolves
+# it, one table header per line) and runs every round of units (each round's
+# units >= 3 Dn apart) into OUT/round_K, --jobs at a time side by side, until
+# a round finds no unit left (run again with the same options, it keeps the
+# rounds that finished and runs the rest). Writes OUT/pull.csv (every
 # pulled unit: its round, where it sits, the pull it held in its own weights
 # m|g|), OUT/pull.png and OUT/summary.json (the median and quartiles of the
 # resistance, in weights; units that never left count as --max).
@@ -32,7 +33,14 @@ bench_args "$@"
 engine="${opt_engine:-liggghts}" rate="${opt_rate:-0.5}" max="${opt_max:-3}" angle="${opt_angle:-0}"
 jobs="${opt_jobs:-2}" rounds="${opt_rounds:-1000000}"
 sets=()
-for kv in ${opt_sets:-}; do sets+=(--set "$kv"); done
+read -ra kvs <<<"${opt_sets:-}"
+for kv in "${kvs[@]}"; do sets+=(--set "$kv"); done
+# A folder resumed must hold a test with the same options (its rounds are kept as they are).
+settings="scene=$(cd "$(dirname "$opt_scene")" && pwd)/$(basename "$opt_scene") engine=$engine rate=$rate max=$max angle=$angle sets=${opt_sets:-}"
+if [ -f "$out/settings.txt" ] && [ "$(cat "$out/settings.txt")" != "$settings" ]; then
+  bench_fail "--out $out holds a pull test with other options ($(cat "$out/settings.txt")): use a new --out"
+fi
+echo "$settings" >"$out/settings.txt"
 armour="$build/apps/armour"
 
 # The dry scene: every table the fluid needs is dropped, the rest kept as written.
@@ -61,7 +69,7 @@ while :; do
   done
   for p in "${pids[@]}"; do wait "$p" || exit 2; done
   last=$((round + jobs - 1))
-  [ "$last" -lt "$rounds" ] || break
+  [ $((round + jobs)) -lt "$rounds" ] || break
   units="$(/usr/bin/python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["pull_units"])' \
     "$out/round_$last/summary.json")"
   [ "$units" -gt 0 ] || break
@@ -77,12 +85,16 @@ out, engine, rate, pull_max, angle = sys.argv[1], sys.argv[2], float(sys.argv[3]
 rows, first, wall = [], None, 0.0
 for d in sorted(glob.glob(f"{out}/round_*/"), key=lambda p: int(re.search(r"round_(\d+)", p).group(1))):
     k = int(re.search(r"round_(\d+)", d).group(1))
+    if not os.path.exists(os.path.join(d, "summary.json")):
+        continue  # a round stopped before its end: rerun the script to finish it
     s = json.load(open(os.path.join(d, "summary.json")))
     first = first or s
     wall += s["wall_seconds"]
     with open(os.path.join(d, "pull.csv")) as f:
         for r in csv.DictReader(line for line in f if not line.startswith("#")):
             rows.append({"round": k, **r})
+if not rows:
+    sys.exit(f"run_pull_test: {out}: no unit was pulled (no outer units on the slope's face?)")
 held = sorted(float(r["resistance_weights"]) if r["resistance_weights"] else pull_max for r in rows)
 q = lambda p: held[int(p * (len(held) - 1) + 0.5)] if held else None
 with open(f"{out}/pull.csv", "w", newline="") as f:
@@ -94,17 +106,18 @@ summary = {"command": "bench/run_pull_test.sh", "engine": engine, "sets": sys.ar
            "pull_angle_deg": angle, "units": len(rows), "rounds": len({r["round"] for r in rows}),
            "stayed": sum(1 for r in rows if r["stayed"] == "1"),
            "resistance_median": q(0.5), "resistance_quartiles": [q(0.25), q(0.75)],
-           "resistance_range": [held[0], held[-1]] if held else None,
+           "resistance_range": [held[0], held[-1]],
            "lone_unit_lift": first["pull_lone_unit_lift"], "lone_unit_slide": first["pull_lone_unit_slide"],
-           "friction": first["pull_friction"], "wall_seconds": wall,
+           "friction": first["pull_friction"], "wall_seconds_summed_over_rounds": wall,
            "si_units": {"forces": "unit weights m|g| (-)", "pull_rate": "1/s", "pull_angle_deg": "deg",
-                        "wall_seconds": "s", "positions": "Dn (-)"}}
+                        "wall_seconds_summed_over_rounds": "s", "positions": "Dn (-)"}}
 json.dump(summary, open(f"{out}/summary.json", "w"), indent=2)
 fig, ax = plt.subplots(figsize=(6.5, 4))
 s = [float(r["s_over_Dn"]) for r in rows]
 ax.scatter(s, [float(r["resistance_weights"]) if r["resistance_weights"] else pull_max for r in rows],
            c=["tab:red" if r["stayed"] == "1" else "tab:blue" for r in rows], s=18)
-ax.axhline(first["pull_lone_unit_lift"], color="k", lw=0.8, ls="--", label="a lone unit lifts off")
+if first["pull_lone_unit_lift"] is not None:
+    ax.axhline(first["pull_lone_unit_lift"], color="k", lw=0.8, ls="--", label="a unit held against sliding lifts off")
 ax.axhline(pull_max, color="tab:red", lw=0.6, ls=":", label=f"the largest pull (red: held it)")
 ax.set_xlabel("s: up the face from its toe [Dn]")
 ax.set_ylabel("pull held [unit weights m|g|]")

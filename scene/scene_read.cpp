@@ -98,6 +98,11 @@ void read_contact_and_analysis(const Table &root, Scene &s) {
     if (s.analysis == "pull") {
         analysis.require("pull_rate", " for kind \"pull\"");
         analysis.check(s.pull_rate > 0, "pull_rate", "must be > 0 weights/s for kind \"pull\"", s.pull_rate);
+        // A unit that never left is said to have held pull_max: the pull must get there.
+        analysis.check(s.pull_max / s.pull_rate <= s.duration, "pull_max",
+                       "must be reached within run.duration = " + number_text(s.duration) +
+                           " s (pull_max / pull_rate = " + number_text(s.pull_max / s.pull_rate) + " s)",
+                       s.pull_max);
         if (root.has("fluid"))
             analysis.fail("kind", "kind \"pull\" is a dry test and the fluid would set the units' loads: "
                                   "remove [fluid], [waves], [[porous]], [[series]] and [[refine]] "

@@ -23,6 +23,14 @@ struct SceneRun {
     nlohmann::json summary;    // out/summary.json; discarded when absent or unreadable
 };
 
+// The whole of a text file ("" when it cannot be read).
+inline std::string read_text(const std::filesystem::path &path) {
+    std::ifstream in(path);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
 // `armour run SCENE --out DIR/out SETS`, SETS being further options as the
 // shell reads them (e.g. "--set run.duration=10").
 inline SceneRun run_scene(const std::string &armour, const std::filesystem::path &scene,
@@ -39,10 +47,7 @@ inline SceneRun run_scene(const std::string &armour, const std::filesystem::path
                             sets + " > '" + log.string() + "' 2>&1";
     const int rc = std::system(cmd.c_str());
     r.status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
-    std::ifstream in(log);
-    std::stringstream s;
-    s << in.rdbuf();
-    r.output = s.str();
+    r.output = read_text(log);
     std::ifstream summary(r.out / "summary.json");
     if (summary)
         r.summary = nlohmann::json::parse(summary, nullptr, false);

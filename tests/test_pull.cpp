@@ -19,6 +19,8 @@
 #include <sstream>
 #include <string>
 
+#include <unistd.h>
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -56,15 +58,9 @@ fs::path pull_scene(const fs::path &dir, double cot) {
     return path;
 }
 
-std::string read_text(const fs::path &path) {
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
 armour_test::SceneRun pull(double cot, const std::string &sets, const std::string &name) {
-    const fs::path dir = fs::temp_directory_path() / "armour_test_pull_scenes";
+    const fs::path dir =
+        fs::temp_directory_path() / ("armour_test_pull_scenes_" + std::to_string(::getpid()));
     fs::create_directories(dir);
     return armour_test::run_scene(ARMOUR_EXE, pull_scene(dir, cot), name,
                                   sets + " --cache '" + std::string(ARMOUR_TEST_CACHE) + "'");
@@ -84,9 +80,20 @@ TEST(PullAnalysis, ACubeOnACubeSlidesWhereStaticsSaysAndRoundsTakeUnitsApart) {
         EXPECT_NEAR(r.summary["pull_resistance_median"].get<double>(), expected, 0.05) << r.output;
         EXPECT_EQ(r.summary["pull_stayed"], 0);
         // body 1 is the lower stack's free cube, body 3 the upper one's.
-        const std::string csv = read_text(r.out / "pull.csv");
+        const std::string csv = armour_test::read_text(r.out / "pull.csv");
         EXPECT_NE(csv.find("\n" + std::to_string(round == 0 ? 1 : 3) + ","), std::string::npos) << csv;
     }
+}
+
+// Turned 60 degrees down the face the pull slides the cube sooner:
+// F = W (mu cos a - sin a) / (sin 60 + mu cos 60) = 0.217 W, and it never comes near its lift (1.9 W).
+TEST(PullAnalysis, APullTurnedDownTheFaceSlidesTheCubeWhereStaticsSays) {
+    const double a = std::atan2(1.0, 3.0), b = 60.0 * 3.14159265358979323846 / 180.0;
+    const double expected = (0.6 * std::cos(a) - std::sin(a)) / (std::sin(b) + 0.6 * std::cos(b));
+    const auto r = pull(3.0, "--engine bullet --set analysis.pull_angle=60", "pull_angle");
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_NEAR(r.summary["pull_resistance_median"].get<double>(), expected, 0.05) << r.output;
+    EXPECT_NEAR(r.summary["pull_lone_unit_lift"].get<double>(), std::cos(a) / std::cos(b), 1e-9);
 }
 #endif
 
@@ -115,4 +122,14 @@ TEST(PullAnalysis, IsRefusedOnAFluidSceneAndWithoutItsRate) {
     EXPECT_EQ(rate.status, 2);
     EXPECT_NE(rate.output.find("key 'analysis.pull_rate': missing required key"), std::string::npos)
         << rate.output;
+    // A run that ends before the pull reaches pull_max would report units that held it.
+    const fs::path dir =
+        fs::temp_directory_path() / ("armour_test_pull_scenes_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    const auto short_run = armour_test::run_scene(ARMOUR_EXE, pull_scene(dir, 3.0), "pull_short",
+                                                  "--set run.duration=2 --dry-run");
+    EXPECT_EQ(short_run.status, 2);
+    EXPECT_NE(short_run.output.find("key 'analysis.pull_max': must be reached within run.duration = 2 s"),
+              std::string::npos)
+        << short_run.output;
 }
