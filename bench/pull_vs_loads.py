@@ -25,21 +25,11 @@ import argparse
 import csv
 import json
 import os
-import re
 import sys
+import tomllib
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "analysis"))
 from armour_results import read_bodies, read_summary  # noqa: E402
-
-
-def scene_value(path, key):
-    """The first `key = number` in a resolved scene (its [[wall]] slope's cot, the fluid's density)."""
-    with open(path) as f:
-        for line in f:
-            m = re.match(rf"\s*{key}\s*=\s*([-0-9.eE+]+)", line)
-            if m:
-                return float(m.group(1))
-    sys.exit(f"pull_vs_loads: {path}: no key {key}")
 
 
 def main():
@@ -59,9 +49,11 @@ def main():
         pulled = list(csv.DictReader(line for line in f if not line.startswith("#")))
     damage = read_summary(a.run)["damage"]
     dn, delta = damage["Dn"], damage["delta"]
-    scene = os.path.join(a.run, "scene.resolved.toml")
-    rho_w = scene_value(scene, "fluid_density")
-    cot = scene_value(scene, "cot")
+    # The resolved scene holds every key, defaults filled in.
+    with open(os.path.join(a.run, "scene.resolved.toml"), "rb") as f:
+        scene = tomllib.load(f)
+    rho_w = scene["fluid"]["fluid_density"]
+    cot = next(w["cot"] for w in scene["wall"] if w["type"] == "slope")
     alpha = np.arctan2(1.0, cot)
     # The pull test's direction: the face's outward normal turned by its angle toward down the face.
     try:
@@ -71,9 +63,7 @@ def main():
     beta = np.radians(pull_summary.get("pull_angle_deg", 0.0))
     normal = np.cos(beta) * np.array([-np.sin(alpha), 0.0, np.cos(alpha)]) - np.sin(beta) * np.array(
         [np.cos(alpha), 0.0, np.sin(alpha)])
-    with open(scene) as f:
-        gravity = re.search(r"^gravity\s*=\s*\[([^]]*)\]", f.read(), re.M)
-    g = float(np.linalg.norm([float(x) for x in gravity.group(1).split(",")])) if gravity else 9.81
+    g = float(np.linalg.norm(scene["run"]["gravity"]))
     weight = (delta + 1.0) * rho_w * dn**3 * g  # N, a cube of edge Dn
     b = read_bodies(a.run)
     until = b.time[-1] if a.until is None else a.until
