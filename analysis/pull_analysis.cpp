@@ -17,12 +17,21 @@
 //     chosen from the layer as the run starts, which should be at rest (a
 //     settled scene).
 //
-//     The pull on each unit: F = min(pull_rate t, pull_max) m |g|, at its
-//     centre of mass, along the face's outward normal turned by pull_angle
-//     toward down the face; it is let go (zero) once the unit has moved
-//     0.5 Dn. Its resistance is the pull at the last sample at which it was
-//     still (centre slower than 5 mm/s, turning slower than 0.05 rad/s) before
-//     its centre first moved 0.25 Dn from where it started: soft contacts
+//     The seat: nothing is pulled for the first 5 (Dn / |g|)^1/2 of the
+//     largest unit (0.32 s for 4 cm cubes), so that a layer settled under
+//     buoyancy takes its full dry weight first. A unit that has moved 0.25 Dn
+//     by then, or is not still then, was unseated by the start itself: it is
+//     not pulled, and is counted apart (pull_unseated), not as a resistance
+//     of 0. The others are pulled from where they sit at the end of the wait.
+//
+//     The pull on each seated unit: F = min(pull_rate (t - wait), pull_max)
+//     m |g|, at its centre of mass, along the face's outward normal turned by
+//     pull_angle toward down the face; it is let go (zero) once the unit has
+//     moved 0.5 Dn. Its resistance is the pull that acted on it up to the
+//     last sample at which it was still (centre slower than 5 mm/s, turning
+//     slower than 0.05 rad/s) before its centre first moved 0.25 Dn from its
+//     seat (the pull is set at every sample, so this is the applied pull
+//     when records are no further apart than 0.01 / pull_rate s): soft contacts
 //     creep at 0.1-1 mm/s while they hold, and a unit that has let go moves
 //     at 5 mm/s within (2 v / (pull_rate g))^1/2 = 0.06 s of letting go at
 //     pull_rate 0.25/s, a pull 0.016 weights past the onset. A unit that
@@ -40,9 +49,6 @@
 //     scene's 1:1.5 face at mu 0.6). The lift is that of a unit held against
 //     sliding (by the units below it, the toe) but not clamped: what a unit
 //     in a layer holds above it is its neighbours' clamping and wedging.
-//     The test starts from the poses as given: a unit that the dry start
-//     itself unseats (a layer settled under buoyancy, now at full weight)
-//     shows a resistance of about 0.
 //     A unit in a layer held by its neighbours and the toe needs more; how
 //     much more is what the test measures. Forces in a dry run are in dry
 //     weights: frictional holding scales with the weight, so the same ratio
@@ -57,11 +63,12 @@
 //     pull_round = 0     # the first set of units
 //
 //     on a dry scene with a slope wall and a settled layer (run.duration at
-//     least pull_max / pull_rate); bench/run_pull_test.sh makes the dry scene
+//     least the wait plus pull_max / pull_rate); bench/run_pull_test.sh makes the dry scene
 //     from a settled one and runs every round.
 #include "analysis.h"
 
 #include "materials.h"
+#include "scene_keys.h"
 #include "slope_profile.h"
 
 #include <nlohmann/json.hpp>
@@ -84,15 +91,22 @@ constexpr double kSpacing = 3.0;                        // Dn between the units 
 constexpr double kMoved = 0.25;                         // Dn: the unit has left its seat
 constexpr double kLetGo = 0.5;                          // Dn: the pull stops
 constexpr double kStillSpeed = 5e-3, kStillTurn = 5e-2; // m/s, rad/s
+constexpr double kSeatWait = 5.0;                       // (Dn / |g|)^1/2 of the largest unit
+
+double seat_wait(const SceneSetup &setup, double g) { // s
+    const double Dn =
+        setup.unit_Dn.empty() ? 0.0 : *std::max_element(setup.unit_Dn.begin(), setup.unit_Dn.end());
+    return kSeatWait * std::sqrt(Dn / g);
+}
 
 struct PulledUnit {
     int body = 0;
-    Eigen::Vector3d start, local; // m: world centre, and (s, y, n) on the face
+    Eigen::Vector3d start, local; // m: world centre (at the seat once seated), and (s, y, n) on the face
     double Dn = 0.0, weight = 0.0;
     double last_still = 0.0;          // weights
     std::optional<double> moved_at;   // weights, the pull when it had moved kMoved Dn
     std::optional<double> resistance; // weights, the pull it held last
-    bool let_go = false;
+    bool seated = false, unseated = false, let_go = false;
 };
 
 // The rounds of outer-layer units as the Description says; round `k`.
@@ -136,7 +150,8 @@ class PullAnalysis : public Analysis {
   public:
     explicit PullAnalysis(const AnalysisContext &c)
         : setup_(c.setup), frame_(*slope_frame(c.scene)), rate_(c.scene.pull_rate), max_(c.scene.pull_max),
-          round_(c.scene.pull_round), g_(c.scene.gravity.norm()), csv_(c.claim ? c.claim("pull.csv") : "") {
+          round_(c.scene.pull_round), g_(c.scene.gravity.norm()), wait_(seat_wait(c.setup, g_)),
+          csv_(c.claim ? c.claim("pull.csv") : "") {
         const double beta = c.scene.pull_angle * kPi / 180.0;
         direction_ = std::cos(beta) * frame_.normal - std::sin(beta) * frame_.along;
         // A lone outer unit rests on units of the layer below it: the units' friction.
@@ -152,7 +167,7 @@ class PullAnalysis : public Analysis {
 
     double before_advance(double t, RigidBodyEngine &engine) override {
         for (const PulledUnit &u : units_) {
-            const double f = u.let_go ? 0.0 : pull(t) * u.weight;
+            const double f = u.let_go || u.unseated ? 0.0 : pull(t) * u.weight;
             engine.set_external_load(u.body, f * direction_, Eigen::Vector3d::Zero());
         }
         return 0.01 / rate_; // the pull grows by at most 0.01 weights between updates
@@ -173,12 +188,22 @@ class PullAnalysis : public Analysis {
             }
             chosen_ = true;
         }
-        const double p = pull(t);
+        const double p = pull(previous_); // what acted since the last sample (set there)
         for (PulledUnit &u : units_) {
+            if (u.unseated)
+                continue;
             const BodyState &s = states[static_cast<std::size_t>(u.body)];
+            const bool still = s.velocity.norm() < kStillSpeed && s.angular_velocity.norm() < kStillTurn;
+            if (!u.seated) {
+                u.unseated = (s.pose.position - u.start).norm() / u.Dn >= kMoved || (t >= wait_ && !still);
+                u.seated = !u.unseated && t >= wait_;
+                if (u.seated)
+                    u.start = s.pose.position;
+                continue;
+            }
             const double moved = (s.pose.position - u.start).norm() / u.Dn;
             if (!u.moved_at) {
-                if (s.velocity.norm() < kStillSpeed && s.angular_velocity.norm() < kStillTurn)
+                if (still)
                     u.last_still = p;
                 if (moved >= kMoved) {
                     u.moved_at = p;
@@ -187,26 +212,32 @@ class PullAnalysis : public Analysis {
             }
             u.let_go = u.let_go || moved >= kLetGo;
         }
+        previous_ = t;
         // Every unit let go, or the full pull held for a second: nothing more to learn.
-        finished_ = std::all_of(units_.begin(), units_.end(), [](const PulledUnit &u) { return u.let_go; }) ||
-                    t >= max_ / rate_ + 1.0;
+        finished_ = std::all_of(units_.begin(), units_.end(),
+                                [](const PulledUnit &u) { return u.let_go || u.unseated; }) ||
+                    t >= wait_ + max_ / rate_ + 1.0;
     }
 
     bool finished() const override { return finished_; }
 
     std::string write(json &summary) const override {
-        std::vector<double> held; // weights; a unit that never left counts as pull_max
-        int stayed = 0;
+        std::vector<double> held; // weights; a unit that never left counts as the pull it reached
+        int stayed = 0, unseated = 0;
         std::ostringstream csv;
         csv << "# pull test (analysis kind pull): forces in the unit's own weight m|g| (-), positions on the "
                "slope face in the unit's Dn (-): s up the face from its toe, y across, n out of the face\n"
-               "body,s_over_Dn,y_over_Dn,n_over_Dn,resistance_weights,moved_at_weights,stayed\n";
+               "body,s_over_Dn,y_over_Dn,n_over_Dn,resistance_weights,moved_at_weights,stayed,unseated\n";
         for (const PulledUnit &u : units_) {
-            held.push_back(u.resistance.value_or(max_));
-            stayed += u.moved_at ? 0 : 1;
+            const bool stays = u.seated && !u.moved_at;
+            if (u.seated)
+                held.push_back(u.resistance.value_or(pull(previous_)));
+            stayed += stays ? 1 : 0;
+            unseated += u.seated ? 0 : 1;
             csv << u.body << ',' << u.local.x() / u.Dn << ',' << u.local.y() / u.Dn << ','
                 << u.local.z() / u.Dn << ',' << (u.resistance ? std::to_string(*u.resistance) : "") << ','
-                << (u.moved_at ? std::to_string(*u.moved_at) : "") << ',' << (u.moved_at ? 0 : 1) << '\n';
+                << (u.moved_at ? std::to_string(*u.moved_at) : "") << ',' << (stays ? 1 : 0) << ','
+                << (u.seated ? 0 : 1) << '\n';
         }
         std::sort(held.begin(), held.end());
         const auto quantile = [&](double q) {
@@ -216,6 +247,8 @@ class PullAnalysis : public Analysis {
         };
         summary["pull_units"] = units_.size();
         summary["pull_stayed"] = stayed;
+        summary["pull_unseated"] = unseated;
+        summary["pull_wait"] = wait_;
         summary["pull_resistance_median"] = quantile(0.5);
         summary["pull_resistance_quartiles"] = {quantile(0.25), quantile(0.75)};
         summary["pull_lone_unit_lift"] = lift_ ? json(*lift_) : json(nullptr);
@@ -227,19 +260,21 @@ class PullAnalysis : public Analysis {
         }
         std::ostringstream line;
         line << "pull: " << units_.size() << " units, resistance median " << quantile(0.5).dump()
-             << " weights (" << stayed << " held " << max_ << "); a lone unit slides at " << slide_
+             << " weights (" << stayed << " held " << max_ << ", " << unseated
+             << " unseated by the start); a lone unit slides at " << slide_
              << ", held against sliding lifts at " << (lift_ ? json(*lift_).dump() : std::string("never"));
         return line.str();
     }
 
   private:
-    double pull(double t) const { return std::min(rate_ * t, max_); } // weights
+    double pull(double t) const { return std::clamp(rate_ * (t - wait_), 0.0, max_); } // weights
 
     const SceneSetup &setup_;
     SlopeFrame frame_;
     double rate_, max_;
     int round_;
-    double g_;
+    double g_, wait_;       // m/s^2, s
+    double previous_ = 0.0; // s: the last sample, where the pull acting since was set
     std::string csv_;
     Eigen::Vector3d direction_;
     std::optional<double> lift_;
@@ -257,9 +292,15 @@ AnalysisStyle pull_analysis_style() {
             {},
             false,
             [](const AnalysisContext &c) { return std::make_unique<PullAnalysis>(c); },
-            [](const Scene &scene, const SceneSetup &) {
-                return slope_frame(scene) ? std::string()
-                                          : std::string("pull needs a wall of type \"slope\"");
+            [](const Scene &scene, const SceneSetup &setup) {
+                if (!slope_frame(scene))
+                    return std::string("pull needs a wall of type \"slope\"");
+                const double wait = seat_wait(setup, scene.gravity.norm());
+                if (wait + scene.pull_max / scene.pull_rate > scene.duration)
+                    return "pull needs run.duration >= " +
+                           number_text(wait + scene.pull_max / scene.pull_rate) + " s: the seat wait (" +
+                           number_text(wait) + " s) and pull_max / pull_rate";
+                return std::string();
             }};
 }
 

@@ -27,7 +27,8 @@ def main():
         folder, label = arg.split("=", 1)
         summary = json.load(open(os.path.join(folder, "summary.json")))
         with open(os.path.join(folder, "pull.csv")) as f:
-            rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
+            rows = [r for r in csv.DictReader(line for line in f if not line.startswith("#"))
+                    if r.get("unseated") != "1"]  # moved by the dry start before any pull
         s = np.array([float(r["s_over_Dn"]) for r in rows])
         held = np.array([r["stayed"] == "1" for r in rows])
         r = np.array([float(r["resistance_weights"]) if r["resistance_weights"] else summary["pull_max"]

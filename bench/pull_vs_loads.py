@@ -46,7 +46,7 @@ def main():
     a = p.parse_args()
     os.makedirs(a.out, exist_ok=True)
     with open(os.path.join(a.pull, "pull.csv")) as f:
-        pulled = list(csv.DictReader(line for line in f if not line.startswith("#")))
+        pulled = [r for r in csv.DictReader(line for line in f if not line.startswith("#")) if r.get("unseated") != "1"]
     damage = read_summary(a.run)["damage"]
     dn, delta = damage["Dn"], damage["delta"]
     # The resolved scene holds every key, defaults filled in.

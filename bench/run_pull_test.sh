@@ -11,7 +11,8 @@
 # rounds that finished and runs the rest). Writes OUT/pull.csv (every
 # pulled unit: its round, where it sits, the pull it held in its own weights
 # m|g|), OUT/pull.png and OUT/summary.json (the median and quartiles of the
-# resistance, in weights; units that never left count as --max).
+# resistance, in weights; units that never left count as --max; units the dry
+# start moved from their seat before the pull are counted apart, as unseated).
 # Usage: bash bench/run_pull_test.sh --scene SCENE [--engine E] [--rate R] [--max M]
 #          [--angle DEG] [--jobs J] [--rounds N] [--sets 'KEY=VALUE ...'] [--build DIR] [--out DIR]
 #   --scene   a settled scene (required)
@@ -48,8 +49,9 @@ awk 'BEGIN { drop = 0 }
      /^[ \t]*\[/ { name = $0; gsub(/[][ \t]/, "", name); sub(/#.*/, "", name)
                    drop = (name == "fluid" || name == "waves" || name == "porous" || name == "series" || name == "refine") }
      !drop' "$opt_scene" >"$out/dry.toml"
-# The pull rises to --max and holds it a second (the analysis stops there).
-duration="$(awk -v m="$max" -v r="$rate" 'BEGIN { print m / r + 1.5 }')"
+# The pull waits for the units to seat (5 (Dn/g)^1/2: 0.32 s for 4 cm cubes), rises to --max and
+# holds it a second; the analysis ends the run there, so the 5 s spare for the wait cost nothing.
+duration="$(awk -v m="$max" -v r="$rate" 'BEGIN { print m / r + 6 }')"
 
 run_round() {
   # A round that finished before (its summary written) is kept: the script resumes a stopped test.
@@ -93,6 +95,10 @@ for d in sorted(glob.glob(f"{out}/round_*/"), key=lambda p: int(re.search(r"roun
     with open(os.path.join(d, "pull.csv")) as f:
         for r in csv.DictReader(line for line in f if not line.startswith("#")):
             rows.append({"round": k, **r})
+unseated = [r for r in rows if r.get("unseated") == "1"]
+rows = [r for r in rows if r.get("unseated") != "1"]
+if not rows and unseated:
+    sys.exit(f"run_pull_test: {out}: every unit taken ({len(unseated)}) was moved by the dry start before the pull: is the scene a settled layer?")
 if not rows:
     sys.exit(f"run_pull_test: {out}: no unit was pulled (no outer units on the slope's face?)")
 held = sorted(float(r["resistance_weights"]) if r["resistance_weights"] else pull_max for r in rows)
@@ -101,10 +107,10 @@ with open(f"{out}/pull.csv", "w", newline="") as f:
     f.write("# pull test: forces in the unit's own weight m|g| (-); s, y, n: on the slope face in Dn (-)\n")
     w = csv.DictWriter(f, fieldnames=list(rows[0].keys()) if rows else ["round"])
     w.writeheader()
-    w.writerows(rows)
+    w.writerows(rows + unseated)
 summary = {"command": "bench/run_pull_test.sh", "engine": engine, "sets": sys.argv[6].split(), "pull_rate": rate, "pull_max": pull_max,
            "pull_angle_deg": angle, "units": len(rows), "rounds": len({r["round"] for r in rows}),
-           "stayed": sum(1 for r in rows if r["stayed"] == "1"),
+           "stayed": sum(1 for r in rows if r["stayed"] == "1"), "unseated": len(unseated),
            "resistance_median": q(0.5), "resistance_quartiles": [q(0.25), q(0.75)],
            "resistance_range": [held[0], held[-1]],
            "lone_unit_lift": first["pull_lone_unit_lift"], "lone_unit_slide": first["pull_lone_unit_slide"],
@@ -126,5 +132,5 @@ ax.legend(fontsize=8)
 ax.grid(True, lw=0.3)
 fig.tight_layout()
 fig.savefig(f"{out}/pull.png", dpi=110)
-print(json.dumps({k: summary[k] for k in ("units", "stayed", "resistance_median", "resistance_quartiles")}))
+print(json.dumps({k: summary[k] for k in ("units", "stayed", "unseated", "resistance_median", "resistance_quartiles")}))
 PY

@@ -28,9 +28,9 @@ namespace {
 constexpr double kDn = 0.04; // m
 
 // A dry scene: a `cot` slope, stacks at (s, y) = (0.15, 0) and (0.17, 0.05) m,
-// each a held cube 1.5 mm clear of the face and a free cube 5 mm clear of it (as scenes/tilt_cube_pair.toml)
-// (the 47-sphere clump's spheres stand up to 1.1 mm out of its faces).
-fs::path pull_scene(const fs::path &dir, double cot) {
+// each a held cube 1.5 mm clear of the face and a free cube `drop` m clear of it (5 mm as
+// scenes/tilt_cube_pair.toml; the 47-sphere clump's spheres stand up to 1.1 mm out of its faces).
+fs::path pull_scene(const fs::path &dir, double cot, double drop = 0.005) {
     const double a = std::atan2(1.0, cot);
     const double along[3] = {std::cos(a), 0.0, std::sin(a)}, normal[3] = {-std::sin(a), 0.0, std::cos(a)};
     std::ostringstream s;
@@ -45,7 +45,7 @@ fs::path pull_scene(const fs::path &dir, double cot) {
       << cot << "\nheight = " << 0.3 / cot << "\nwidth = 0.5\nmaterial = \"concrete\"\n";
     const double quat[4] = {std::cos(a / 2), 0.0, -std::sin(a / 2), 0.0}; // bottom face on the face
     for (const auto &[sv, y] : {std::pair{0.15, 0.0}, std::pair{0.17, 0.05}})
-        for (const double n : {0.5 * kDn + 0.0015, 1.5 * kDn + 0.0065}) {
+        for (const double n : {0.5 * kDn + 0.0015, 1.5 * kDn + 0.0015 + drop}) {
             const bool held = n < kDn;
             s << "[[body]]\nunit = \"cube\"\nposition = [" << sv * along[0] + n * normal[0] << ", " << y
               << ", " << sv * along[2] + n * normal[2] << "]\norientation = [" << quat[0] << ", 0.0, "
@@ -53,16 +53,18 @@ fs::path pull_scene(const fs::path &dir, double cot) {
             if (held)
                 s << "fixed_translation = [true, true, true]\nfixed_rotation = [true, true, true]\n";
         }
-    const fs::path path = dir / ("pull_pair_" + std::to_string(static_cast<int>(cot)) + ".toml");
+    const fs::path path = dir / ("pull_pair_" + std::to_string(static_cast<int>(cot)) + "_" +
+                                 std::to_string(static_cast<int>(drop * 1e4)) + ".toml");
     std::ofstream(path) << s.str();
     return path;
 }
 
-armour_test::SceneRun pull(double cot, const std::string &sets, const std::string &name) {
+armour_test::SceneRun pull(double cot, const std::string &sets, const std::string &name,
+                           double drop = 0.005) {
     const fs::path dir =
         fs::temp_directory_path() / ("armour_test_pull_scenes_" + std::to_string(::getpid()));
     fs::create_directories(dir);
-    return armour_test::run_scene(ARMOUR_EXE, pull_scene(dir, cot), name,
+    return armour_test::run_scene(ARMOUR_EXE, pull_scene(dir, cot, drop), name,
                                   sets + " --cache '" + std::string(ARMOUR_TEST_CACHE) + "'");
 }
 
@@ -106,6 +108,22 @@ TEST(PullAnalysis, AClumpOnAClumpLiftsOffAtItsWeightOnAFlatFace) {
     EXPECT_NEAR(r.summary["pull_lone_unit_lift"].get<double>(), std::cos(std::atan(0.01)), 1e-9);
 }
 
+// A unit that the start itself moves from its seat is not a unit that held nothing: the free
+// cube starts 15 mm (0.375 Dn) above its bed, falls more than 0.25 Dn during the seat wait and is
+// counted as unseated, not pulled and not given a resistance of 0.
+TEST(PullAnalysis, AUnitTheStartUnseatsIsCountedApartNotAsHoldingNothing) {
+    const auto r = pull(100.0, "", "pull_unseated", 0.015);
+    ASSERT_EQ(r.status, 0) << r.output;
+    ASSERT_EQ(r.summary.value("pull_units", -1), 1) << r.summary.dump(2);
+    EXPECT_EQ(r.summary["pull_unseated"], 1);
+    EXPECT_EQ(r.summary["pull_stayed"], 0);
+    EXPECT_TRUE(r.summary["pull_resistance_median"].is_null()) << r.summary.dump(2);
+    EXPECT_NEAR(r.summary["pull_wait"].get<double>(), 5.0 * std::sqrt(kDn / 9.80665), 1e-3);
+    const std::string csv = armour_test::read_text(r.out / "pull.csv");
+    EXPECT_NE(csv.find("\n1,"), std::string::npos) << csv;
+    EXPECT_NE(csv.find(",,,0,1\n"), std::string::npos) << csv; // no resistance, not stayed, unseated
+}
+
 // A coupled scene sets its units' loads itself: the pull is refused before anything runs, and
 // so is a pull without its rate.
 TEST(PullAnalysis, IsRefusedOnAFluidSceneAndWithoutItsRate) {
@@ -132,4 +150,10 @@ TEST(PullAnalysis, IsRefusedOnAFluidSceneAndWithoutItsRate) {
     EXPECT_NE(short_run.output.find("key 'analysis.pull_max': must be reached within run.duration = 2 s"),
               std::string::npos)
         << short_run.output;
+    // Long enough for pull_max / pull_rate (3 s) but not for the seat wait before it (0.32 s).
+    const auto no_wait = armour_test::run_scene(ARMOUR_EXE, pull_scene(dir, 3.0), "pull_no_wait",
+                                                "--set run.duration=3.1 --dry-run");
+    EXPECT_EQ(no_wait.status, 2);
+    EXPECT_NE(no_wait.output.find("pull needs run.duration >= 3.319"), std::string::npos) << no_wait.output;
+    EXPECT_FALSE(fs::exists(no_wait.out));
 }
