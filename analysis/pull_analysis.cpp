@@ -17,21 +17,22 @@
 //     chosen from the layer as the run starts, which should be at rest (a
 //     settled scene).
 //
-//     The seat: nothing is pulled for the first 5 (Dn / |g|)^1/2 of the
-//     largest unit (0.32 s for 4 cm cubes), so that a layer settled under
-//     buoyancy takes its full dry weight first. A unit that has moved 0.25 Dn
-//     by then, or is not still then, was unseated by the start itself: it is
-//     not pulled, and is counted apart (pull_unseated), not as a resistance
-//     of 0. The others are pulled from where they sit at the end of the wait.
+//     The seat: nothing is pulled for the first wait = 5 (Dn / |g|)^1/2 of
+//     the largest unit (0.32 s for 4 cm cubes), so that a layer settled
+//     under buoyancy takes its full dry weight first. Each unit is seated at
+//     its first still sample (centre slower than 5 mm/s, turning slower than
+//     0.05 rad/s) from then on; one that moves 0.25 Dn before it is seated,
+//     or is not still by twice the wait, was unseated by the start itself:
+//     it is not pulled, and is counted apart (pull_unseated), not as a
+//     resistance of 0.
 //
-//     The pull on each seated unit: F = min(pull_rate (t - wait), pull_max)
+//     The pull on each seated unit: F = min(pull_rate (t - t_seat), pull_max)
 //     m |g|, at its centre of mass, along the face's outward normal turned by
 //     pull_angle toward down the face; it is let go (zero) once the unit has
 //     moved 0.5 Dn. Its resistance is the pull that acted on it up to the
-//     last sample at which it was still (centre slower than 5 mm/s, turning
-//     slower than 0.05 rad/s) before its centre first moved 0.25 Dn from its
-//     seat (the pull is set at every sample, so this is the applied pull
-//     when records are no further apart than 0.01 / pull_rate s): soft contacts
+//     last sample at which it was still before its centre first moved 0.25 Dn
+//     from its seat (the pull is set at every sample, so this is the applied
+//     pull when records are no further apart than 0.01 / pull_rate s): soft contacts
 //     creep at 0.1-1 mm/s while they hold, and a unit that has let go moves
 //     at 5 mm/s within (2 v / (pull_rate g))^1/2 = 0.06 s of letting go at
 //     pull_rate 0.25/s, a pull 0.016 weights past the onset. A unit that
@@ -63,7 +64,7 @@
 //     pull_round = 0     # the first set of units
 //
 //     on a dry scene with a slope wall and a settled layer (run.duration at
-//     least the wait plus pull_max / pull_rate); bench/run_pull_test.sh makes the dry scene
+//     least twice the wait, pull_max / pull_rate and a second); bench/run_pull_test.sh makes the dry scene
 //     from a settled one and runs every round.
 #include "analysis.h"
 
@@ -103,9 +104,10 @@ struct PulledUnit {
     int body = 0;
     Eigen::Vector3d start, local; // m: world centre (at the seat once seated), and (s, y, n) on the face
     double Dn = 0.0, weight = 0.0;
-    double last_still = 0.0;          // weights
-    std::optional<double> moved_at;   // weights, the pull when it had moved kMoved Dn
-    std::optional<double> resistance; // weights, the pull it held last
+    double seat_time = 0.0;               // s: its pull starts here
+    double last_still = 0.0, acted = 0.0; // weights: at the last still sample; up to the last sample
+    std::optional<double> moved_at;       // weights, the pull when it had moved kMoved Dn
+    std::optional<double> resistance;     // weights, the pull it held last
     bool seated = false, unseated = false, let_go = false;
 };
 
@@ -167,7 +169,7 @@ class PullAnalysis : public Analysis {
 
     double before_advance(double t, RigidBodyEngine &engine) override {
         for (const PulledUnit &u : units_) {
-            const double f = u.let_go || u.unseated ? 0.0 : pull(t) * u.weight;
+            const double f = u.seated && !u.let_go ? pull(u, t) * u.weight : 0.0;
             engine.set_external_load(u.body, f * direction_, Eigen::Vector3d::Zero());
         }
         return 0.01 / rate_; // the pull grows by at most 0.01 weights between updates
@@ -188,19 +190,23 @@ class PullAnalysis : public Analysis {
             }
             chosen_ = true;
         }
-        const double p = pull(previous_); // what acted since the last sample (set there)
         for (PulledUnit &u : units_) {
             if (u.unseated)
                 continue;
             const BodyState &s = states[static_cast<std::size_t>(u.body)];
             const bool still = s.velocity.norm() < kStillSpeed && s.angular_velocity.norm() < kStillTurn;
             if (!u.seated) {
-                u.unseated = (s.pose.position - u.start).norm() / u.Dn >= kMoved || (t >= wait_ && !still);
-                u.seated = !u.unseated && t >= wait_;
-                if (u.seated)
+                u.unseated =
+                    (s.pose.position - u.start).norm() / u.Dn >= kMoved || (t >= 2.0 * wait_ && !still);
+                u.seated = !u.unseated && t >= wait_ && still;
+                if (u.seated) {
                     u.start = s.pose.position;
+                    u.seat_time = t;
+                }
                 continue;
             }
+            const double p = pull(u, previous_); // what acted since the last sample (set there)
+            u.acted = p;
             const double moved = (s.pose.position - u.start).norm() / u.Dn;
             if (!u.moved_at) {
                 if (still)
@@ -213,10 +219,10 @@ class PullAnalysis : public Analysis {
             u.let_go = u.let_go || moved >= kLetGo;
         }
         previous_ = t;
-        // Every unit let go, or the full pull held for a second: nothing more to learn.
-        finished_ = std::all_of(units_.begin(), units_.end(),
-                                [](const PulledUnit &u) { return u.let_go || u.unseated; }) ||
-                    t >= wait_ + max_ / rate_ + 1.0;
+        // Every unit let go or unseated, or every seated one held the full pull for a second.
+        finished_ = std::all_of(units_.begin(), units_.end(), [&](const PulledUnit &u) {
+            return u.let_go || u.unseated || (u.seated && t >= u.seat_time + max_ / rate_ + 1.0);
+        });
     }
 
     bool finished() const override { return finished_; }
@@ -231,7 +237,7 @@ class PullAnalysis : public Analysis {
         for (const PulledUnit &u : units_) {
             const bool stays = u.seated && !u.moved_at;
             if (u.seated)
-                held.push_back(u.resistance.value_or(pull(previous_)));
+                held.push_back(u.resistance.value_or(u.acted));
             stayed += stays ? 1 : 0;
             unseated += u.seated ? 0 : 1;
             csv << u.body << ',' << u.local.x() / u.Dn << ',' << u.local.y() / u.Dn << ','
@@ -267,7 +273,9 @@ class PullAnalysis : public Analysis {
     }
 
   private:
-    double pull(double t) const { return std::clamp(rate_ * (t - wait_), 0.0, max_); } // weights
+    double pull(const PulledUnit &u, double t) const { // weights
+        return std::clamp(rate_ * (t - u.seat_time), 0.0, max_);
+    }
 
     const SceneSetup &setup_;
     SlopeFrame frame_;
@@ -295,11 +303,12 @@ AnalysisStyle pull_analysis_style() {
             [](const Scene &scene, const SceneSetup &setup) {
                 if (!slope_frame(scene))
                     return std::string("pull needs a wall of type \"slope\"");
+                // The last unit seated (by twice the wait) must reach pull_max and hold it a second.
                 const double wait = seat_wait(setup, scene.gravity.norm());
-                if (wait + scene.pull_max / scene.pull_rate > scene.duration)
-                    return "pull needs run.duration >= " +
-                           number_text(wait + scene.pull_max / scene.pull_rate) + " s: the seat wait (" +
-                           number_text(wait) + " s) and pull_max / pull_rate";
+                const double needed = 2.0 * wait + scene.pull_max / scene.pull_rate + 1.0;
+                if (needed > scene.duration)
+                    return "pull needs run.duration >= " + figure_text(needed) + " s: twice the seat wait (" +
+                           figure_text(wait) + " s), pull_max / pull_rate and a second at pull_max";
                 return std::string();
             }};
 }

@@ -37,7 +37,8 @@ sets=()
 read -ra kvs <<<"${opt_sets:-}"
 for kv in "${kvs[@]}"; do sets+=(--set "$kv"); done
 # A folder resumed must hold a test with the same options (its rounds are kept as they are).
-settings="scene=$(cd "$(dirname "$opt_scene")" && pwd)/$(basename "$opt_scene") engine=$engine rate=$rate max=$max angle=$angle sets=${opt_sets:-}"
+# (`pull=seated`: the analysis that waits for each unit's seat; folders from before it are refused.)
+settings="pull=seated scene=$(cd "$(dirname "$opt_scene")" && pwd)/$(basename "$opt_scene") engine=$engine rate=$rate max=$max angle=$angle sets=${opt_sets:-}"
 if [ -f "$out/settings.txt" ] && [ "$(cat "$out/settings.txt")" != "$settings" ]; then
   bench_fail "--out $out holds a pull test with other options ($(cat "$out/settings.txt")): use a new --out"
 fi
@@ -49,8 +50,8 @@ awk 'BEGIN { drop = 0 }
      /^[ \t]*\[/ { name = $0; gsub(/[][ \t]/, "", name); sub(/#.*/, "", name)
                    drop = (name == "fluid" || name == "waves" || name == "porous" || name == "series" || name == "refine") }
      !drop' "$opt_scene" >"$out/dry.toml"
-# The pull waits for the units to seat (5 (Dn/g)^1/2: 0.32 s for 4 cm cubes), rises to --max and
-# holds it a second; the analysis ends the run there, so the 5 s spare for the wait cost nothing.
+# Each unit's pull waits for its seat (up to twice 5 (Dn/g)^1/2: 0.64 s for 4 cm cubes), rises to
+# --max and holds it a second; the analysis ends the run there, so the spare 5 s cost nothing.
 duration="$(awk -v m="$max" -v r="$rate" 'BEGIN { print m / r + 6 }')"
 
 run_round() {
@@ -105,11 +106,11 @@ held = sorted(float(r["resistance_weights"]) if r["resistance_weights"] else pul
 q = lambda p: held[int(p * (len(held) - 1) + 0.5)] if held else None
 with open(f"{out}/pull.csv", "w", newline="") as f:
     f.write("# pull test: forces in the unit's own weight m|g| (-); s, y, n: on the slope face in Dn (-)\n")
-    w = csv.DictWriter(f, fieldnames=list(rows[0].keys()) if rows else ["round"])
+    w = csv.DictWriter(f, fieldnames=list(dict.fromkeys(k for r in rows + unseated for k in r)))
     w.writeheader()
     w.writerows(rows + unseated)
 summary = {"command": "bench/run_pull_test.sh", "engine": engine, "sets": sys.argv[6].split(), "pull_rate": rate, "pull_max": pull_max,
-           "pull_angle_deg": angle, "units": len(rows), "rounds": len({r["round"] for r in rows}),
+           "pull_angle_deg": angle, "units": len(rows), "rounds": len({r["round"] for r in rows + unseated}),
            "stayed": sum(1 for r in rows if r["stayed"] == "1"), "unseated": len(unseated),
            "resistance_median": q(0.5), "resistance_quartiles": [q(0.25), q(0.75)],
            "resistance_range": [held[0], held[-1]],
