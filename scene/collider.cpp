@@ -129,6 +129,7 @@ Collider make_collider(const UnitTemplate &unit, ShapeModel model, double Dn) {
             if (n.norm() <= 0.0)
                 continue;
             planes.push_back({n.normalized(), n.normalized().dot(a)});
+            c.corners.insert(c.corners.end(), {a, b, d});
             const double longest = std::max({(b - a).norm(), (d - b).norm(), (a - d).norm()});
             const int k = std::max(1, static_cast<int>(std::ceil(longest / spacing)));
             for (int i = 0; i <= k; ++i)
@@ -167,6 +168,23 @@ std::pair<double, int> body_wall_penetration(const BodyInit &b, const UnitTempla
     return c.spheres ? wall_penetration(b, unit.clump, walls) : exact_wall_penetration(b, c, walls);
 }
 
+bool none_deeper_than(const BodyInit &from, const Collider &cf, const BodyInit &to, const Collider &ct,
+                      double depth) {
+    // from's unit frame into to's: p_to = turn p_from + shift
+    const Eigen::Matrix3d turn = (to.pose.orientation.inverse() * from.pose.orientation).toRotationMatrix();
+    const Eigen::Vector3d shift = to.pose.orientation.inverse() * (from.pose.position - to.pose.position);
+    const auto beyond = [&](const HalfSpace &h) { // every corner of `from` at most `depth` inside h
+        return std::all_of(cf.corners.begin(), cf.corners.end(), [&](const Eigen::Vector3d &v) {
+            return h.d - h.n.dot(turn * v + shift) <= depth;
+        });
+    };
+    if (std::all_of(ct.parts.begin(), ct.parts.end(),
+                    [&](const auto &part) { return std::any_of(part.begin(), part.end(), beyond); }))
+        return true;
+    return std::none_of(cf.points.begin(), cf.points.end(),
+                        [&](const Eigen::Vector3d &q) { return depth_inside(ct, turn * q + shift) > depth; });
+}
+
 bool closer_than(const BodyInit &a, const UnitTemplate &unit_a, const Collider &ca, const BodyInit &b,
                  const UnitTemplate &unit_b, const Collider &cb, double clearance) {
     if (ca.spheres) {
@@ -179,16 +197,7 @@ bool closer_than(const BodyInit &a, const UnitTemplate &unit_a, const Collider &
         }
         return false;
     }
-    const auto into = [&](const BodyInit &from, const Collider &points, const BodyInit &to,
-                          const Collider &parts) {
-        for (const auto &q : points.points)
-            if (depth_inside(parts, to.pose.orientation.inverse() *
-                                        (from.pose.position + from.pose.orientation * q - to.pose.position)) >
-                -clearance)
-                return true;
-        return false;
-    };
-    return into(a, ca, b, cb) || into(b, cb, a, ca);
+    return !none_deeper_than(a, ca, b, cb, -clearance) || !none_deeper_than(b, cb, a, ca, -clearance);
 }
 
 bool closer_than(const BodyInit &a, const BodyInit &b, const UnitTemplate &unit, const Collider &c,

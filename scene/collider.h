@@ -24,6 +24,7 @@ struct Collider {
     bool spheres = true;                       // the clump (else the exact convex parts)
     std::vector<Eigen::Vector3d> points;       // m, unit frame: the parts' surface, <= 0.05 Dn apart
     std::vector<std::vector<HalfSpace>> parts; // the convex parts as half-spaces
+    std::vector<Eigen::Vector3d> corners; // m, unit frame: the parts' vertices (points lie in their hull)
 };
 
 Collider make_collider(const UnitTemplate &unit, ShapeModel model, double Dn);
@@ -34,6 +35,14 @@ double depth_outside_clump(const Clump &clump, const std::vector<Eigen::Vector3d
 
 // m: how deep point p (unit frame) lies inside the collider's parts (<= 0: outside).
 double depth_inside(const Collider &c, const Eigen::Vector3d &p);
+
+// Whether posed body `from`'s surface points (exact collider cf) all lie no
+// deeper than `depth` (m; negative: that far outside) in posed body `to`'s
+// parts (exact collider ct): the point-by-point test, exactly, but decided
+// at once where each of to's parts has a face plane that every one of
+// from's corners stands beyond (the points lie in the corners' hull).
+bool none_deeper_than(const BodyInit &from, const Collider &cf, const BodyInit &to, const Collider &ct,
+                      double depth);
 
 // m: how far world point p lies behind wall w's surface (<= 0: on the
 // bodies' side). The nearest triangles decide, their normals summed where

@@ -522,17 +522,8 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
                 const double tolerance = std::max(std::min(resting_exact(a.unit), resting_exact(b.unit)),
                                                   beyond_clump[static_cast<std::size_t>(a.unit)] +
                                                       beyond_clump[static_cast<std::size_t>(b.unit)]);
-                const auto into = [&](const BodyInit &from, const Collider &points, const BodyInit &to,
-                                      const Collider &parts) {
-                    for (const auto &q : points.points) {
-                        const Eigen::Vector3d world = from.pose.position + from.pose.orientation * q;
-                        if (depth_inside(parts, to.pose.orientation.inverse() * (world - to.pose.position)) >
-                            tolerance)
-                            return true;
-                    }
-                    return false;
-                };
-                overlap = into(a, xa, b, xb) || into(b, xb, a, xa);
+                overlap =
+                    !none_deeper_than(a, xa, b, xb, tolerance) || !none_deeper_than(b, xb, a, xa, tolerance);
             }
             if (overlap)
                 problems.push_back(std::to_string(i) + "-" + std::to_string(j));

@@ -199,6 +199,40 @@ TEST(RandomPlacement, ExactShapesAreKeptApartToo) {
     EXPECT_GE(lowest, kGap - 1e-9);
 }
 
+// none_deeper_than (collider.h) decides most pairs of exact shapes by one face plane with every
+// corner of the other unit beyond it; where it does, the point-by-point test it stands for must say
+// the same. 2000 cube pairs in random poses 0.8-2 Dn apart, at the clearances placement and the
+// overlap check use (-0.02 Dn, +0.01 Dn): the two agree on every one, and both kinds of answer occur.
+TEST(RandomPlacement, ThePlaneShortcutAgreesWithThePointByPointTest) {
+    const armour::SceneSetup setup = random_setup(6, {"run.engine=\"bullet\"", "pattern.0.rows=1"});
+    const double Dn = setup.unit_Dn[0];
+    const armour::Collider c = armour::make_collider(setup.units[0], armour::ShapeModel::convex_hulls, Dn);
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    const auto random_pose = [&](double distance) {
+        armour::BodyInit b;
+        b.pose.orientation = Eigen::Quaterniond(Eigen::Vector4d(u(rng), u(rng), u(rng), u(rng)).normalized());
+        b.pose.position = distance * Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
+        return b;
+    };
+    int near = 0, apart = 0;
+    for (int k = 0; k < 2000; ++k) {
+        armour::BodyInit a = random_pose(0.0), b = random_pose(Dn * (1.4 + 0.6 * u(rng)));
+        for (const double depth : {-0.02 * Dn, 0.01 * Dn}) {
+            bool brute = true; // every surface point of a no deeper than `depth` in b
+            for (const Eigen::Vector3d &q : c.points)
+                brute = brute && armour::depth_inside(c, b.pose.orientation.inverse() *
+                                                             (a.pose.position + a.pose.orientation * q -
+                                                              b.pose.position)) <= depth;
+            ASSERT_EQ(armour::none_deeper_than(a, c, b, c, depth), brute)
+                << "pair " << k << " depth " << depth;
+            (brute ? apart : near) += 1;
+        }
+    }
+    EXPECT_GT(near, 100);
+    EXPECT_GT(apart, 100);
+}
+
 namespace {
 
 // depth_behind_wall (collider.h), which checks a unit's exact shape against
