@@ -188,8 +188,14 @@ bool none_deeper_than(const BodyInit &from, const Collider &cf, const BodyInit &
 bool closer_than(const BodyInit &a, const UnitTemplate &unit_a, const Collider &ca, const BodyInit &b,
                  const UnitTemplate &unit_b, const Collider &cb, double clearance) {
     if (ca.spheres) {
+        double reach_b = 0.0; // m: b's spheres all lie within this of its centre
+        for (const auto &sb : unit_b.clump)
+            reach_b = std::max(reach_b, sb.center.norm() + sb.radius);
         for (const auto &sa : unit_a.clump) {
             const Eigen::Vector3d centre_a = a.pose.position + a.pose.orientation * sa.center;
+            // No sphere of b can come that close (1 nm spare keeps the answer the pairs' own).
+            if ((centre_a - b.pose.position).norm() >= sa.radius + reach_b + clearance + 1e-9)
+                continue;
             for (const auto &sb : unit_b.clump)
                 if ((centre_a - b.pose.position - b.pose.orientation * sb.center).norm() <
                     sa.radius + sb.radius + clearance)
