@@ -129,7 +129,6 @@ Collider make_collider(const UnitTemplate &unit, ShapeModel model, double Dn) {
             if (n.norm() <= 0.0)
                 continue;
             planes.push_back({n.normalized(), n.normalized().dot(a)});
-            c.corners.insert(c.corners.end(), {a, b, d});
             const double longest = std::max({(b - a).norm(), (d - b).norm(), (a - d).norm()});
             const int k = std::max(1, static_cast<int>(std::ceil(longest / spacing)));
             for (int i = 0; i <= k; ++i)
@@ -137,6 +136,7 @@ Collider make_collider(const UnitTemplate &unit, ShapeModel model, double Dn) {
                     c.points.push_back(a + (b - a) * (double(i) / k) + (d - a) * (double(j) / k));
         }
         c.parts.push_back(std::move(planes));
+        c.corners.insert(c.corners.end(), part.vertices.begin(), part.vertices.end());
     }
     return c;
 }
