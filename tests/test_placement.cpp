@@ -78,6 +78,15 @@ double tilt(const Eigen::Quaterniond &orientation, const Eigen::Vector3d &normal
     return std::acos(std::min(1.0, largest));
 }
 
+// A pose turned at random, its centre `distance` m from the origin in a random direction.
+armour::BodyInit random_pose(std::mt19937_64 &rng, double distance) {
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    armour::BodyInit b;
+    b.pose.orientation = Eigen::Quaterniond(Eigen::Vector4d(u(rng), u(rng), u(rng), u(rng)).normalized());
+    b.pose.position = distance * Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
+    return b;
+}
+
 } // namespace
 
 // The same seed gives the same poses, bit for bit; another seed other ones.
@@ -209,15 +218,9 @@ TEST(RandomPlacement, ThePlaneShortcutAgreesWithThePointByPointTest) {
     const armour::Collider c = armour::make_collider(setup.units[0], armour::ShapeModel::convex_hulls, Dn);
     std::mt19937_64 rng(7);
     std::uniform_real_distribution<double> u(-1.0, 1.0);
-    const auto random_pose = [&](double distance) {
-        armour::BodyInit b;
-        b.pose.orientation = Eigen::Quaterniond(Eigen::Vector4d(u(rng), u(rng), u(rng), u(rng)).normalized());
-        b.pose.position = distance * Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
-        return b;
-    };
     int near = 0, apart = 0;
     for (int k = 0; k < 2000; ++k) {
-        armour::BodyInit a = random_pose(0.0), b = random_pose(Dn * (1.4 + 0.6 * u(rng)));
+        const armour::BodyInit a = random_pose(rng, 0.0), b = random_pose(rng, Dn * (1.4 + 0.6 * u(rng)));
         for (const double depth : {-0.02 * Dn, 0.01 * Dn}) {
             bool brute = true; // every surface point of a no deeper than `depth` in b
             for (const Eigen::Vector3d &q : c.points)
@@ -243,15 +246,9 @@ TEST(RandomPlacement, TheClumpReachShortcutAgreesWithEverySpherePair) {
     const armour::Collider c = armour::make_collider(unit, armour::ShapeModel::sphere_clumps, Dn);
     std::mt19937_64 rng(11);
     std::uniform_real_distribution<double> u(-1.0, 1.0);
-    const auto random_pose = [&](double distance) {
-        armour::BodyInit b;
-        b.pose.orientation = Eigen::Quaterniond(Eigen::Vector4d(u(rng), u(rng), u(rng), u(rng)).normalized());
-        b.pose.position = distance * Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
-        return b;
-    };
     int near = 0, apart = 0;
     for (int k = 0; k < 2000; ++k) {
-        const armour::BodyInit a = random_pose(0.0), b = random_pose(Dn * (1.4 + 0.6 * u(rng)));
+        const armour::BodyInit a = random_pose(rng, 0.0), b = random_pose(rng, Dn * (1.4 + 0.6 * u(rng)));
         for (const double clearance : {0.0, 0.02 * Dn}) {
             bool brute = false;
             for (const auto &sa : unit.clump)
