@@ -112,11 +112,20 @@ bool consistently_wound(const TriangleMesh &surface) {
     return std::adjacent_find(runs.begin(), runs.end()) == runs.end();
 }
 
+double bounding_radius(const Clump &clump) {
+    double r = 0.0;
+    for (const auto &s : clump)
+        r = std::max(r, s.center.norm() + s.radius);
+    return r;
+}
+
 Collider make_collider(const UnitTemplate &unit, ShapeModel model, double Dn) {
     Collider c;
     c.spheres = model == ShapeModel::sphere_clumps;
-    if (c.spheres)
+    if (c.spheres) {
+        c.reach = bounding_radius(unit.clump);
         return c;
+    }
     const std::vector<TriangleMesh> parts =
         unit.convex_parts.empty() ? std::vector<TriangleMesh>{unit.mesh} : unit.convex_parts;
     const double spacing = 0.05 * Dn;
@@ -188,13 +197,10 @@ bool none_deeper_than(const BodyInit &from, const Collider &cf, const BodyInit &
 bool closer_than(const BodyInit &a, const UnitTemplate &unit_a, const Collider &ca, const BodyInit &b,
                  const UnitTemplate &unit_b, const Collider &cb, double clearance) {
     if (ca.spheres) {
-        double reach_b = 0.0; // m: b's spheres all lie within this of its centre
-        for (const auto &sb : unit_b.clump)
-            reach_b = std::max(reach_b, sb.center.norm() + sb.radius);
         for (const auto &sa : unit_a.clump) {
             const Eigen::Vector3d centre_a = a.pose.position + a.pose.orientation * sa.center;
             // No sphere of b can come that close (1 nm spare keeps the answer the pairs' own).
-            if ((centre_a - b.pose.position).norm() >= sa.radius + reach_b + clearance + 1e-9)
+            if ((centre_a - b.pose.position).norm() >= sa.radius + cb.reach + clearance + 1e-9)
                 continue;
             for (const auto &sb : unit_b.clump)
                 if ((centre_a - b.pose.position - b.pose.orientation * sb.center).norm() <

@@ -113,13 +113,6 @@ void add_quad(TriangleMesh &m, const Eigen::Vector3d &a, const Eigen::Vector3d &
     m.triangles.push_back({base, base + 2, base + 3});
 }
 
-double bounding_radius(const Clump &clump) {
-    double r = 0.0;
-    for (const auto &s : clump)
-        r = std::max(r, s.center.norm() + s.radius);
-    return r;
-}
-
 Eigen::Quaterniond random_orientation(std::mt19937_64 &rng) {
     std::normal_distribution<double> gauss(0.0, 1.0);
     Eigen::Quaterniond q(gauss(rng), gauss(rng), gauss(rng), gauss(rng));
@@ -244,7 +237,7 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
     }
     // The radius within which a unit's collided shape lies (drops keep units this far apart).
     const auto collided_radius = [&](int unit) {
-        return colliders[unit].spheres ? bounding_radius(setup.units[unit].clump) : reach[unit];
+        return colliders[unit].spheres ? colliders[unit].reach : reach[unit];
     };
     auto unit_index = [&](const std::string &name) {
         return static_cast<int>(std::find(unit_names.begin(), unit_names.end(), name) - unit_names.begin());
