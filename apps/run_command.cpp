@@ -14,8 +14,8 @@
 #include "output_folder.h"
 #include "run_parts.h"
 #include "scene_keys.h"
-#include "scene_text.h"
 #include "scene_setup.h"
+#include "scene_text.h"
 #include "series_run.h"
 #include "stl_io.h"
 
@@ -485,9 +485,21 @@ Scene settle_before_coupling(const RunRequest &r, OutputFolder &folder, const Sc
                      "m/s, 1 %% of Dn per second): the layer has not settled and will readjust in the "
                      "water; raise fluid.settle_time\n",
                      fluid.settle_time, speed, still);
-    Scene settled = load_scene(settled_file.string());
-    setup = build_scene(settled, r.cache.empty() ? default_cache_dir() : r.cache, false);
-    return settled;
+    // A settle cut short hands over a pile still falling: units above the
+    // domain or overlapping. Say so in the user's own terms.
+    try {
+        Scene settled = load_scene(settled_file.string());
+        setup = build_scene(settled, r.cache.empty() ? default_cache_dir() : r.cache, false);
+        return settled;
+    } catch (const InputError &e) {
+        if (speed <= still)
+            throw;
+        char moving[64];
+        std::snprintf(moving, sizeof moving, "%.3g", speed);
+        throw InputError(scene.file + ": key 'fluid.settle_time': after " + number_text(fluid.settle_time) +
+                         " s a unit still moved at " + moving + " m/s and the settled pose is refused (" +
+                         e.what() + "); raise fluid.settle_time");
+    }
 }
 
 // A run that asks for checkpoints but will write none (they fall at

@@ -15,12 +15,16 @@
 # the pressure solver (p_rgh's GAMG tolerance, absolute, and relTol of its
 # non-final correctors; the final's tolerance follows) and PIMPLE's momentum
 # predictor (fluid.pressure_tolerance, pressure_relative_tolerance and
-# momentum_predictor, which a resume may not change). The rows run one after
+# momentum_predictor, which a resume may not change), and the free surface's
+# advection: interIsoFoam's geometric isoAdvector (stock in v1912; no scene
+# key holds it) instead of interFoam's MULES, with the isoAdvector settings
+# of OpenFOAM's own wave tutorial. The rows run one after
 # another in one call: compare their ratios. Writes OUT/summary.json (SI) and
 # keeps each row's solver log (OUT/ROW.log.interFoam).
 # Usage: bash bench/run_courant_window.sh RUN_DIR [--checkpoint T] [--seconds S]
 #          [--max-courant C] [--max-interface-courant C] [--pressure-tolerance T]
-#          [--pressure-rel-tol R] [--momentum-predictor yes|no] [--np N] [--build DIR] [--out DIR]
+#          [--pressure-rel-tol R] [--momentum-predictor yes|no] [--advection MULES|isoAdvector]
+#          [--np N] [--build DIR] [--out DIR]
 #   RUN_DIR      an `armour run` output folder with checkpoints (serial or parallel)
 #   --checkpoint the checkpoint's time in s, as its folder is named (default the latest)
 #   --seconds    simulated seconds of the window (default 2)
@@ -29,14 +33,15 @@
 #                and relTol (default: as the run's case has them; the template's
 #                1e-7 and 0.01)
 #   --momentum-predictor  the second row's PIMPLE momentumPredictor (default: as the run's)
+#   --advection  the second row's free-surface advection (default MULES, the run's)
 #   --np         ranks of both rows (default the checkpoint's)
 #   --out        default ${TMPDIR:-/tmp}/armour-bench/courant_window
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 bench_name=courant_window bench_targets="armour armourFoamCoupling armourWaves"
-bench_options="checkpoint seconds max-courant max-interface-courant pressure-tolerance pressure-rel-tol momentum-predictor np"
+bench_options="checkpoint seconds max-courant max-interface-courant pressure-tolerance pressure-rel-tol momentum-predictor advection np"
 opt_checkpoint="" opt_seconds=2 opt_max_courant=1.0 opt_max_interface_courant=0.5 opt_np=""
-opt_pressure_tolerance="" opt_pressure_rel_tol="" opt_momentum_predictor=""
+opt_pressure_tolerance="" opt_pressure_rel_tol="" opt_momentum_predictor="" opt_advection=MULES
 source "$root/bench/common.sh"
 bench_window_args "$@"
 start="$opt_checkpoint"
@@ -70,6 +75,21 @@ if [ -n "$opt_momentum_predictor" ]; then
   case "$opt_momentum_predictor" in yes | no) ;; *) bench_fail "--momentum-predictor: yes or no (got $opt_momentum_predictor)" ;; esac
   bench_case_edit="${bench_case_edit:+$bench_case_edit && }printf 'PIMPLE\\n{\\n    momentumPredictor $opt_momentum_predictor;\\n}\\n' >> system/fvSolution"
 fi
+# isoAdvector: interIsoFoam under interFoam's name, first on PATH for this row
+# only (armour starts "interFoam"), and its tolerances appended to alpha.water's
+# block (OpenFOAM merges a repeated dictionary; the MULES keys it ignores).
+case "$opt_advection" in
+  MULES) ;;
+  isoAdvector)
+    command -v interIsoFoam >/dev/null || bench_fail "--advection isoAdvector: interIsoFoam not found (OpenFOAM v1912)"
+    mkdir -p "$out/isoAdvector_bin"
+    printf '#!/bin/sh\nexec interIsoFoam "$@"\n' >"$out/isoAdvector_bin/interFoam"
+    chmod +x "$out/isoAdvector_bin/interFoam"
+    bench_case_edit="${bench_case_edit:+$bench_case_edit && }printf 'solvers\\n{\\n    \"alpha.water.*\"\\n    {\\n        isoFaceTol 1e-10;\\n        surfCellTol 1e-6;\\n        nAlphaBounds 3;\\n        snapTol 1e-12;\\n        clip true;\\n    }\\n}\\n' >> system/fvSolution"
+    ;;
+  *) bench_fail "--advection: MULES or isoAdvector (got $opt_advection)" ;;
+esac
+[ "$opt_advection" = MULES ] || PATH="$out/isoAdvector_bin:$PATH"
 row split --set "fluid.max_courant=$opt_max_courant" --set "fluid.max_interface_courant=$opt_max_interface_courant"
 bench_case_edit=""
 cut -d' ' -f1-3 /proc/loadavg >"$out/loadavg_after"
@@ -98,7 +118,8 @@ def log_figures(row):
     p_rgh = "".join(re.findall(r"^    p_rgh\n    \{(.*?)^    \}", solution, re.M | re.S))
     setting = lambda key: float(re.findall(r"^\s*%s\s+([^;]+);" % key, p_rgh, re.M)[-1])
     predictor = re.findall(r"^\s*momentumPredictor\s+([^;]+);", solution, re.M)[-1]
-    return {"max_courant": limit("maxCo"), "max_interface_courant": limit("maxAlphaCo"),
+    solver = re.search(r"^Exec\s*:\s*(\S+)", text, re.M)
+    return {"solver": solver.group(1) if solver else None, "max_courant": limit("maxCo"), "max_interface_courant": limit("maxAlphaCo"),
             "pressure_tolerance": setting("tolerance"), "pressure_rel_tol": setting("relTol"),
             "momentum_predictor": predictor in ("yes", "on", "true"), "steps": steps,
             "cpu_seconds": cpu[-1] if cpu else None,

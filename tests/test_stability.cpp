@@ -286,6 +286,32 @@ TEST(StabilityCubes, AMissingWaveLibraryIsRefusedBeforeTheSettle) {
         fs::remove_all(run.dir);
 }
 
+// The shipped random layer is dropped into its slots from up to 2 cm above
+// the domain's top: a settle stopped while it falls hands over units outside
+// the domain or overlapping (measured at 0.05-0.15 s). The run stops there
+// with one line naming the user's scene and key, not the settled file alone,
+// and runs no fluid (the settle's own output stays: the layer to look at).
+TEST(StabilityCubes, ASettleCutShortIsRefusedNamingTheSettleTime) {
+    const SceneRun run = armour_test::run_scene(
+        ARMOUR_EXE, std::string(ARMOUR_SOURCE_DIR) + "/scenes/stability_cubes.toml", "stability_short_settle",
+        "--set run.duration=0.05 --set fluid.settle_time=0.01");
+    EXPECT_EQ(run.status, 2) << run.output;
+    const std::string line =
+        "armour: error: " + std::string(ARMOUR_SOURCE_DIR) +
+        "/scenes/stability_cubes.toml: key 'fluid.settle_time': after 0.01 s a unit still moved at ";
+    const std::size_t at = run.output.find(line);
+    ASSERT_NE(at, std::string::npos) << run.output;
+    const std::string error = run.output.substr(at, run.output.find('\n', at) - at);
+    EXPECT_NE(error.find("must lie inside run.domain_min"), std::string::npos) << error;
+    EXPECT_NE(error.find("); raise fluid.settle_time"), std::string::npos) << error;
+    EXPECT_EQ(run.output.find("armour: error:", at + 1), std::string::npos) << run.output;
+    EXPECT_TRUE(fs::exists(run.out / "settle" / "settled.json"));
+    EXPECT_FALSE(fs::exists(run.out / "case"));
+    EXPECT_FALSE(fs::exists(run.out / "summary.json"));
+    if (!HasFailure())
+        fs::remove_all(run.dir);
+}
+
 // The graded mesh (fluid.refine_min/max) must hold every unit and the free
 // surface's band: a box that starts above the lowest rows (the toe at x =
 // 1.40 m), or below the troughs, is refused before anything runs or is
