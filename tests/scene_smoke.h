@@ -10,7 +10,7 @@
 //   and poses exchanged and the analysis fed, which is what the smoke checks;
 // - a settle (fluid.settle_time) runs as shipped where it costs seconds
 //   (armour_slope_waves 1 s, bench_tank_cubes 3 s); stability_cubes' 2.5 s
-//   settle of 99 clumps costs ~4 min here, so it settles 0.1 s (the settle
+//   settle of 99 clumps costs ~4-10 min here, so it settles 0.1 s (the settle
 //   still runs and hands its poses to the coupled run; test_stability runs
 //   the whole settle). Its layer is laid as a grid: each unit starts in its
 //   slot 2 mm off its seat, so at any instant of a short settle the pile is
