@@ -494,11 +494,9 @@ Scene settle_before_coupling(const RunRequest &r, OutputFolder &folder, const Sc
     } catch (const InputError &e) {
         if (speed <= still)
             throw;
-        char moving[64];
-        std::snprintf(moving, sizeof moving, "%.3g", speed);
         throw InputError(scene.file + ": key 'fluid.settle_time': after " + number_text(fluid.settle_time) +
-                         " s a unit still moved at " + moving + " m/s and the settled pose is refused (" +
-                         e.what() + "); raise fluid.settle_time");
+                         " s a unit still moved at " + figure_text(speed) +
+                         " m/s and the settled pose is refused (" + e.what() + "); raise fluid.settle_time");
     }
 }
 

@@ -85,11 +85,11 @@ case "$opt_advection" in
     mkdir -p "$out/isoAdvector_bin"
     printf '#!/bin/sh\nexec interIsoFoam "$@"\n' >"$out/isoAdvector_bin/interFoam"
     chmod +x "$out/isoAdvector_bin/interFoam"
+    PATH="$out/isoAdvector_bin:$PATH"
     bench_case_edit="${bench_case_edit:+$bench_case_edit && }printf 'solvers\\n{\\n    \"alpha.water.*\"\\n    {\\n        isoFaceTol 1e-10;\\n        surfCellTol 1e-6;\\n        nAlphaBounds 3;\\n        snapTol 1e-12;\\n        clip true;\\n    }\\n}\\n' >> system/fvSolution"
     ;;
   *) bench_fail "--advection: MULES or isoAdvector (got $opt_advection)" ;;
 esac
-[ "$opt_advection" = MULES ] || PATH="$out/isoAdvector_bin:$PATH"
 row split --set "fluid.max_courant=$opt_max_courant" --set "fluid.max_interface_courant=$opt_max_interface_courant"
 bench_case_edit=""
 cut -d' ' -f1-3 /proc/loadavg >"$out/loadavg_after"
