@@ -616,6 +616,41 @@ TEST_F(SweepTest, ReportDrawsDamageAgainstVanDerMeerAndHudson) {
     EXPECT_NEAR(hudson, std::cbrt(6.5 * 1.5), 1e-9);
 }
 
+// Two kept curves side by side (studies/compare_curves.py): each curve's
+// units displaced per point and in all against Van der Meer's expected count,
+// with the Poisson chance of so few; a chart; bad input is one error line.
+TEST_F(SweepTest, ComparedCurvesCountEachCurvesUnitsAgainstVanDerMeer) {
+    const std::string header = "case,unit.0.density,seed,status,Ns,N_od,units_displaced,"
+                               "units_displaced_van_der_meer,waves.waves,s_om\n";
+    write(dir_ / "a" / "results.csv", header + "d-2000_seed-1,2000.0,1,done,2.5,0,0,0.5,27,0.03\n"
+                                               "d-2000_seed-2,2000.0,2,done,2.7,0.16,1,0.5,27,0.03\n"
+                                               "d-1700_seed-1,1700.0,1,done,4.0,0.16,1,4.0,27,0.03\n"
+                                               "d-1700_seed-2,1700.0,2,failed,,,,,,\n");
+    write(dir_ / "b" / "results.csv", header + "d-2000_seed-1,2000.0,1,done,2.5,0,0,0.5,27,0.03\n"
+                                               "d-1700_seed-1,1700.0,1,done,4.0,0.64,4,4.0,27,0.03\n");
+    const std::string script = "/usr/bin/python3 " + kSource + "/studies/compare_curves.py ";
+    const Result r = run(script + (dir_ / "a").string() + " " + (dir_ / "b").string() +
+                         " --label A --label B --out " + (dir_ / "c.png").string());
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_GT(fs::file_size(dir_ / "c.png"), 10000u);
+    // A: 1 of 0.5 + 0.5 expected at 2000 kg/m^3, 1 of 4 at 1700 (P(X <= 1 | 4) = 5 e^-4 = 0.092),
+    // 2 of 5 in all (P = 18.5 e^-5 = 0.12); the failed case counts for nothing.
+    EXPECT_NE(r.output.find("unit.0.density 2000.0: Ns 2.60  1 / 1.0 (P 0.74)  over 2 realisations"),
+              std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("unit.0.density 1700.0: Ns 4.00  1 / 4.0 (P 0.092)  over 1 realisations"),
+              std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("all: 2 / 5.0 (P 0.12)"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("all: 4 / 4.5 (P 0.53)"), std::string::npos) << r.output;
+
+    const Result bad = run(script + (dir_ / "missing").string() + " --out " + (dir_ / "d.png").string());
+    EXPECT_EQ(bad.status, 2) << bad.output;
+    EXPECT_EQ(bad.output, "armour: error: " + (dir_ / "missing" / "results.csv").string() +
+                              ": not found (not a kept stability curve)\n");
+    EXPECT_FALSE(fs::exists(dir_ / "d.png"));
+}
+
 // A real single-node Slurm (scripts/slurm-local.sh), started for these tests.
 class SlurmSweepTest : public SweepTest {
   protected:

@@ -1,0 +1,119 @@
+#!/usr/bin/env python3
+"""Two or more kept stability curves on one chart, and their totals side by side.
+
+Description
+    Reads results.csv of each kept stability curve (a folder written by
+    studies/keep_results.py from an `armour sweep` of a damage study) and draws
+    N_od against Ns at the toe: for each curve a point per value of the varied
+    key (the mean of its realisations with 95 % Student-t intervals in Ns and
+    N_od), Van der Meer's curve for cubes at the first curve's median N and
+    s_om. Prints, per varied value and in all, the units displaced by each
+    curve and Van der Meer's expected count at the runs' own N, Ns and s_om
+    (the sum of units_displaced_van_der_meer), with the Poisson probability of
+    a total this low or lower if the formula's count were the mean. What it
+    answers: does a model choice (the clump, the mesh, the engine) move the
+    damage, and toward the formula or away. All figures are dimensionless
+    (counts, N_od, Ns); the chart is a PNG.
+
+Usage
+    python3 studies/compare_curves.py docs/results/stability_curve_47spheres \\
+        docs/results/stability_curve --label "47 spheres" --label "118 spheres" --out chart.png
+"""
+import argparse
+import csv
+import math
+import os
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "apps", "sweep"))
+from sweep_report import mean_interval, median, van_der_meer_ns  # noqa: E402
+
+NEEDED = ("Ns", "N_od", "units_displaced", "units_displaced_van_der_meer", "waves.waves", "s_om")
+
+
+def fail(message):
+    print(f"armour: error: {message}", file=sys.stderr)
+    sys.exit(2)
+
+
+def read_curve(folder):
+    """Rows of FOLDER/results.csv that are done, with the varied key's name."""
+    path = os.path.join(folder, "results.csv")
+    if not os.path.isfile(path):
+        fail(f"{path}: not found (not a kept stability curve)")
+    with open(path, newline="") as f:
+        reader = csv.DictReader(f)
+        missing = [k for k in NEEDED if k not in (reader.fieldnames or [])]
+        if missing:
+            fail(f"{path}: column '{missing[0]}' missing (not a damage study's results)")
+        header = reader.fieldnames
+        rows = [r for r in reader if r.get("status", "done") == "done"]
+    if not rows:
+        fail(f"{path}: no case is done")
+    # The varied key: the column between `case` and `seed`.
+    varied = header[1] if header[0] == "case" and header[1] != "seed" else None
+    return rows, varied
+
+
+def poisson_cdf(k, mean):
+    term = total = math.exp(-mean)
+    for i in range(1, k + 1):
+        term *= mean / i
+        total += term
+    return total
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[1].strip(),
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("curves", nargs="+", help="folders of kept stability curves (results.csv in each)")
+    parser.add_argument("--label", action="append", default=[], help="a name per curve, in order")
+    parser.add_argument("--out", required=True, help="the chart to write (PNG)")
+    args = parser.parse_args()
+    labels = args.label or [os.path.basename(os.path.normpath(c)) for c in args.curves]
+    if len(labels) != len(args.curves):
+        fail(f"--label: {len(labels)} labels for {len(args.curves)} curves")
+    curves = [read_curve(c) for c in args.curves]
+
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(6.5, 4.2))
+    top = 0.5
+    for (rows, varied), label, shift in zip(curves, labels, (-0.03, 0.03, 0.0, 0.06)):
+        groups = {}
+        for r in rows:
+            groups.setdefault(r[varied] if varied else "all", []).append(r)
+        print(f"{label}: units displaced / Van der Meer's expected count (P of this few or fewer by chance)")
+        total = expected = 0.0
+        for value, g in sorted(groups.items(), key=lambda kv: -float(kv[0]) if varied else 0):
+            ns = mean_interval([float(r["Ns"]) for r in g])
+            n_od = mean_interval([float(r["N_od"]) for r in g])
+            ax.errorbar([ns[0] + shift], [n_od[0]], xerr=[ns[1]], yerr=[n_od[1]], fmt="o", capsize=3,
+                        color=f"C{labels.index(label)}", label=label if value == next(iter(groups)) else None)
+            top = max(top, n_od[0] + n_od[1])
+            shown = sum(int(float(r["units_displaced"])) for r in g)
+            vdm = sum(float(r["units_displaced_van_der_meer"]) for r in g)
+            total += shown
+            expected += vdm
+            print(f"  {varied or 'all'} {value}: Ns {ns[0]:.2f}  {shown} / {vdm:.1f} "
+                  f"(P {poisson_cdf(shown, vdm):.2g})  over {len(g)} realisations")
+        print(f"  all: {int(total)} / {expected:.1f} (P {poisson_cdf(int(total), expected):.2g})")
+    rows = curves[0][0]
+    n = median([float(r["waves.waves"]) for r in rows])
+    s_om = median([float(r["s_om"]) for r in rows])
+    grid = [1.3 * top * i / 200 for i in range(201)]
+    ax.plot([van_der_meer_ns(d, n, s_om) for d in grid], grid, "-", color="C3",
+            label=f"Van der Meer cubes (N = {n:g}, s_om = {s_om:.3g})")
+    ax.set_xlabel("Ns = Hs / (Δ Dn) at the toe [-]")
+    ax.set_ylabel("N_od [units per Dn width]")
+    ax.set_ylim(0, 1.3 * top)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    tmp = args.out + ".tmp.png"
+    fig.savefig(tmp, dpi=110, bbox_inches="tight")
+    os.replace(tmp, args.out)
+
+
+if __name__ == "__main__":
+    main()
