@@ -80,17 +80,18 @@ def main():
     import matplotlib.pyplot as plt
     fig, ax = plt.subplots(figsize=(6.5, 4.2))
     top = 0.5
-    for (rows, varied), label, shift in zip(curves, labels, (-0.03, 0.03, 0.0, 0.06)):
+    for k, ((rows, varied), label) in enumerate(zip(curves, labels)):
+        shift = 0.03 * (k - (len(curves) - 1) / 2)  # side by side where points share an Ns
         groups = {}
         for r in rows:
             groups.setdefault(r[varied] if varied else "all", []).append(r)
         print(f"{label}: units displaced / Van der Meer's expected count (P of this few or fewer by chance)")
         total = expected = 0.0
-        for value, g in sorted(groups.items(), key=lambda kv: -float(kv[0]) if varied else 0):
+        for i, (value, g) in enumerate(sorted(groups.items(), key=lambda kv: -float(kv[0]) if varied else 0)):
             ns = mean_interval([float(r["Ns"]) for r in g])
             n_od = mean_interval([float(r["N_od"]) for r in g])
             ax.errorbar([ns[0] + shift], [n_od[0]], xerr=[ns[1]], yerr=[n_od[1]], fmt="o", capsize=3,
-                        color=f"C{labels.index(label)}", label=label if value == next(iter(groups)) else None)
+                        color=f"C{k}", label=None if i else label)
             top = max(top, n_od[0] + n_od[1])
             shown = sum(int(float(r["units_displaced"])) for r in g)
             vdm = sum(float(r["units_displaced_van_der_meer"]) for r in g)
