@@ -26,7 +26,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "apps", "sweep"))
-from sweep_report import mean_interval, median, van_der_meer_ns  # noqa: E402
+from sweep_report import mean_interval, median, save, van_der_meer_ns  # noqa: E402
 
 NEEDED = ("Ns", "N_od", "units_displaced", "units_displaced_van_der_meer", "waves.waves", "s_om")
 
@@ -87,7 +87,8 @@ def main():
             groups.setdefault(r[varied] if varied else "all", []).append(r)
         print(f"{label}: units displaced / Van der Meer's expected count (P of this few or fewer by chance)")
         total = expected = 0.0
-        for i, (value, g) in enumerate(sorted(groups.items(), key=lambda kv: -float(kv[0]) if varied else 0)):
+        by_ns = sorted(groups.items(), key=lambda kv: sum(float(r["Ns"]) for r in kv[1]) / len(kv[1]))
+        for i, (value, g) in enumerate(by_ns):  # points in rising Ns, whatever key varied it
             ns = mean_interval([float(r["Ns"]) for r in g])
             n_od = mean_interval([float(r["N_od"]) for r in g])
             ax.errorbar([ns[0] + shift], [n_od[0]], xerr=[ns[1]], yerr=[n_od[1]], fmt="o", capsize=3,
@@ -111,9 +112,7 @@ def main():
     ax.set_ylim(0, 1.3 * top)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
-    tmp = args.out + ".tmp.png"
-    fig.savefig(tmp, dpi=110, bbox_inches="tight")
-    os.replace(tmp, args.out)
+    save(fig, args.out)
 
 
 if __name__ == "__main__":
