@@ -523,6 +523,7 @@ std::string resumable_form(Scene s, bool resumable_keys) {
         s.checkpoint_interval = 0.0;
         if (s.fluid) {
             s.fluid->write_interval = 0.0; // its default follows run.duration
+            s.fluid->write_interval_given = false;
             // The ranks and the Courant limits set how the steps after the
             // checkpoint are taken, not what it holds (the fields are split
             // anew for other ranks).

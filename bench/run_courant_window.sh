@@ -23,8 +23,9 @@
 # keeps each row's solver log (OUT/ROW.log.interFoam).
 # Usage: bash bench/run_courant_window.sh RUN_DIR [--checkpoint T] [--seconds S]
 #          [--max-courant C] [--max-interface-courant C] [--pressure-tolerance T]
-#          [--pressure-rel-tol R] [--momentum-predictor yes|no] [--advection MULES|isoAdvector]
-#          [--np N] [--build DIR] [--out DIR]
+#          [--pressure-rel-tol R] [--pressure-smoother S] [--pressure-coarsest N]
+#          [--pressure-merge-levels L] [--momentum-predictor yes|no]
+#          [--advection MULES|isoAdvector] [--np N] [--build DIR] [--out DIR]
 #   RUN_DIR      an `armour run` output folder with checkpoints (serial or parallel)
 #   --checkpoint the checkpoint's time in s, as its folder is named (default the latest)
 #   --seconds    simulated seconds of the window (default 2)
@@ -32,6 +33,10 @@
 #   --pressure-tolerance, --pressure-rel-tol  the second row's p_rgh tolerance
 #                and relTol (default: as the run's case has them; the template's
 #                1e-7 and 0.01)
+#   --pressure-smoother  the second row's p_rgh GAMG smoother (the templates' DIC;
+#                GaussSeidel, symGaussSeidel, DICGaussSeidel, FDIC)
+#   --pressure-coarsest  the second row's GAMG nCellsInCoarsestLevel (OpenFOAM's 10)
+#   --pressure-merge-levels  the second row's GAMG mergeLevels (OpenFOAM's 1)
 #   --momentum-predictor  the second row's PIMPLE momentumPredictor (default: as the run's)
 #   --advection  the second row's free-surface advection (default MULES, the run's)
 #   --np         ranks of both rows (default the checkpoint's)
@@ -39,9 +44,11 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 bench_name=courant_window bench_targets="armour armourFoamCoupling armourWaves"
-bench_options="checkpoint seconds max-courant max-interface-courant pressure-tolerance pressure-rel-tol momentum-predictor advection np"
+bench_options="checkpoint seconds max-courant max-interface-courant pressure-tolerance pressure-rel-tol
+  pressure-smoother pressure-coarsest pressure-merge-levels momentum-predictor advection np"
 opt_checkpoint="" opt_seconds=2 opt_max_courant=1.0 opt_max_interface_courant=0.5 opt_np=""
 opt_pressure_tolerance="" opt_pressure_rel_tol="" opt_momentum_predictor="" opt_advection=MULES
+opt_pressure_smoother="" opt_pressure_coarsest="" opt_pressure_merge_levels=""
 source "$root/bench/common.sh"
 bench_window_args "$@"
 start="$opt_checkpoint"
@@ -57,6 +64,22 @@ row() {
     bench_fail "$name: armour run failed: $out/$name.log"
 }
 
+# Every option checked before the first row: OpenFOAM aborts on a name it
+# does not know, after the first row's minutes.
+case "$opt_momentum_predictor" in "" | yes | no) ;; *) bench_fail "--momentum-predictor: yes or no (got $opt_momentum_predictor)" ;; esac
+case "$opt_advection" in
+  MULES) ;;
+  isoAdvector) command -v interIsoFoam >/dev/null || bench_fail "--advection isoAdvector: interIsoFoam not found (OpenFOAM v1912)" ;;
+  *) bench_fail "--advection: MULES or isoAdvector (got $opt_advection)" ;;
+esac
+case "$opt_pressure_smoother" in
+  "" | DIC | GaussSeidel | symGaussSeidel | DICGaussSeidel | FDIC) ;;
+  *) bench_fail "--pressure-smoother: DIC, GaussSeidel, symGaussSeidel, DICGaussSeidel or FDIC (got $opt_pressure_smoother)" ;;
+esac
+for level in "coarsest:$opt_pressure_coarsest" "merge-levels:$opt_pressure_merge_levels"; do
+  [[ "${level#*:}" =~ ^([1-9][0-9]*)?$ ]] || bench_fail "--pressure-${level%%:*}: a whole number >= 1 (got ${level#*:})"
+done
+
 cut -d' ' -f1-3 /proc/loadavg >"$out/loadavg_before"
 row as_run
 # p_rgh's blocks in the case's fvSolution: the template's, and the one
@@ -70,9 +93,18 @@ edits=()
 if [ ${#edits[@]} -gt 0 ]; then
   bench_case_edit="sed -i $(printf '%q ' "${edits[@]}") system/fvSolution"
 fi
+# GAMG's smoother and agglomeration for p_rgh and p_rghFinal, appended: OpenFOAM
+# merges a repeated dictionary, the last setting of a key wins (p_rghFinal is
+# named too: its $p_rgh was expanded where the template defines it).
+gamg=""
+[ -z "$opt_pressure_smoother" ] || gamg+="smoother $opt_pressure_smoother; "
+[ -z "$opt_pressure_coarsest" ] || gamg+="nCellsInCoarsestLevel $opt_pressure_coarsest; "
+[ -z "$opt_pressure_merge_levels" ] || gamg+="mergeLevels $opt_pressure_merge_levels; "
+if [ -n "$gamg" ]; then
+  bench_case_edit="${bench_case_edit:+$bench_case_edit && }printf 'solvers\\n{\\n    p_rgh\\n    {\\n        $gamg\\n    }\\n    p_rghFinal\\n    {\\n        $gamg\\n    }\\n}\\n' >> system/fvSolution"
+fi
 # A PIMPLE dictionary appended last wins (OpenFOAM merges a repeated one).
 if [ -n "$opt_momentum_predictor" ]; then
-  case "$opt_momentum_predictor" in yes | no) ;; *) bench_fail "--momentum-predictor: yes or no (got $opt_momentum_predictor)" ;; esac
   bench_case_edit="${bench_case_edit:+$bench_case_edit && }printf 'PIMPLE\\n{\\n    momentumPredictor $opt_momentum_predictor;\\n}\\n' >> system/fvSolution"
 fi
 # isoAdvector: interIsoFoam under interFoam's name, first on PATH for this row
@@ -81,14 +113,12 @@ fi
 case "$opt_advection" in
   MULES) ;;
   isoAdvector)
-    command -v interIsoFoam >/dev/null || bench_fail "--advection isoAdvector: interIsoFoam not found (OpenFOAM v1912)"
     mkdir -p "$out/isoAdvector_bin"
     printf '#!/bin/sh\nexec interIsoFoam "$@"\n' >"$out/isoAdvector_bin/interFoam"
     chmod +x "$out/isoAdvector_bin/interFoam"
     PATH="$out/isoAdvector_bin:$PATH"
     bench_case_edit="${bench_case_edit:+$bench_case_edit && }printf 'solvers\\n{\\n    \"alpha.water.*\"\\n    {\\n        isoFaceTol 1e-10;\\n        surfCellTol 1e-6;\\n        nAlphaBounds 3;\\n        snapTol 1e-12;\\n        clip true;\\n    }\\n}\\n' >> system/fvSolution"
     ;;
-  *) bench_fail "--advection: MULES or isoAdvector (got $opt_advection)" ;;
 esac
 row split --set "fluid.max_courant=$opt_max_courant" --set "fluid.max_interface_courant=$opt_max_interface_courant"
 bench_case_edit=""
@@ -117,10 +147,15 @@ def log_figures(row):
     # key (armour run appends one for fluid.pressure_*) is the one in force.
     p_rgh = "".join(re.findall(r"^    p_rgh\n    \{(.*?)^    \}", solution, re.M | re.S))
     setting = lambda key: float(re.findall(r"^\s*%s\s+([^;]+);" % key, p_rgh, re.M)[-1])
+    # GAMG's keys, where a block sets them (several on one line when appended).
+    gamg = lambda key, default: ([default] + re.findall(r"\b%s\s+([^;\s]+);" % key, p_rgh))[-1]
     predictor = re.findall(r"^\s*momentumPredictor\s+([^;]+);", solution, re.M)[-1]
     solver = re.search(r"^Exec\s*:\s*(\S+)", text, re.M)
     return {"solver": solver.group(1) if solver else None, "max_courant": limit("maxCo"), "max_interface_courant": limit("maxAlphaCo"),
             "pressure_tolerance": setting("tolerance"), "pressure_rel_tol": setting("relTol"),
+            "pressure_smoother": gamg("smoother", None),
+            "pressure_coarsest": int(gamg("nCellsInCoarsestLevel", 10)),
+            "pressure_merge_levels": int(gamg("mergeLevels", 1)),
             "momentum_predictor": predictor in ("yes", "on", "true"), "steps": steps,
             "cpu_seconds": cpu[-1] if cpu else None,
             "steps_set_off_the_surface": off / max(len(pairs), 1),

@@ -217,7 +217,8 @@ const std::vector<Key<SceneFluid>> &fluid_keys() {
         key("write_interval", &F::write_interval, "s",
             "time between OpenFOAM field writes in OUT/case; <= run.duration")
             .in(Range::above(0))
-            .defaults("`run.duration`"),
+            .defaults("`run.duration`")
+            .written_if([](const F &f) { return f.write_interval_given; }),
         key("pressure_tolerance", &F::pressure_tolerance, "",
             "p_rgh's solve stops at this normalised residual, in every corrector (docs/openfoam.md: "
             "looser is cheaper, and stalled a turbulent flume at 1e-6)")

@@ -217,6 +217,7 @@ void read_fluid(const Table &root, Scene &s) {
     // Defaults that follow [run].
     f.max_time_step = std::min(f.max_time_step, s.output_interval);
     f.write_interval = s.duration;
+    f.write_interval_given = t.has("write_interval");
     read_keys(t, keys, f);
     if (!t.has("max_interface_courant"))
         f.max_interface_courant = f.max_courant;

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <regex>
 #include <set>
 #include <sstream>
 #include <string>
@@ -894,6 +895,25 @@ TEST_F(SceneFile, FluidDefaultsAndCellSize) {
     EXPECT_FALSE(*again.fluid->momentum_predictor);
     EXPECT_DOUBLE_EQ(again.fluid->pressure_tolerance.value_or(0.0), 2e-6);
     EXPECT_FALSE(again.fluid->pressure_relative_tolerance.has_value());
+}
+
+// A write interval the scene left to follow run.duration still follows it in
+// a scene written from it (a settle's scene.settled.toml, rerun for longer,
+// must not write fields at the short settle run's interval); a given one stays.
+TEST_F(SceneFile, WriteIntervalLeftToItsDefaultFollowsTheDurationOfAWrittenScene) {
+    const std::string fluid = "[run]\nduration = 2\n[fluid]\nwater_level = 1\ncell_size = 0.5\n";
+    const auto longer = [](const std::string &text) {
+        return std::regex_replace(text, std::regex("\n(duration *= *)[^\n]*"), "\n$018");
+    };
+    const Scene followed = load_scene(write(std::string(kMinimal) + fluid));
+    EXPECT_DOUBLE_EQ(followed.fluid->write_interval, 2.0);
+    const Scene rerun = load_scene(write(longer(armour::resolved_scene_toml(followed))));
+    EXPECT_DOUBLE_EQ(rerun.duration, 8.0);
+    EXPECT_DOUBLE_EQ(rerun.fluid->write_interval, 8.0);
+    const Scene given = load_scene(write(std::string(kMinimal) + fluid + "write_interval = 2\n"));
+    const Scene kept = load_scene(write(longer(armour::resolved_scene_toml(given))));
+    EXPECT_DOUBLE_EQ(kept.duration, 8.0);
+    EXPECT_DOUBLE_EQ(kept.fluid->write_interval, 2.0);
 }
 
 TEST_F(SceneFile, FluidErrorsNameLineAndKey) {
