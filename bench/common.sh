@@ -82,6 +82,9 @@ bench_args() {
     [ -e "$build/$(bench_target_file "$target")" ] ||
       bench_fail "$build/$(bench_target_file "$target") missing; build it with: bash scripts/build.sh $bench_targets (or pass --build DIR)"
   done
+  # A script's own option checks (bench_check_options, where it defines one) run
+  # before --out is made: a refused option leaves nothing behind.
+  ! declare -F bench_check_options >/dev/null || bench_check_options
   mkdir -p "$out"
   out="$(cd "$out" && pwd)"
 }

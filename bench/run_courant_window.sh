@@ -49,6 +49,23 @@ bench_options="checkpoint seconds max-courant max-interface-courant pressure-tol
 opt_checkpoint="" opt_seconds=2 opt_max_courant=1.0 opt_max_interface_courant=0.5 opt_np=""
 opt_pressure_tolerance="" opt_pressure_rel_tol="" opt_momentum_predictor="" opt_advection=MULES
 opt_pressure_smoother="" opt_pressure_coarsest="" opt_pressure_merge_levels=""
+# Every option checked before --out is made and the first row runs (bench_args
+# calls this): OpenFOAM aborts on a name it does not know, after a row's minutes.
+bench_check_options() {
+  case "$opt_momentum_predictor" in "" | yes | no) ;; *) bench_fail "--momentum-predictor: yes or no (got $opt_momentum_predictor)" ;; esac
+  case "$opt_advection" in
+    MULES) ;;
+    isoAdvector) command -v interIsoFoam >/dev/null || bench_fail "--advection isoAdvector: interIsoFoam not found (OpenFOAM v1912)" ;;
+    *) bench_fail "--advection: MULES or isoAdvector (got $opt_advection)" ;;
+  esac
+  case "$opt_pressure_smoother" in
+    "" | DIC | GaussSeidel | symGaussSeidel | DICGaussSeidel | FDIC) ;;
+    *) bench_fail "--pressure-smoother: DIC, GaussSeidel, symGaussSeidel, DICGaussSeidel or FDIC (got $opt_pressure_smoother)" ;;
+  esac
+  for level in "coarsest:$opt_pressure_coarsest" "merge-levels:$opt_pressure_merge_levels"; do
+    [[ "${level#*:}" =~ ^([1-9][0-9]*)?$ ]] || bench_fail "--pressure-${level%%:*}: a whole number >= 1 (got ${level#*:})"
+  done
+}
 source "$root/bench/common.sh"
 bench_window_args "$@"
 start="$opt_checkpoint"
@@ -63,22 +80,6 @@ row() {
   bench_resume_window "$run_dir" "$opt_checkpoint" "$end" "$out/$name" "${ranks[@]}" "$@" ||
     bench_fail "$name: armour run failed: $out/$name.log"
 }
-
-# Every option checked before the first row: OpenFOAM aborts on a name it
-# does not know, after the first row's minutes.
-case "$opt_momentum_predictor" in "" | yes | no) ;; *) bench_fail "--momentum-predictor: yes or no (got $opt_momentum_predictor)" ;; esac
-case "$opt_advection" in
-  MULES) ;;
-  isoAdvector) command -v interIsoFoam >/dev/null || bench_fail "--advection isoAdvector: interIsoFoam not found (OpenFOAM v1912)" ;;
-  *) bench_fail "--advection: MULES or isoAdvector (got $opt_advection)" ;;
-esac
-case "$opt_pressure_smoother" in
-  "" | DIC | GaussSeidel | symGaussSeidel | DICGaussSeidel | FDIC) ;;
-  *) bench_fail "--pressure-smoother: DIC, GaussSeidel, symGaussSeidel, DICGaussSeidel or FDIC (got $opt_pressure_smoother)" ;;
-esac
-for level in "coarsest:$opt_pressure_coarsest" "merge-levels:$opt_pressure_merge_levels"; do
-  [[ "${level#*:}" =~ ^([1-9][0-9]*)?$ ]] || bench_fail "--pressure-${level%%:*}: a whole number >= 1 (got ${level#*:})"
-done
 
 cut -d' ' -f1-3 /proc/loadavg >"$out/loadavg_before"
 row as_run
