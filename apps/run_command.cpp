@@ -529,7 +529,9 @@ std::string resumable_form(Scene s, bool resumable_keys) {
             // anew for other ranks).
             s.fluid->np = 1;
             s.fluid->max_courant = s.fluid->max_interface_courant = 1.0;
+            s.fluid->max_interface_courant_given = false;
             s.fluid->min_time_step = 0.0; // a watch on the solver; its default follows the limits
+            s.fluid->min_time_step_given = false;
         }
     }
     return scene_keys_text(resolved_scene_toml(s)); // comments name the file

@@ -149,10 +149,12 @@ struct SceneFluid {
     // smaller Courant limit, at most max_time_step / 100.
     double min_time_step = 0.0;
     double write_interval = 0.0; // s between field writes (the parser's default: run.duration)
-    // The scene gave write_interval. If not, it follows run.duration and is not
-    // written out, so a scene written from this one (a settle's
-    // scene.settled.toml) still follows its own run.duration.
-    bool write_interval_given = false;
+    // The scene gave these keys, whose defaults follow other keys
+    // (write_interval: run.duration; max_interface_courant: max_courant;
+    // min_time_step: the Courant limits, max_time_step and the cells). One not
+    // given is not written out, so a scene written from this one (a settle's
+    // scene.settled.toml) still follows its own duration, limits and cells.
+    bool write_interval_given = false, max_interface_courant_given = false, min_time_step_given = false;
     // p_rgh's solve (OpenFOAM's normalised residuals): stop at this absolute
     // residual, and in the correctors before the last at this fraction of the
     // initial one. Unset: the template's (docs/openfoam.md).

@@ -205,7 +205,8 @@ const std::vector<Key<SceneFluid>> &fluid_keys() {
         key("max_interface_courant", &F::max_interface_courant, "",
             "interFoam's maxAlphaCo, the free surface's cells; <= max_courant")
             .in(Range::open_closed(0, 1))
-            .defaults("`fluid.max_courant`"),
+            .defaults("`fluid.max_courant`")
+            .written_if([](const F &f) { return f.max_interface_courant_given; }),
         key("max_time_step", &F::max_time_step, "s", "largest fluid step; <= run.output_interval")
             .in(Range::above(0))
             .defaults("min(0.005, `run.output_interval`)"),
@@ -213,7 +214,8 @@ const std::vector<Key<SceneFluid>> &fluid_keys() {
             "a fluid step below this stops the run with one error line: the flow diverged or the pressure "
             "solve stalled (the solver would go on at ever smaller steps); < max_time_step")
             .in(Range::above(0))
-            .defaults("min(the smaller Courant limit x the smallest cell / 1000 m/s, `max_time_step` / 100)"),
+            .defaults("min(the smaller Courant limit x the smallest cell / 1000 m/s, `max_time_step` / 100)")
+            .written_if([](const F &f) { return f.min_time_step_given; }),
         key("write_interval", &F::write_interval, "s",
             "time between OpenFOAM field writes in OUT/case; <= run.duration")
             .in(Range::above(0))

@@ -218,8 +218,10 @@ void read_fluid(const Table &root, Scene &s) {
     f.max_time_step = std::min(f.max_time_step, s.output_interval);
     f.write_interval = s.duration;
     f.write_interval_given = t.has("write_interval");
+    f.max_interface_courant_given = t.has("max_interface_courant");
+    f.min_time_step_given = t.has("min_time_step");
     read_keys(t, keys, f);
-    if (!t.has("max_interface_courant"))
+    if (!f.max_interface_courant_given)
         f.max_interface_courant = f.max_courant;
     // Both take their scale from gravity (without it, NaN in the case): the
     // height at which the interior mirrors the outside, and k's start from
@@ -309,7 +311,7 @@ void read_fluid(const Table &root, Scene &s) {
     }
     // 1 km/s, three times the speed of sound in air, is no flow a flume
     // holds: an incompressible solver that steps for it has diverged.
-    if (!t.has("min_time_step"))
+    if (!f.min_time_step_given)
         f.min_time_step = std::min(std::min(f.max_courant, f.max_interface_courant) *
                                        f.fine_cell(extent).minCoeff() / 1000.0,
                                    f.max_time_step / 100.0);

@@ -916,6 +916,34 @@ TEST_F(SceneFile, WriteIntervalLeftToItsDefaultFollowsTheDurationOfAWrittenScene
     EXPECT_DOUBLE_EQ(kept.fluid->write_interval, 2.0);
 }
 
+// The same for the Courant limit at the free surface (follows max_courant)
+// and the smallest step (follows the limits and the cells): a settled scene
+// rerun with a lower max_courant and finer cells takes both anew; given, they
+// stay.
+TEST_F(SceneFile, CourantAndMinimumStepLeftToTheirDefaultsFollowTheLimitsOfAWrittenScene) {
+    const std::string fluid = "[fluid]\nwater_level = 1\ncell_size = 0.05\nmax_courant = 0.8\n";
+    const auto finer = [](const std::string &text) {
+        const std::string slower =
+            std::regex_replace(text, std::regex("\n(max_courant *= *)[^\n]*"), "\n$010.2");
+        return std::regex_replace(slower, std::regex("\n(cell_size *= *)[^\n]*"), "\n$010.025");
+    };
+    const Scene followed = load_scene(write(std::string(kMinimal) + fluid));
+    EXPECT_DOUBLE_EQ(followed.fluid->max_interface_courant, 0.8);
+    const Scene rerun = load_scene(write(finer(armour::resolved_scene_toml(followed))));
+    EXPECT_DOUBLE_EQ(rerun.fluid->max_courant, 0.2);
+    EXPECT_DOUBLE_EQ(rerun.fluid->max_interface_courant, 0.2);
+    // 0.2 x 0.025 m / 1000 m/s, against 0.8 x 0.05 m / 1000 m/s before (both
+    // below max_time_step / 100 = 5e-5 s).
+    EXPECT_NEAR(followed.fluid->min_time_step, 0.8 * 0.05 / 1000.0, 1e-12);
+    EXPECT_NEAR(rerun.fluid->min_time_step, 0.2 * 0.025 / 1000.0, 1e-12);
+    const Scene given = load_scene(
+        write(std::string(kMinimal) + fluid + "max_interface_courant = 0.1\nmin_time_step = 1e-5\n"));
+    const Scene kept = load_scene(write(finer(armour::resolved_scene_toml(given))));
+    EXPECT_DOUBLE_EQ(kept.fluid->max_courant, 0.2);
+    EXPECT_DOUBLE_EQ(kept.fluid->max_interface_courant, 0.1);
+    EXPECT_DOUBLE_EQ(kept.fluid->min_time_step, 1e-5);
+}
+
 TEST_F(SceneFile, FluidErrorsNameLineAndKey) {
     const std::string base = std::string(kMinimal) + "[fluid]\n"; // [fluid] on line 14
     const auto at = [&](const std::string &lines) { return write(base + lines); };

@@ -49,7 +49,9 @@ TEST(WaveFlume, RegularWaveHeightPeriodAndReflection) {
     // window): within 5 % of H (the brief's bound). The gauges see the
     // incident wave and the outlet's reflection together, so each may differ
     // from H by up to the reflection coefficient. Measured +3.9, +3.0, +0.2 %
-    // (incident first harmonic +0.8 %, Kr 2.0 %).
+    // (incident first harmonic +0.8 %, Kr 2.0 %; with p_rgh solved to 1e-9,
+    // the converged wave: +1.4, +1.8, -0.9 %, incident -1.5 %, Kr 2.8 %,
+    // docs/validation/waves.md).
     for (const double h : w["gauge_heights"])
         EXPECT_NEAR(h / H, 1.0, 0.05) << "gauge height " << h << " m";
     for (const double t : w["gauge_periods"])
