@@ -12,12 +12,23 @@ Description
     (the sum of units_displaced_van_der_meer), with the Poisson probability of
     a total this low or lower if the formula's count were the mean. What it
     answers: does a model choice (the clump, the mesh, the engine) move the
-    damage, and toward the formula or away. All figures are dimensionless
-    (counts, N_od, Ns); the chart is a PNG.
+    damage, and toward the formula or away.
+
+    Then the gap as one number: the factor f such that the curve's counts are
+    Van der Meer's at Ns / f (each run's expected count from the formula at its
+    own N and s_om, scaled to the section's width), the maximum of the Poisson
+    likelihood of the counts, with its 95 % interval where the log-likelihood
+    is within 1.92 of its peak (chi-square, one degree of freedom). f > 1:
+    the model needs f times the formula's Ns for the formula's damage, which is
+    what loads f times too low would do (Ns is a load over a weight). With
+    --pool, one f over every curve given, as one set of realisations. All
+    figures are dimensionless (counts, N_od, Ns, f); the chart is a PNG.
 
 Usage
     python3 studies/compare_curves.py docs/results/stability_curve_47spheres \\
         docs/results/stability_curve --label "47 spheres" --label "118 spheres" --out chart.png
+    python3 studies/compare_curves.py docs/results/stability_curve \\
+        docs/results/stability_by_height --pool --out chart.png
 """
 import argparse
 import csv
@@ -63,12 +74,58 @@ def poisson_cdf(k, mean):
     return total
 
 
+def van_der_meer_n_od(ns, waves, s_om):
+    """Van der Meer's N_od for cubes at Ns (the inverse of van_der_meer_ns; 0 below its onset)."""
+    x = ns * s_om ** 0.1 - 1.0
+    return (x * waves ** 0.3 / 6.7) ** 2.5 if x > 0 else 0.0
+
+
+def ns_factor(rows):
+    """(f, low, high): the counts as Van der Meer's at Ns / f, its 95 % interval; None where no unit moved.
+
+    Each row's expected count at Ns / f is its units_displaced_van_der_meer
+    scaled by the formula's N_od at Ns / f over that at Ns (so the section's
+    width is the run's own); rows below the formula's onset at Ns take the
+    median width of the others.
+    """
+    runs = [(float(r["Ns"]), float(r["waves.waves"]), float(r["s_om"]), int(float(r["units_displaced"])),
+             float(r["units_displaced_van_der_meer"])) for r in rows]
+    widths = [vdm / van_der_meer_n_od(ns, n, s) for ns, n, s, _, vdm in runs if van_der_meer_n_od(ns, n, s) > 0]
+    if not widths or sum(run[3] for run in runs) == 0:
+        return None
+    width = median(widths)
+
+    def log_likelihood(f):
+        total = 0.0
+        for ns, n, s, k, vdm in runs:
+            at_ns = van_der_meer_n_od(ns, n, s)
+            mean = max((vdm / at_ns if at_ns > 0 else width) * van_der_meer_n_od(ns / f, n, s), 1e-300)
+            total += k * math.log(mean) - mean
+        return total
+
+    grid = [0.25 * 16.0 ** (i / 40000) for i in range(40001)]  # 0.25 to 4, 0.007 % apart
+    values = [log_likelihood(f) for f in grid]
+    peak = max(range(len(grid)), key=values.__getitem__)
+    inside = [f for f, v in zip(grid, values) if v >= values[peak] - 1.92]
+    return grid[peak], min(inside), max(inside)
+
+
+def print_ns_factor(label, rows):
+    fit = ns_factor(rows)
+    if fit is None:
+        print(f"  {label}: no unit displaced: the factor on Ns is not bounded")
+    else:
+        print(f"  {label}: the counts are Van der Meer's at Ns / f, f = {fit[0]:.2f} "
+              f"(95 % {fit[1]:.2f}-{fit[2]:.2f})")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[1].strip(),
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("curves", nargs="+", help="folders of kept stability curves (results.csv in each)")
     parser.add_argument("--label", action="append", default=[], help="a name per curve, in order")
     parser.add_argument("--out", required=True, help="the chart to write (PNG)")
+    parser.add_argument("--pool", action="store_true", help="also one factor on Ns over every curve given")
     args = parser.parse_args()
     labels = args.label or [os.path.basename(os.path.normpath(c)) for c in args.curves]
     if len(labels) != len(args.curves):
@@ -101,6 +158,10 @@ def main():
             print(f"  {varied or 'all'} {value}: Ns {ns[0]:.2f}  {shown} / {vdm:.1f} "
                   f"(P {poisson_cdf(shown, vdm):.2g})  over {len(g)} realisations")
         print(f"  all: {int(total)} / {expected:.1f} (P {poisson_cdf(int(total), expected):.2g})")
+        print_ns_factor("all", rows)
+    if args.pool:
+        print(f"{' + '.join(labels)}, pooled:")
+        print_ns_factor("all", [r for rows, _ in curves for r in rows])
     rows = curves[0][0]
     n = median([float(r["waves.waves"]) for r in rows])
     s_om = median([float(r["s_om"]) for r in rows])

@@ -651,6 +651,44 @@ TEST_F(SweepTest, ComparedCurvesCountEachCurvesUnitsAgainstVanDerMeer) {
     EXPECT_FALSE(fs::exists(dir_ / "d.png"));
 }
 
+// The gap as a factor on Ns (studies/compare_curves.py): with one realisation
+// the likelihood peaks where Van der Meer's expected count at Ns / f equals the
+// count seen, so f = Ns / Ns_VdM(N_od seen) on the formula itself; the same
+// curve given twice and pooled peaks at the same f; a curve that displaced
+// nothing bounds no factor and says so.
+TEST_F(SweepTest, ComparedCurvesGiveTheGapAsAFactorOnNs) {
+    const std::string header = "case,unit.0.density,seed,status,Ns,N_od,units_displaced,"
+                               "units_displaced_van_der_meer,waves.waves,s_om\n";
+    write(dir_ / "one" / "results.csv", header + "d-1700_seed-1,1700.0,1,done,4.0,0.11,1,4.0,27,0.03\n");
+    write(dir_ / "none" / "results.csv", header + "d-1700_seed-1,1700.0,1,done,4.0,0,0,4.0,27,0.03\n");
+    // Van der Meer for cubes: N_od = ((Ns s_om^0.1 - 1) N^0.3 / 6.7)^2.5 and its inverse.
+    const double n = 27.0, s_om = 0.03;
+    const double n_od_at_4 = std::pow((4.0 * std::pow(s_om, 0.1) - 1.0) * std::pow(n, 0.3) / 6.7, 2.5);
+    const double width = 4.0 / n_od_at_4; // units per N_od: 4.0 expected at Ns 4.0
+    const double ns_of_one =
+        (6.7 * std::pow(1.0 / width, 0.4) / std::pow(n, 0.3) + 1.0) * std::pow(s_om, -0.1);
+    char expected[64];
+    std::snprintf(expected, sizeof expected, "f = %.2f (95 %%", 4.0 / ns_of_one);
+
+    const std::string script = "/usr/bin/python3 " + kSource + "/studies/compare_curves.py ";
+    const Result r = run(script + (dir_ / "one").string() + " " + (dir_ / "none").string() + " --out " +
+                         (dir_ / "c.png").string());
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find(std::string("all: the counts are Van der Meer's at Ns / f, ") + expected),
+              std::string::npos)
+        << expected << "\n"
+        << r.output;
+    EXPECT_NE(r.output.find("all: no unit displaced: the factor on Ns is not bounded"), std::string::npos)
+        << r.output;
+
+    const Result pooled = run(script + (dir_ / "one").string() + " " + (dir_ / "one").string() +
+                              " --pool --out " + (dir_ / "d.png").string());
+    ASSERT_EQ(pooled.status, 0) << pooled.output;
+    const auto at = pooled.output.find("pooled:");
+    ASSERT_NE(at, std::string::npos) << pooled.output;
+    EXPECT_NE(pooled.output.find(expected, at), std::string::npos) << expected << "\n" << pooled.output;
+}
+
 // A real single-node Slurm (scripts/slurm-local.sh), started for these tests.
 class SlurmSweepTest : public SweepTest {
   protected:
