@@ -37,7 +37,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "apps", "sweep"))
-from sweep_report import mean_interval, median, save, van_der_meer_ns  # noqa: E402
+from sweep_report import mean_interval, median, save, van_der_meer_n_od, van_der_meer_ns  # noqa: E402
 
 NEEDED = ("Ns", "N_od", "units_displaced", "units_displaced_van_der_meer", "waves.waves", "s_om")
 
@@ -72,12 +72,6 @@ def poisson_cdf(k, mean):
         term *= mean / i
         total += term
     return total
-
-
-def van_der_meer_n_od(ns, waves, s_om):
-    """Van der Meer's N_od for cubes at Ns (the inverse of van_der_meer_ns; 0 below its onset)."""
-    x = ns * s_om ** 0.1 - 1.0
-    return (x * waves ** 0.3 / 6.7) ** 2.5 if x > 0 else 0.0
 
 
 def ns_factor(rows):

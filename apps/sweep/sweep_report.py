@@ -44,6 +44,12 @@ def van_der_meer_ns(n_od, waves, s_om):
     return (6.7 * n_od ** 0.4 / waves ** 0.3 + 1.0) * s_om ** -0.1
 
 
+def van_der_meer_n_od(ns, waves, s_om):
+    """Damage N_od of cubes at Ns after `waves` waves of steepness s_om (0 below the onset)."""
+    excess = ns * s_om ** 0.1 - 1.0
+    return (excess * waves ** 0.3 / 6.7) ** 2.5 if excess > 0 else 0.0
+
+
 def poisson_quantile(mean, p):
     """Smallest count k with P(X <= k) >= p for X ~ Poisson(mean)."""
     term = total = math.exp(-mean)
