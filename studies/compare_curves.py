@@ -80,12 +80,12 @@ def ns_factor(rows):
     Each row's expected count at Ns / f is its units_displaced_van_der_meer
     scaled by the formula's N_od at Ns / f over that at Ns (so the section's
     width is the run's own); rows below the formula's onset at Ns take the
-    median width of the others.
+    median width (units per N_od) of the rows that displaced a unit.
     """
     runs = [(float(r["Ns"]), float(r["waves.waves"]), float(r["s_om"]), int(float(r["units_displaced"])),
              float(r["units_displaced_van_der_meer"])) for r in rows]
-    widths = [vdm / van_der_meer_n_od(ns, n, s) for ns, n, s, _, vdm in runs if van_der_meer_n_od(ns, n, s) > 0]
-    if not widths or sum(run[3] for run in runs) == 0:
+    widths = [float(r["units_displaced"]) / float(r["N_od"]) for r in rows if float(r["units_displaced"]) > 0]
+    if not widths:
         return None
     width = median(widths)
 
