@@ -82,18 +82,21 @@ def ns_factor(rows):
     width is the run's own); rows below the formula's onset at Ns take the
     median width (units per N_od) of the rows that displaced a unit.
     """
-    runs = [(float(r["Ns"]), float(r["waves.waves"]), float(r["s_om"]), int(float(r["units_displaced"])),
-             float(r["units_displaced_van_der_meer"])) for r in rows]
     widths = [float(r["units_displaced"]) / float(r["N_od"]) for r in rows if float(r["units_displaced"]) > 0]
     if not widths:
         return None
     width = median(widths)
+    runs = []  # (Ns, N, s_om, units displaced, units per N_od of the formula's count)
+    for r in rows:
+        ns, n, s = float(r["Ns"]), float(r["waves.waves"]), float(r["s_om"])
+        at_ns = van_der_meer_n_od(ns, n, s)
+        scale = float(r["units_displaced_van_der_meer"]) / at_ns if at_ns > 0 else width
+        runs.append((ns, n, s, int(float(r["units_displaced"])), scale))
 
     def log_likelihood(f):
         total = 0.0
-        for ns, n, s, k, vdm in runs:
-            at_ns = van_der_meer_n_od(ns, n, s)
-            mean = max((vdm / at_ns if at_ns > 0 else width) * van_der_meer_n_od(ns / f, n, s), 1e-300)
+        for ns, n, s, k, scale in runs:
+            mean = max(scale * van_der_meer_n_od(ns / f, n, s), 1e-300)
             total += k * math.log(mean) - mean
         return total
 
