@@ -12,6 +12,7 @@ import h5py
 import numpy as np
 
 DN = 0.04  # m, the stability scene's cube
+DEFAULT_MULTIPLE = 0.2  # the DEM's default step, x its limit (engines/time_step.h, kDefaultSafety)
 
 
 def drop_figures(run):
@@ -52,7 +53,7 @@ def main():
             ref = reference.setdefault(variant, row)
             row["rebound_vs_reference"] = row["rebound_speed"] / ref["rebound_speed"] - 1.0
             row["spin_vs_reference"] = row["spin_max"] / ref["spin_max"] - 1.0
-    default = next((r for r in rows if r["kind"] == "hold" and abs(r["multiple"] - 0.2) < 1e-9 and r["status"] == "ok"), None)
+    default = next((r for r in rows if r["kind"] == "hold" and abs(r["multiple"] - DEFAULT_MULTIPLE) < 1e-9 and r["status"] == "ok"), None)
     print("%-6s %-6s %7s %10s  %s" % ("test", "", "x limit", "dt [s]", "figures"))
     for r in rows:
         if r["status"] != "ok":
@@ -72,7 +73,7 @@ def main():
                      "sinking_mean": "m", "moved_max_dn": "Dn (0.04 m)",
                      "dem_seconds_per_simulated_second": "wall s of DEM stepping per s simulated",
                      "rebound_vs_reference": "relative to the finest step's", "spin_vs_reference": "relative"},
-           "drop_dt_limit": drop_limit, "hold_dt_limit": hold_limit, "default_multiple": 0.2, "rows": rows}
+           "drop_dt_limit": drop_limit, "hold_dt_limit": hold_limit, "default_multiple": DEFAULT_MULTIPLE, "rows": rows}
     json.dump(doc, open(out + "/summary.json", "w"), indent=2)
 
 

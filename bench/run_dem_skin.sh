@@ -27,7 +27,6 @@ steps="${opt_steps:-8000}"
 armour="$build/apps/armour"
 command -v liggghts >/dev/null || bench_fail "needs the liggghts executable (Debian package liggghts)"
 
-layer="$out/layer"
 bench_settled_layer_dry
 "$armour" run "$out/hold.toml" --set run.duration=0.05 --out "$out/hold" >"$out/hold.log" 2>&1
 

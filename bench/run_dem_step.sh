@@ -95,7 +95,6 @@ for variant in flat corner; do
 done
 
 # The hold: settle the scene as shipped, then hold its layer with the fluid's tables removed.
-layer="$out/layer"
 bench_settled_layer_dry
 hold_limit=$(limit_of "$layer/settle")
 for m in $hold_multiples; do

@@ -341,10 +341,10 @@ class LiggghtsEngine final : public RigidBodyEngine {
                 largest = std::max(largest, s.radius);
         // The neighbour lists are rebuilt whenever a sphere has moved half the
         // skin. A skin sized by the smallest sphere (a clump's 0.4 mm corner
-        // spheres) rebuilt them every 3 steps in a moving layer: 7 x the cost
-        // of 0.2 x the largest radius, which costs 2.5 % more at rest (its
-        // extra pairs) and changes no contact (docs/validation/speed.md, "The
-        // DEM's neighbour lists").
+        // spheres) rebuilt them every 3 steps in a moving pile: 10 x the cost
+        // of 0.2 x the largest radius, which costs about the same at rest and
+        // changes no contact (bench/run_dem_skin.sh; docs/validation/speed.md,
+        // "The DEM's neighbour lists").
         set("skin", num(kSkinOfLargestRadius * largest));
         std::ostringstream youngs, poisson;
         youngs.precision(17);
