@@ -11,6 +11,7 @@
 #include "mesh_refinement.h"
 #include "output_folder.h"
 #include "report_command.h"
+#include "rigid_body_engine.h"
 #include "rock_manual_layer.h"
 #include "scene_keys.h"
 #include "solver_log.h"
@@ -155,14 +156,29 @@ void add_solver_figures(const Scene &scene, const SolverLogFigures &solver_log, 
         }
 }
 
-// The plugin's timings (coupling_times.json: engine advance = DEM) and clocks at the end.
-void add_coupling_times(const fs::path &file, double solver_seconds, json &summary) {
+// The DEM's wall seconds up to the checkpoint a run resumes from (the
+// plugin's coupling state there: next record, steps, load, DEM and mask
+// seconds); 0 for a run from the start. Read before the solver runs: a
+// resumed run may replace that checkpoint with later ones.
+double dem_seconds_before(const Checkpoint *resume) {
+    if (!resume)
+        return 0.0;
+    const std::vector<double> state = read_state_values((resume->dir / "coupling").string());
+    return state.size() == 5 ? state[3] : 0.0;
+}
+
+// The plugin's timings (coupling_times.json: engine advance = DEM) and clocks
+// at the end. Its seconds are the whole run's, earlier parts included; the
+// solver's clock is this part's (a resume starts a new log), so the DEM's
+// share is taken over this part alone: its DEM seconds less those before.
+void add_coupling_times(const fs::path &file, double solver_seconds, double dem_before, json &summary) {
     std::ifstream times_file(file);
     const json times = times_file ? json::parse(times_file, nullptr, false) : json();
     if (times.is_object()) {
         for (const char *key : {"dem_seconds", "load_seconds", "mask_seconds"})
             summary[key] = times.value(key, 0.0);
-        summary["dem_share_of_solver"] = times.value("dem_seconds", 0.0) / std::max(solver_seconds, 1e-300);
+        summary["dem_share_of_solver"] =
+            (times.value("dem_seconds", 0.0) - dem_before) / std::max(solver_seconds, 1e-300);
         summary["coupling_seconds"] = times.value("dem_seconds", 0.0) + times.value("load_seconds", 0.0) +
                                       times.value("mask_seconds", 0.0);
         // s, at the end: the engine keeps the fluid's clock to half an engine step.
@@ -209,6 +225,7 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
     const fs::path out = folder.target();
     const fs::path resolved = write_run_inputs(scene, setup, folder);
     const fs::path case_dir = prepare_case(r, scene, setup, folder, resolved, resume);
+    const double dem_before = dem_seconds_before(resume);
     const auto solver_start = std::chrono::steady_clock::now();
     run_interfoam(scene, case_dir, resume);
     const double solver_seconds =
@@ -253,7 +270,7 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
 
     const std::string result = analyse_coupled_record(scene, setup, rec, out, case_dir, folder, summary);
     add_solver_figures(scene, solver_log, solver_seconds, summary);
-    add_coupling_times(out / "coupling_times.json", solver_seconds, summary);
+    add_coupling_times(out / "coupling_times.json", solver_seconds, dem_before, summary);
     add_fluid_models_summary(scene, summary);
     write_text_file(folder.claim("summary.json"), summary.dump(2) + "\n");
     std::printf("%s: %d units, %.4g s coupled in %.1f s wall%s%s -> %s\n", scene.name.c_str(),

@@ -343,6 +343,33 @@ int with_settle_report(OutputFolder &folder, int status, json report) {
     return status;
 }
 
+// A settle in an exact-shape engine for a run in a clump engine: the clump's
+// spheres stand out of the exact faces (the stability scene's 118-sphere cube
+// by 1.2 mm, 0.03 Dn), so the exact shapes' settled poses would start each
+// clump inside its neighbours and the slope. The settle's cubes grow (edge
+// and chamfer, about their centres) until every sphere lies inside
+// (growth_to_hold_clump): the clumps start in contact or apart, and the
+// exact shapes of a run of the settled scene at most that growth apart,
+// one layer for both unit models (docs/stability.md). Only cubes: a dolos's
+// flukes do not grow about its centre, and an STL unit has no size key.
+void grow_units_to_hold_clumps(Scene &dry, const Scene &scene, const SceneSetup &setup) {
+    if (engine_style(dry.engine).capabilities.shape != ShapeModel::convex_hulls ||
+        engine_style(scene.engine).capabilities.shape != ShapeModel::sphere_clumps)
+        return;
+    for (std::size_t k = 0; k < dry.units.size(); ++k) {
+        SceneUnit &u = dry.units[k];
+        const std::optional<double> growth = growth_to_hold_clump(setup.units[k]);
+        if (u.shape != "cube" || !growth)
+            throw InputError(scene.file + ": key 'fluid.settle_engine': " + dry.engine +
+                             " settles exact shapes and run.engine " + scene.engine +
+                             " runs sphere clumps from their poses, which needs each unit grown to hold its "
+                             "clump; unit '" +
+                             u.name + "' is a " + u.shape + " (only cubes grow); settle with run.engine");
+        u.size *= *growth;
+        u.chamfer *= *growth;
+    }
+}
+
 // The settle's own scene (OUT/settle/scene.resolved.toml reruns it): the
 // scene without its fluid, the pile's headroom in its domain, its friction
 // between units as pairs.
@@ -359,6 +386,7 @@ Scene settle_scene(const Scene &scene, const SceneSetup &setup) {
     dry.series.clear();            // the waves' steps, not the settle's
     if (!fluid.settle_engine.empty())
         dry.engine = fluid.settle_engine;
+    grow_units_to_hold_clumps(dry, scene, setup);
     dry.domain_max.z() += settle_headroom(scene, setup);
     if (fluid.settle_friction)
         set_friction_between_units(dry, *fluid.settle_friction);
@@ -410,6 +438,7 @@ Scene settled_scene(const Scene &scene, std::vector<SceneBody> bodies) {
 Scene settle_before_coupling(const RunRequest &r, OutputFolder &folder, const Scene &scene, SceneSetup &setup,
                              json &report) {
     const SceneFluid &fluid = *scene.fluid;
+    const Scene dry = settle_scene(scene, setup); // refused here, before anything is written
     const fs::path dir = folder.claim("settle");
     const fs::path settled_file = dir / "scene.settled.toml";
     std::fprintf(stderr,
@@ -420,6 +449,14 @@ Scene settle_before_coupling(const RunRequest &r, OutputFolder &folder, const Sc
                      ? (", friction " + number_text(*fluid.settle_friction) + " between units").c_str()
                      : "",
                  dir.c_str());
+    for (std::size_t k = 0; k < dry.units.size(); ++k)
+        if (dry.units[k].size != scene.units[k].size)
+            std::fprintf(
+                stderr,
+                "run: the settle's %s cubes '%s' are grown %.4g x (edge %.4g m) so that the run's clumps "
+                "start inside them\n",
+                dry.engine.c_str(), dry.units[k].name.c_str(), dry.units[k].size / scene.units[k].size,
+                dry.units[k].size);
     std::fflush(nullptr);
     const pid_t pid = ::fork();
     if (pid < 0)
@@ -427,7 +464,6 @@ Scene settle_before_coupling(const RunRequest &r, OutputFolder &folder, const Sc
     if (pid == 0) {
         int status = 1;
         try {
-            const Scene dry = settle_scene(scene, setup);
             OutputFolder settle_folder(dir, "armour run", OutputFolder::Mode::streaming);
             std::vector<BodyState> states;
             StillWater water;
@@ -645,7 +681,8 @@ void warn_if_settle_hands_clumps_to_hulls(const Scene &scene) {
                      "armour: warning: %s %s settled sphere clumps and run.engine %s "
                      "runs exact hulls from their poses: the hulls slump off a clump-settled layer "
                      "before any wave (dry, 52 of 99 units displaced in 5 s: docs/validation/stability.md), "
-                     "so their damage is not the waves' alone\n",
+                     "so their damage is not the waves' alone; one layer for both: a run.engine liggghts "
+                     "run with fluid.settle_engine bullet, then its settled scene with --engine bullet\n",
                      settles_here ? "fluid.settle_engine" : "fluid.settled_by", settled_by.c_str(),
                      scene.engine.c_str());
 }

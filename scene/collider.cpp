@@ -1,9 +1,11 @@
 #include "collider.h"
+#include "scene_setup.h"
 
 #include "mesh.h"
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace armour {
 
@@ -148,6 +150,27 @@ Collider make_collider(const UnitTemplate &unit, ShapeModel model, double Dn) {
         c.corners.insert(c.corners.end(), part.vertices.begin(), part.vertices.end());
     }
     return c;
+}
+
+std::optional<double> growth_to_hold_clump(const UnitTemplate &unit) {
+    const Collider exact = make_collider(unit, ShapeModel::convex_hulls, 1.0);
+    double growth = 1.0;
+    for (const auto &sph : unit.clump) {
+        // The least growth of any part that holds this sphere once grown: a
+        // part grows about the unit's centre only if the centre lies inside
+        // it (every plane in front of the centre), else growth moves it away.
+        double least = HUGE_VAL;
+        for (const auto &planes : exact.parts) {
+            double need = 1.0;
+            for (const HalfSpace &h : planes)
+                need = h.d > 0.0 ? std::max(need, (h.n.dot(sph.center) + sph.radius) / h.d) : HUGE_VAL;
+            least = std::min(least, need);
+        }
+        if (!std::isfinite(least))
+            return std::nullopt;
+        growth = std::max(growth, least);
+    }
+    return growth;
 }
 
 double depth_outside_clump(const Clump &clump, const std::vector<Eigen::Vector3d> &points) {

@@ -248,8 +248,9 @@ const std::vector<Key<SceneFluid>> &fluid_keys() {
             .in(Range::at_least(0))
             .defaults("the materials' own"),
         key("settle_engine", &F::settle_engine, "",
-            "the engine of the settle: e.g. liggghts (clumps) to settle the layer that run.engine bullet "
-            "(exact hulls) then runs, so both engines meet the waves on one layer (below)")
+            "the engine of the settle: bullet (exact hulls, each cube grown to hold its clump) settles the "
+            "layer that run.engine liggghts (clumps) runs and its settled scene runs with --engine bullet: "
+            "both engines meet the waves on one layer; liggghts for a bullet run: the hulls slump (below)")
             .one_of(engine_names())
             .defaults("`run.engine`")
             .written_if([](const F &f) { return !f.settle_engine.empty(); }),

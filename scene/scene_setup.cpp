@@ -476,6 +476,17 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
         const auto k = static_cast<std::size_t>(unit);
         return std::max(0.01 * setup.unit_Dn[k], beyond_clump[k]);
     };
+    // Exact shapes' settled poses handed to clumps as they are: the clumps'
+    // spheres stand out of the shapes, into the neighbours and the slope.
+    std::string remedy;
+    if (scene.fluid && !scene.fluid->settled_by.empty() &&
+        engine_style(scene.fluid->settled_by).capabilities.shape == ShapeModel::convex_hulls &&
+        engine_style(scene.engine).capabilities.shape == ShapeModel::sphere_clumps)
+        remedy =
+            " (fluid.settled_by " + scene.fluid->settled_by +
+            " settled exact shapes, which the clumps stand out of: settle for the clumps with run.engine " +
+            scene.engine + " and fluid.settle_engine " + scene.fluid->settled_by +
+            ", which grows the cubes to hold them)";
     for (std::size_t i = 0; i < setup.bodies.size(); ++i) {
         const BodyInit &b = setup.bodies[i];
         const Collider &c = colliders[static_cast<std::size_t>(b.unit)];
@@ -489,7 +500,7 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
                              "' by " + num(depth) + " m at its initial pose " +
                              (c.spheres ? "(the clump's spheres may protrude beyond the exact shape)"
                                         : "(its exact shape, which the engine collides)") +
-                             "; move it away from the wall");
+                             "; move it away from the wall" + remedy);
     }
     for (std::size_t i = 0; i < setup.bodies.size() && problems.size() < 5; ++i)
         for (std::size_t j = i + 1; j < setup.bodies.size() && problems.size() < 5; ++j) {
@@ -526,7 +537,7 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
         for (const auto &p : problems)
             pairs += (pairs.empty() ? "" : ", ") + p;
         throw InputError(scene.file + ": initial placement: bodies overlap (pairs " + pairs +
-                         "); move them apart");
+                         "); move them apart" + remedy);
     }
     const bool wave_flume = scene.waves && scene.waves->type != "solitary"; // an empty flume is a scene
     if (setup.bodies.empty() && !wave_flume)

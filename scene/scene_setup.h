@@ -5,6 +5,7 @@
 #include "rigid_body_engine.h"
 #include "scene.h"
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -49,6 +50,16 @@ double resting_overlap(const UnitTemplate &unit, const Material &material, doubl
 // m: the Hertz overlap of a sphere of `radius` (m) pressed on a plane of its
 // own material by `force` (N).
 double sphere_overlap(double radius, const Material &material, double force);
+
+// The factor by which the unit's exact shape must grow about its centre for
+// every sphere of its clump to lie inside it (>= 1; a clump's spheres stand
+// out of the exact faces): a settle in an exact-shape engine grows its units
+// by it so that the layer it hands to a clump engine starts no clump inside
+// a neighbour or a wall. Each sphere must fit one grown convex part that
+// holds the unit's centre (a part that does not moves away as it grows);
+// nullopt when no part holds it. A dolos's fluke spheres fit only its
+// grown shank (3.25 x): a settle grows cubes only.
+std::optional<double> growth_to_hold_clump(const UnitTemplate &unit);
 
 // The default clump cache: $ARMOUR_CACHE, else $XDG_CACHE_HOME/armour-fsi,
 // else ~/.cache/armour-fsi.

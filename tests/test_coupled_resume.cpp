@@ -513,6 +513,11 @@ TEST(CoupledResume, SettledWaveRunResumesWithTheSameCommand) {
     EXPECT_NEAR(wb["incident_period"].get<double>() / wa["incident_period"].get<double>(), 1.0, 0.01);
     EXPECT_NEAR(wb["reflection_coefficient"].get<double>(), wa["reflection_coefficient"].get<double>(), 0.01);
     EXPECT_NEAR(b["damage_S"].get<double>(), a["damage_S"].get<double>(), 0.01);
+    // The DEM advances inside the solver's steps, so its share of the solver's
+    // time is at most 1; the resumed part's solver clock starts at the
+    // checkpoint, while the plugin's DEM seconds carry the earlier parts.
+    EXPECT_GT(b["dem_share_of_solver"].get<double>(), 0.0);
+    EXPECT_LE(b["dem_share_of_solver"].get<double>(), 1.0);
     if (!::testing::Test::HasFailure())
         fs::remove_all(dir);
 }

@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -386,6 +387,38 @@ TEST(RandomPlacement, TheFullPileStandsAboveTheFlumeOnlyForASettle) {
         EXPECT_NE(what.find("key 'pattern.0.placement'"), std::string::npos) << what;
         EXPECT_NE(what.find("leaves run.domain_min/domain_max"), std::string::npos) << what;
     }
+}
+
+// A settle in exact hulls for a clump run grows each cube until its clump's
+// spheres all lie inside (growth_to_hold_clump, the settle's cubes): for the
+// scene's 118-sphere cube the factor is its spheres' farthest reach along the
+// cube's axes over the half edge (every sphere inside, the farthest
+// touching). A dolos's flukes are convex parts that do not hold its centre,
+// so its fluke spheres fit only its shank grown more than twice (measured
+// 3.25 x): why a settle grows cubes only.
+TEST(SettleGrowth, ACubeGrowsUntilItsClumpIsInsideADolosOnlyPastTwice) {
+    const armour::SceneSetup setup = armour::build_scene(stability_scene({}), ARMOUR_TEST_CACHE, false);
+    const armour::UnitTemplate &cube = setup.units[0];
+    const std::optional<double> growth = armour::growth_to_hold_clump(cube);
+    ASSERT_TRUE(growth.has_value());
+    double reach = 0.0; // m from the centre, along the cube's axes (its unit frame)
+    for (const auto &sphere : cube.clump)
+        reach = std::max(reach, sphere.center.cwiseAbs().maxCoeff() + sphere.radius);
+    EXPECT_NEAR(*growth, reach / (0.5 * kDn), 1e-12);
+    // The spheres stand out of the faces (the corner spheres, by design),
+    // by less than 0.05 Dn.
+    EXPECT_GT(*growth, 1.0);
+    EXPECT_LT(*growth, 1.1);
+    std::printf("[ growth   ] the 118-sphere cube's clump reaches %.3g mm beyond its faces: grown %.4f x\n",
+                1e3 * (reach - 0.5 * kDn), *growth);
+
+    const armour::SceneSetup dolosse = armour::build_scene(
+        armour::load_scene(std::string(ARMOUR_SOURCE_DIR) + "/scenes/slope_dolosse.toml", {}),
+        ARMOUR_TEST_CACHE, false);
+    const std::optional<double> dolos = armour::growth_to_hold_clump(dolosse.units[0]);
+    ASSERT_TRUE(dolos.has_value());
+    EXPECT_GT(*dolos, 2.0);
+    std::printf("[ growth   ] the dolos's fluke spheres fit only its shank grown %.3g x\n", *dolos);
 }
 
 } // namespace

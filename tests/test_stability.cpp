@@ -273,6 +273,56 @@ TEST(StabilityCubes, StillWaterLeavesTheSettledLayerInPlace) {
 
 namespace {
 
+// Clumps and hulls from one layer, settled by the hulls: a clump run whose
+// settle is Bullet's (fluid.settle_engine = bullet) grows the settle's cubes
+// until the clump's spheres lie inside them (they stand 1.2 mm out of the 4
+// cm cube's faces; from the hulls' own layer the clumps were refused, 1.05 mm
+// into the slope), so the clumps start from the hulls' settled poses and the
+// settled scene runs with either engine; it says so, and the settled scene
+// keeps the scene's own cube.
+TEST(StabilityCubes, AHullSettleGrowsItsCubesSoTheClumpsStartFromItsLayer) {
+    // At the settle's friction 0.1 a hull or two slides off the toe onto the
+    // flume's floor (every settle tried, full layer and this one): the
+    // refined box reaches out to them.
+    const SceneRun run = run_stability("hull_settle", "--engine liggghts --set fluid.settle_engine=bullet "
+                                                      "--set 'fluid.refine_min=[1.10,-0.124,0.18]' "
+                                                      "--set run.duration=0.05");
+    ASSERT_EQ(run.status, 0) << run.output;
+    EXPECT_NE(run.output.find("run: the settle's bullet cubes 'cube' are grown 1.06 x (edge 0.04241 m)"),
+              std::string::npos)
+        << run.output;
+    EXPECT_EQ(run.output.find("slump"), std::string::npos) << run.output;
+    EXPECT_NE(read_text(run.out / "settle" / "scene.resolved.toml").find("size = 0.0424"), std::string::npos);
+    const fs::path settled = run.out / "settle" / "scene.settled.toml";
+    const std::string settled_text = read_text(settled);
+    EXPECT_NE(settled_text.find("size = 0.04 # m"), std::string::npos) << settled_text;
+    EXPECT_NE(settled_text.find("settled_by = \"bullet\""), std::string::npos);
+    EXPECT_EQ(run.summary["engine"], "liggghts");
+    // The same layer for the exact hulls: accepted as it is, no slump said.
+    const SceneRun hulls = armour_test::run_scene(ARMOUR_EXE, settled.string(), "stability_hull_settle_hulls",
+                                                  "--engine bullet --dry-run");
+    EXPECT_EQ(hulls.status, 0) << hulls.output;
+    EXPECT_EQ(hulls.output.find("slump"), std::string::npos) << hulls.output;
+    // A layer the hulls settled for themselves (not grown) is refused to the
+    // clumps before they run, the remedy named.
+    const SceneRun own = run_stability("hull_settle_own", "--engine bullet "
+                                                          "--set 'fluid.refine_min=[1.10,-0.124,0.18]' "
+                                                          "--set run.duration=0.05");
+    ASSERT_EQ(own.status, 0) << own.output;
+    const SceneRun clumps =
+        armour_test::run_scene(ARMOUR_EXE, (own.out / "settle" / "scene.settled.toml").string(),
+                               "stability_hull_settle_clumps", "--engine liggghts --dry-run");
+    EXPECT_EQ(clumps.status, 2) << clumps.output;
+    EXPECT_NE(
+        clumps.output.find("settle for the clumps with run.engine liggghts and fluid.settle_engine bullet, "
+                           "which grows the cubes to hold them)"),
+        std::string::npos)
+        << clumps.output;
+    if (!HasFailure())
+        for (const SceneRun *r : {&run, &hulls, &own, &clumps})
+            fs::remove_all(r->dir);
+}
+
 // A missing wave library is refused before the settle runs (a minute of
 // DEM at the scene's size), naming it, with nothing written.
 TEST(StabilityCubes, AMissingWaveLibraryIsRefusedBeforeTheSettle) {
