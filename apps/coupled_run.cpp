@@ -163,8 +163,7 @@ void add_solver_figures(const Scene &scene, const SolverLogFigures &solver_log, 
 double dem_seconds_before(const Checkpoint *resume) {
     if (!resume)
         return 0.0;
-    const std::vector<double> state = read_state_values((resume->dir / "coupling").string());
-    return state.size() == 5 ? state[3] : 0.0;
+    return read_coupling_state(resume->dir).dem_seconds;
 }
 
 // The plugin's timings (coupling_times.json: engine advance = DEM) and clocks

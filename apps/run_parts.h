@@ -1,4 +1,4 @@
-// The parts of `armour run` (run_command.cpp) that a test series
+// The parts of `armour run` (run_command.cpp, settle_run.cpp) that a test series
 // (series_run.h) runs again for each of its steps: the settle before the
 // waves, the checks of a resume, the warnings a run prints before it starts.
 #pragma once

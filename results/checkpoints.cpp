@@ -1,6 +1,7 @@
 #include "checkpoints.h"
 
 #include "input_error.h"
+#include "rigid_body_engine.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -162,6 +163,21 @@ void Checkpoints::drop(const fs::path &dir) {
 void Checkpoints::step(const std::string &what) const {
     if (step_hook_)
         step_hook_(what);
+}
+
+void write_coupling_state(const fs::path &checkpoint_dir, const CouplingState &state) {
+    write_state_values((checkpoint_dir / "coupling").string(),
+                       {state.next_record, static_cast<double>(state.steps), state.load_seconds,
+                        state.dem_seconds, state.mask_seconds});
+}
+
+CouplingState read_coupling_state(const fs::path &checkpoint_dir) {
+    const fs::path file = checkpoint_dir / "coupling";
+    const std::vector<double> v = read_state_values(file.string());
+    if (v.size() != 5)
+        throw InputError(file.string() + ": not a coupling state (" + std::to_string(v.size()) +
+                         " values, not 5)");
+    return {v[0], static_cast<long>(v[1]), v[2], v[3], v[4]};
 }
 
 } // namespace armour

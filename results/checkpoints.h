@@ -39,6 +39,20 @@ struct Checkpoint {
     std::filesystem::path dir; // where it lies (set by last_checkpoint and write)
 };
 
+// A coupled run's own state in a checkpoint (CHECKPOINT/coupling): the
+// interFoam plugin writes it, a resume of the plugin and `armour run`'s
+// summary (the DEM's share of this part) read it. Its one layout is here.
+struct CouplingState {
+    double next_record = 0.0;  // s, the simulated time of the next bodies.h5 record
+    long steps = 0;            // fluid steps so far
+    double load_seconds = 0.0; // s of wall time so far: the loads on the units,
+    double dem_seconds = 0.0;  // the engine's advances,
+    double mask_seconds = 0.0; // the solid fractions
+};
+void write_coupling_state(const std::filesystem::path &checkpoint_dir, const CouplingState &state);
+// InputError naming the file when it is not a coupling state.
+CouplingState read_coupling_state(const std::filesystem::path &checkpoint_dir);
+
 // The complete checkpoint with the latest time, if OUT/checkpoints holds one.
 std::optional<Checkpoint> last_checkpoint(const std::filesystem::path &out);
 

@@ -7,6 +7,7 @@
 #include "bodies_file.h"
 #include "checkpoints.h"
 #include "cli.h"
+#include "rigid_body_engine.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -302,6 +303,32 @@ TEST(CheckpointNames, FolderNamesReadAsTheirTime) {
     EXPECT_EQ(armour::time_of_name(armour::checkpoint_name(0.1)), 0.1);
     for (const char *other : {"", "uniform", "processor0", "0.5x", "0.5 ", "1e999"})
         EXPECT_FALSE(armour::time_of_name(other).has_value()) << '"' << other << '"';
+}
+
+// The coupling state the plugin writes and `armour run` reads back: every
+// value as written (a resume goes on counting steps and seconds from them),
+// and a file of another layout refused naming it rather than read wrongly.
+TEST(CouplingState, ReadsBackAsWrittenAndRefusesAnotherLayout) {
+    const fs::path dir = fs::temp_directory_path() / ("armour_coupling_state_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const armour::CouplingState written{12.35, 4478, 61.25, 1186.5, 5.125};
+    armour::write_coupling_state(dir, written);
+    const armour::CouplingState read = armour::read_coupling_state(dir);
+    EXPECT_EQ(read.next_record, written.next_record);
+    EXPECT_EQ(read.steps, written.steps);
+    EXPECT_EQ(read.load_seconds, written.load_seconds);
+    EXPECT_EQ(read.dem_seconds, written.dem_seconds);
+    EXPECT_EQ(read.mask_seconds, written.mask_seconds);
+
+    armour::write_state_values((dir / "coupling").string(), {1.0, 2.0, 3.0, 4.0});
+    try {
+        armour::read_coupling_state(dir);
+        ADD_FAILURE() << "a state of 4 values was read as a coupling state";
+    } catch (const std::exception &e) {
+        EXPECT_NE(std::string(e.what()).find((dir / "coupling").string()), std::string::npos) << e.what();
+    }
+    fs::remove_all(dir);
 }
 
 namespace {

@@ -79,17 +79,12 @@ void armourFoam::checkpointing::loadInto
 {
     const std::string dir = resume_->dir.string();
     bodies.loadState(dir);
-    const std::vector<double> c =
-        armour::read_state_values(dir + "/coupling");
-    if (c.size() != 5)
-    {
-        throw armour::InputError(dir + "/coupling: not a coupling state");
-    }
-    rec.setNextRecord(c[0]);
-    times.steps = static_cast<long>(c[1]);
-    times.loadSeconds = c[2];
-    times.demSeconds = c[3];
-    times.maskSeconds = c[4];
+    const armour::CouplingState c = armour::read_coupling_state(dir);
+    rec.setNextRecord(c.next_record);
+    times.steps = c.steps;
+    times.loadSeconds = c.load_seconds;
+    times.demSeconds = c.dem_seconds;
+    times.maskSeconds = c.mask_seconds;
 }
 
 
@@ -182,12 +177,12 @@ bool armourFoam::checkpointing::step
         {
             partial_ = checkpoints_.begin().string();
             dir = partial_;
-            armour::write_state_values
+            armour::write_coupling_state
             (
-                dir + "/coupling",
+                dir,
                 {
                     rec.nextRecord(),
-                    static_cast<double>(times.steps),
+                    times.steps,
                     times.loadSeconds,
                     times.demSeconds,
                     times.maskSeconds

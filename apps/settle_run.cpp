@@ -1,0 +1,276 @@
+// The settle before a coupled run: the scene's units settled under still
+// water in a forked DEM run (dem_run.h), and the scene the waves start from.
+#include "dem_run.h"
+#include "run_parts.h"
+
+#include "engine_registry.h"
+#include "output_folder.h"
+#include "scene_keys.h"
+#include "scene_setup.h"
+#include "scene_text.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace armour {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+// The settle's friction between the units (fluid.settle_friction): every
+// pair of materials that units are made of gets it as a pair override;
+// a wall of such a material meets the units with it too.
+void set_friction_between_units(Scene &scene, double friction) {
+    std::vector<std::string> names;
+    for (const SceneUnit &u : scene.units)
+        if (std::find(names.begin(), names.end(), u.material) == names.end())
+            names.push_back(u.material);
+    for (std::size_t i = 0; i < names.size(); ++i)
+        for (std::size_t j = i; j < names.size(); ++j) {
+            auto found =
+                std::find_if(scene.material_pairs.begin(), scene.material_pairs.end(),
+                             [&](const SceneMaterialPair &p) { return p.joins(names[i], names[j]); });
+            if (found == scene.material_pairs.end()) {
+                scene.material_pairs.push_back(
+                    {names[i], names[j], std::nullopt, std::nullopt, std::nullopt});
+                found = std::prev(scene.material_pairs.end());
+            }
+            found->friction = friction;
+        }
+}
+
+} // namespace
+
+// OUT/settle/settled.json with the speed below which the layer counts as
+// still: 1 % of the smallest unit's size per second, the drift a resting
+// unit may show in water (the coupled rest test). A layer still moving
+// faster readjusts in the first coupled steps, and the flow (and the
+// pressure solver) sees that as a real motion.
+json settle_report(const fs::path &dir, const SceneSetup &setup) {
+    std::ifstream in(dir / "settled.json");
+    json report = json::parse(in);
+    double Dn = HUGE_VAL;
+    for (const double d : setup.unit_Dn)
+        Dn = std::min(Dn, d);
+    report["still_speed"] = 0.01 * Dn / 1.0;
+    return report;
+}
+
+// The coupled summary says where its start came from.
+int with_settle_report(OutputFolder &folder, int status, json report) {
+    const fs::path summary_file = folder.claim("summary.json");
+    std::ifstream in(summary_file);
+    if (status == 0 && in) {
+        json summary = json::parse(in);
+        in.close();
+        report["scene"] = "settle/scene.settled.toml";
+        summary["settle"] = report;
+        write_text_file(summary_file, summary.dump(2) + "\n");
+    }
+    return status;
+}
+
+// A settle in an exact-shape engine for a run in a clump engine: the clump's
+// spheres stand out of the exact faces (the stability scene's 118-sphere cube
+// by 1.2 mm, 0.03 Dn), so the exact shapes' settled poses would start each
+// clump inside its neighbours and the slope. The settle's cubes grow (edge
+// and chamfer, about their centres) until every sphere lies inside
+// (growth_to_hold_clump): the clumps start in contact or apart, and the
+// exact shapes of a run of the settled scene at most that growth apart,
+// one layer for both unit models (docs/stability.md). Only cubes: a dolos's
+// flukes do not grow about its centre, and an STL unit has no size key.
+void grow_units_to_hold_clumps(Scene &dry, const Scene &scene, const SceneSetup &setup) {
+    if (engine_style(dry.engine).capabilities.shape != ShapeModel::convex_hulls ||
+        engine_style(scene.engine).capabilities.shape != ShapeModel::sphere_clumps)
+        return;
+    for (std::size_t k = 0; k < dry.units.size(); ++k) {
+        SceneUnit &u = dry.units[k];
+        const std::optional<double> growth = growth_to_hold_clump(setup.units[k]);
+        if (u.shape != "cube" || !growth)
+            throw InputError(scene.file + ": key 'fluid.settle_engine': " + dry.engine +
+                             " settles exact shapes and run.engine " + scene.engine +
+                             " runs sphere clumps from their poses, which needs each unit grown to hold its "
+                             "clump; unit '" +
+                             u.name + "' is a " + u.shape + " (only cubes grow); settle with run.engine");
+        u.size *= *growth;
+        u.chamfer *= *growth;
+    }
+}
+
+// The settle's own scene (OUT/settle/scene.resolved.toml reruns it): the
+// scene without its fluid, the pile's headroom in its domain, its friction
+// between units as pairs.
+Scene settle_scene(const Scene &scene, const SceneSetup &setup) {
+    const SceneFluid &fluid = *scene.fluid;
+    Scene dry = scene;
+    dry.fluid.reset();
+    dry.waves.reset(); // both need [fluid]
+    dry.porous.clear();
+    dry.duration = fluid.settle_time;
+    dry.output_interval = std::min(scene.output_interval, fluid.settle_time);
+    dry.analysis = "none";
+    dry.checkpoint_interval = 0.0; // the settle run is short; the coupled run checkpoints
+    dry.series.clear();            // the waves' steps, not the settle's
+    if (!fluid.settle_engine.empty())
+        dry.engine = fluid.settle_engine;
+    grow_units_to_hold_clumps(dry, scene, setup);
+    dry.domain_max.z() += settle_headroom(scene, setup);
+    if (fluid.settle_friction)
+        set_friction_between_units(dry, *fluid.settle_friction);
+    return dry;
+}
+
+// The scene the coupled run starts from after the settle: the same scene
+// with every unit an explicit [[body]] (`bodies`: at the settled poses).
+std::vector<SceneBody> bodies_at_rest(const Scene &scene, const SceneSetup &setup,
+                                      const std::vector<BodyState> &states) {
+    std::vector<SceneBody> bodies;
+    for (std::size_t i = 0; i < states.size(); ++i) {
+        SceneBody b;
+        if (i < scene.bodies.size())
+            b = scene.bodies[i]; // explicit bodies keep their held axes
+        b.unit = setup.units[static_cast<std::size_t>(setup.bodies[i].unit)].name;
+        b.position = states[i].pose.position;
+        const Eigen::Quaterniond q = states[i].pose.orientation.normalized();
+        b.orientation = Eigen::Vector4d(q.w(), q.x(), q.y(), q.z());
+        b.velocity.setZero();
+        b.angular_velocity.setZero();
+        bodies.push_back(b);
+    }
+    return bodies;
+}
+
+Scene settled_scene(const Scene &scene, std::vector<SceneBody> bodies) {
+    Scene settled = scene;
+    settled.fluid->settle_time = 0.0;
+    settled.fluid->settle_friction.reset();
+    settled.fluid->settled_by =
+        scene.fluid->settle_engine.empty() ? scene.engine : scene.fluid->settle_engine;
+    settled.fluid->settle_engine.clear();
+    settled.drops.clear();
+    settled.patterns.clear();
+    settled.bodies = std::move(bodies);
+    return settled;
+}
+
+// Settles a coupled scene's units in the DEM for fluid.settle_time, under
+// the buoyancy of the scene's still water (without it the contacts, loaded
+// by the dry weight, would relax in the first coupled steps as if the water
+// had appeared at once), and returns the scene the coupled run starts from:
+// the same scene with every unit an explicit [[body]] at its settled pose, at
+// rest. The DEM runs in a forked child: an engine that starts MPI (LIGGGHTS)
+// in this process would leave it unable to launch interFoam under mpirun.
+// The child writes OUT/settle (a normal `armour run` output), OUT/settle/scene.settled.toml
+// (rerunnable on its own) and OUT/settle/settled.json (how still it got).
+Scene settle_before_coupling(const RunRequest &r, OutputFolder &folder, const Scene &scene, SceneSetup &setup,
+                             json &report) {
+    const SceneFluid &fluid = *scene.fluid;
+    const Scene dry = settle_scene(scene, setup); // refused here, before anything is written
+    const fs::path dir = folder.claim("settle");
+    const fs::path settled_file = dir / "scene.settled.toml";
+    std::fprintf(stderr,
+                 "run: settling %zu units in the DEM under still water (level %g m) for %g s "
+                 "(fluid.settle_time)%s -> %s\n",
+                 setup.bodies.size(), fluid.water_level, fluid.settle_time,
+                 fluid.settle_friction
+                     ? (", friction " + number_text(*fluid.settle_friction) + " between units").c_str()
+                     : "",
+                 dir.c_str());
+    for (std::size_t k = 0; k < dry.units.size(); ++k)
+        if (dry.units[k].size != scene.units[k].size)
+            std::fprintf(
+                stderr,
+                "run: the settle's %s cubes '%s' are grown %.4g x (edge %.4g m) so that the run's clumps "
+                "start inside them\n",
+                dry.engine.c_str(), dry.units[k].name.c_str(), dry.units[k].size / scene.units[k].size,
+                dry.units[k].size);
+    std::fflush(nullptr);
+    const pid_t pid = ::fork();
+    if (pid < 0)
+        throw InputError("fluid.settle_time: cannot start the settle run (fork failed)");
+    if (pid == 0) {
+        int status = 1;
+        try {
+            OutputFolder settle_folder(dir, "armour run", OutputFolder::Mode::streaming);
+            std::vector<BodyState> states;
+            StillWater water;
+            water.level = fluid.water_level;
+            water.density = fluid.fluid_density;
+            water.update_interval = std::min(fluid.max_time_step, dry.output_interval);
+            SceneSetup dry_setup = build_scene(dry, r.cache.empty() ? default_cache_dir() : r.cache, false);
+            if (dry_setup.bodies.size() != setup.bodies.size())
+                throw InputError("fluid.settle_time: the settle placed " +
+                                 std::to_string(dry_setup.bodies.size()) + " units, the scene " +
+                                 std::to_string(setup.bodies.size()));
+            run_dem(settle_folder, dry, dry_setup, &states, &water);
+
+            std::vector<SceneBody> bodies = bodies_at_rest(scene, setup, states);
+            double speed = 0.0, displacement = 0.0;
+            for (std::size_t i = 0; i < states.size(); ++i) {
+                speed = std::max(speed, states[i].velocity.norm());
+                displacement =
+                    std::max(displacement, (states[i].pose.position - setup.bodies[i].pose.position).norm());
+            }
+            write_text_file(settle_folder.claim(settled_file.filename().string()),
+                            resolved_scene_toml(settled_scene(scene, std::move(bodies))));
+            write_text_file(
+                settle_folder.claim("settled.json"),
+                json{
+                    {"settle_time", fluid.settle_time},
+                    {"settle_friction", fluid.settle_friction ? json(*fluid.settle_friction) : json(nullptr)},
+                    {"water_level", water.level},
+                    {"water_density", water.density},
+                    {"max_speed_at_end", speed},
+                    {"max_displacement", displacement},
+                    {"units", states.size()},
+                    {"si_units", {{"speed", "m/s"}, {"lengths", "m"}, {"water_density", "kg/m^3"}}}}
+                        .dump(2) +
+                    "\n");
+            status = 0;
+        } catch (const std::exception &e) {
+            std::fprintf(stderr, "armour: settle run: %s\n", e.what());
+        }
+        std::fflush(nullptr);
+        ::_exit(status);
+    }
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !fs::is_regular_file(settled_file))
+        throw InputError(scene.file + ": key 'fluid.settle_time': the dry settle run failed (see the line " +
+                         "above and " + dir.string() + ")");
+    report = settle_report(dir, setup);
+    const double speed = report["max_speed_at_end"].get<double>(),
+                 still = report["still_speed"].get<double>();
+    if (speed > still)
+        std::fprintf(stderr,
+                     "armour: warning: after fluid.settle_time = %g s a unit still moves at %.3g m/s (> %.3g "
+                     "m/s, 1 %% of Dn per second): the layer has not settled and will readjust in the "
+                     "water; raise fluid.settle_time\n",
+                     fluid.settle_time, speed, still);
+    // A settle cut short hands over a pile still falling: units above the
+    // domain or overlapping. Say so in the user's own terms.
+    try {
+        Scene settled = load_scene(settled_file.string());
+        setup = build_scene(settled, r.cache.empty() ? default_cache_dir() : r.cache, false);
+        return settled;
+    } catch (const InputError &e) {
+        if (speed <= still)
+            throw;
+        throw InputError(scene.file + ": key 'fluid.settle_time': after " + number_text(fluid.settle_time) +
+                         " s a unit still moved at " + figure_text(speed) +
+                         " m/s and the settled pose is refused (" + e.what() + "); raise fluid.settle_time");
+    }
+}
+
+} // namespace armour
