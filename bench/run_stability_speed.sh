@@ -24,12 +24,15 @@
 #                              unit's load less its mean over the window, so
 #                              the buoyancy both share is left out)
 # Usage: bash bench/run_stability_speed.sh [--build DIR] [--out DIR] [--duration S]
-#          [--load-from S] [--waves-from S] [--cells NX,NY,NZ] [--extra-rows LIST]
+#          [--load-from S] [--waves-from S] [--cells NX,NY,NZ] [--band BELOW,ABOVE] [--extra-rows LIST]
 #   --duration    simulated seconds per run (default 6.5: full waves at the armour from ~4.5 s)
 #   --load-from   s, start of the load and cost window (default 4.5)
 #   --waves-from  s, start of the gauges' window (default 2.5: the waves' front at the toe)
 #   --cells       fluid.cells of both rows (default the scene's for the refined
 #                 row and [200, 25, 62] for the graded one; NX, NY even)
+#   --band        m, the candidate band's reach under and over the armour's
+#                 face (default 0.06,0.16: 1.5 Dn under, 4 Dn over); only while
+#                 the scene ships without [[refine]]
 #   --extra-rows  comma-separated rows after the default two, each well over the
 #                 default's 30 minutes on 2 cores: uniform (the fine cells in the
 #                 whole flume, serial), graded_serial, refined_serial
@@ -38,8 +41,8 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 bench_name=stability_speed bench_targets="armour armourFoamCoupling armourWaves"
-bench_options="duration load-from waves-from cells extra-rows"
-opt_duration=6.5 opt_load_from=4.5 opt_waves_from=2.5 opt_cells="" opt_extra_rows=""
+bench_options="duration load-from waves-from cells extra-rows band"
+opt_duration=6.5 opt_load_from=4.5 opt_waves_from=2.5 opt_cells="" opt_band="0.06,0.16" opt_extra_rows=""
 source "$root/bench/common.sh"
 bench_args "$@"
 armour="$build/apps/armour"
@@ -49,18 +52,21 @@ sets=(--set "run.duration=$opt_duration" --set waves.ramp_time=0.9 --set run.che
 refined_scene="$scene" refined_cells=() graded_cells=(--set 'fluid.cells=[200,25,62]')
 # While the scene ships its graded mesh (no [[refine]] tables: the band below
 # missed the load goal, docs/validation/speed.md), the refined row runs a copy
-# with the candidate band: Dn / 4 from 1.5 Dn under the armour's face to 4 Dn
-# over it, Dn / 2 elsewhere (fluid.cells along y even: 26).
+# with the candidate band: Dn / 4 from --band's reach under the armour's face
+# to its reach over it (1.5 and 4 Dn), Dn / 2 elsewhere (fluid.cells along y even: 26).
+IFS=, read -r band_below band_above <<<"$opt_band"
+[[ "$band_below" =~ ^[0-9.]+$ && "$band_above" =~ ^[0-9.]+$ ]] ||
+  bench_fail "--band: two lengths in m, BELOW,ABOVE (got '$opt_band')"
 if ! grep -q '^\[\[refine\]\]' "$scene"; then
   refined_scene="$out/stability_refined.toml" refined_cells=(--set 'fluid.cells=[200,26,62]')
-  cat "$scene" - >"$refined_scene" <<'TOML'
+  cat "$scene" - >"$refined_scene" <<TOML
 
 [[refine]]
 name = "armour"
 type = "slope_band"
 wall = "slope"
-below = 0.06
-above = 0.16
+below = $band_below
+above = $band_above
 level = 1
 TOML
 fi
