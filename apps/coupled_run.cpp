@@ -3,7 +3,6 @@
 #include "analysis.h"
 #include "bodies_file.h"
 #include "body_recorder.h"
-#include "clump_io.h"
 #include "fluid_models.h"
 #include "flume_mesh.h"
 #include "foam_case.h"
@@ -13,9 +12,9 @@
 #include "report_command.h"
 #include "rigid_body_engine.h"
 #include "rock_manual_layer.h"
+#include "run_parts.h"
 #include "scene_keys.h"
 #include "solver_log.h"
-#include "stl_io.h"
 
 #include <algorithm>
 #include <chrono>
@@ -45,22 +44,9 @@ int coupling_steps(const fs::path &out) {
 // OUT's entries before the case: what the plugin writes, the resolved scene
 // (returned: the case reads it) and each unit's clump and shape.
 fs::path write_run_inputs(const Scene &scene, const SceneSetup &setup, OutputFolder &folder) {
-    const fs::path out = folder.target();
     for (const char *name : {"bodies.h5", "bodies.xdmf", "fluid.csv", "coupling_times.json"})
         folder.claim(name); // the plugin writes these (a new plugin file is listed here too)
-    std::error_code ec;
-    fs::create_directories(folder.claim("units"), ec);
-    if (ec)
-        throw InputError("--out: cannot create " + out.string() + ": " + ec.message());
-    const fs::path resolved = folder.claim("scene.resolved.toml");
-    write_text_file(resolved, resolved_scene_toml(scene));
-    for (const auto &u : setup.units) {
-        const fs::path dir = out / "units" / u.name;
-        fs::create_directories(dir);
-        write_sphere_file(u.clump, (dir / "clump.spheres").string(), u.name);
-        write_stl(u.mesh, (dir / "shape.stl").string(), true, u.name);
-    }
-    return resolved;
+    return write_scene_and_units(folder, scene, setup);
 }
 
 // The case in OUT/case: a new one from the template, or the run's own set

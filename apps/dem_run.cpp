@@ -1,6 +1,7 @@
 // The DEM run of a scene without [fluid]: engine set-up, time loop with
 // progress, recording, energy balance, analysis.
 #include "dem_run.h"
+#include "run_parts.h"
 
 #include "analysis.h"
 #include "bodies_file.h"
@@ -78,26 +79,6 @@ void set_buoyancy(RigidBodyEngine &engine, int body, const UnitTemplate &unit, c
     engine.set_external_load(body, force, arm.cross(force));
 }
 
-// The run's inputs beside its results: OUT/scene.resolved.toml and each
-// unit's clump and shape under OUT/units/<unit>/ (what bodies.xdmf draws).
-std::vector<RecorderUnit> write_run_inputs(OutputFolder &folder, const Scene &scene,
-                                           const SceneSetup &setup) {
-    std::error_code ec;
-    fs::create_directories(folder.claim("units"), ec);
-    if (ec)
-        throw InputError("--out: cannot create " + folder.target().string() + ": " + ec.message());
-    write_text_file(folder.claim("scene.resolved.toml"), resolved_scene_toml(scene));
-    std::vector<RecorderUnit> recorder_units;
-    for (const auto &u : setup.units) {
-        const fs::path dir = folder.target() / "units" / u.name;
-        fs::create_directories(dir);
-        write_sphere_file(u.clump, (dir / "clump.spheres").string(), u.name);
-        write_stl(u.mesh, (dir / "shape.stl").string(), true, u.name);
-        recorder_units.push_back({u.name, u.mesh});
-    }
-    return recorder_units;
-}
-
 // Mechanical energy of all bodies (kinetic + potential in the scene's
 // gravity), at output times: stability studies compare its maximum with its
 // initial value (a stable, dissipative run never gains energy).
@@ -169,6 +150,22 @@ json dem_summary(const Scene &scene, const SceneSetup &setup, const RigidBodyEng
 
 } // namespace
 
+fs::path write_scene_and_units(OutputFolder &folder, const Scene &scene, const SceneSetup &setup) {
+    std::error_code ec;
+    fs::create_directories(folder.claim("units"), ec);
+    if (ec)
+        throw InputError("--out: cannot create " + folder.target().string() + ": " + ec.message());
+    const fs::path resolved = folder.claim("scene.resolved.toml");
+    write_text_file(resolved, resolved_scene_toml(scene));
+    for (const auto &u : setup.units) {
+        const fs::path dir = folder.target() / "units" / u.name;
+        fs::create_directories(dir);
+        write_sphere_file(u.clump, (dir / "clump.spheres").string(), u.name);
+        write_stl(u.mesh, (dir / "shape.stl").string(), true, u.name);
+    }
+    return resolved;
+}
+
 // The scene's engine with its units, walls and bodies, not started.
 std::unique_ptr<RigidBodyEngine> scene_engine(const Scene &scene, const SceneSetup &setup,
                                               const EngineSettings &settings) {
@@ -199,7 +196,10 @@ int run_dem(OutputFolder &folder, const Scene &scene, SceneSetup &setup, std::ve
 
     folder.open();              // an earlier result of this command is replaced (resumed: nothing)
     folder.claim(scene.engine); // the engine's own files (work_dir), if it writes any
-    const std::vector<RecorderUnit> recorder_units = write_run_inputs(folder, scene, setup);
+    write_scene_and_units(folder, scene, setup);
+    std::vector<RecorderUnit> recorder_units;
+    for (const auto &u : setup.units)
+        recorder_units.push_back({u.name, u.mesh});
     std::vector<int> body_unit;
     for (const auto &b : setup.bodies)
         body_unit.push_back(b.unit);

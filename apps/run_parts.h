@@ -17,6 +17,12 @@
 
 namespace armour {
 
+// Every run's inputs beside its results (a DEM run's and a coupled run's):
+// OUT/scene.resolved.toml (returned) and each unit's clump and exact shape
+// under OUT/units/<unit>/ (clump.spheres, shape.stl: what bodies.xdmf draws).
+std::filesystem::path write_scene_and_units(OutputFolder &folder, const Scene &scene,
+                                            const SceneSetup &setup);
+
 // OUT/settle/settled.json, with the speed below which the layer counts as still.
 nlohmann::json settle_report(const std::filesystem::path &dir, const SceneSetup &setup);
 // Adds `report` to OUT/summary.json as its "settle" object (status 0 only); returns `status`.
