@@ -116,6 +116,7 @@ Scene settle_scene(const Scene &scene, const SceneSetup &setup) {
     dry.fluid.reset();
     dry.waves.reset(); // both need [fluid]
     dry.porous.clear();
+    dry.refine.clear(); // the fluid mesh's regions, refused without [fluid]
     dry.duration = fluid.settle_time;
     dry.output_interval = std::min(scene.output_interval, fluid.settle_time);
     dry.analysis = "none";

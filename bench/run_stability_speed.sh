@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # Cost and accuracy of the stability scene's mesh (scenes/stability_cubes.toml,
-# issues 16 and 34; docs/stability.md, Cost): the scene on a refined mesh (its
-# [[refine]] band, or while it ships graded the candidate band below: Dn/4
-# cells about the armour layer only, fluid_case/mesh_refinement.h) against today's
-# graded Dn/4 mesh (one blockMesh block, Dn/4 in the whole box
-# x > 1.15 m, z > 0.18 m: fluid.mesh = "graded", fluid.cells = [200, 25, 62]),
+# issues 16 and 34; docs/stability.md, Cost): the scene as shipped, on its
+# refined mesh (the [[refine]] band: Dn/4 cells about the armour layer only,
+# fluid_case/mesh_refinement.h), against the graded Dn/4 mesh it shipped before
+# (one blockMesh block, Dn/4 in the whole box x > 1.15 m, z > 0.18 m:
+# fluid.mesh = "graded", fluid.cells = [200, 25, 62]),
 # both with --np 2, over the same waves from the same settled layer: the first
 # row settles the layer (fluid.settle_time, timed apart), the second starts
 # from its settled scene (OUT/refined/settle/scene.settled.toml). The rows run
@@ -23,55 +23,54 @@
 #                              rms of the graded run's changing part (each
 #                              unit's load less its mean over the window, so
 #                              the buoyancy both share is left out)
+#   load_intensity_difference  each unit's load intensity (the rms of its
+#                              changing part over the window), unit by unit:
+#                              rms of the difference over the rms of the graded
+#                              run's; blind to when a wave breaks, which the
+#                              time series above is not
+#   load_floor                 with the row graded_again: the same figures
+#                              between two runs of the graded mesh (the second
+#                              with its interface Courant limit 1 % lower), the
+#                              least any mesh can show against it
 # Usage: bash bench/run_stability_speed.sh [--build DIR] [--out DIR] [--duration S]
-#          [--load-from S] [--waves-from S] [--cells NX,NY,NZ] [--band BELOW,ABOVE] [--extra-rows LIST]
+#          [--load-from S] [--load-to S] [--waves-from S] [--cells NX,NY,NZ] [--band BELOW,ABOVE]
+#          [--extra-rows LIST]
 #   --duration    simulated seconds per run (default 6.5: full waves at the armour from ~4.5 s)
 #   --load-from   s, start of the load and cost window (default 4.5)
+#   --load-to     s, end of the load window (default the runs' end)
 #   --waves-from  s, start of the gauges' window (default 2.5: the waves' front at the toe)
 #   --cells       fluid.cells of both rows (default the scene's for the refined
 #                 row and [200, 25, 62] for the graded one; NX, NY even)
-#   --band        m, the candidate band's reach under and over the armour's
-#                 face (default 0.06,0.16: 1.5 Dn under, 4 Dn over); only while
-#                 the scene ships without [[refine]]
+#   --band        m, the refined row's band reach under and over the armour's
+#                 face (default the scene's 0.06,0.16: 1.5 Dn under, 4 Dn over)
 #   --extra-rows  comma-separated rows after the default two, each well over the
 #                 default's 30 minutes on 2 cores: uniform (the fine cells in the
-#                 whole flume, serial), graded_serial, refined_serial
+#                 whole flume, serial), graded_serial, refined_serial,
+#                 graded_again (the floor of the load figures, ~15 minutes)
 #   --build       default the repo's build/ (bash scripts/build.sh armour armourFoamCoupling armourWaves)
 #   --out         default ${TMPDIR:-/tmp}/armour-bench/stability_speed
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 bench_name=stability_speed bench_targets="armour armourFoamCoupling armourWaves"
-bench_options="duration load-from waves-from cells extra-rows band"
-opt_duration=6.5 opt_load_from=4.5 opt_waves_from=2.5 opt_cells="" opt_band="0.06,0.16" opt_extra_rows=""
+bench_options="duration load-from load-to waves-from cells extra-rows band"
+opt_duration=6.5 opt_load_from=4.5 opt_load_to="" opt_waves_from=2.5 opt_cells="" opt_band="" opt_extra_rows=""
 source "$root/bench/common.sh"
 bench_args "$@"
 armour="$build/apps/armour"
 scene="$root/scenes/stability_cubes.toml"
 sets=(--set "run.duration=$opt_duration" --set waves.ramp_time=0.9 --set run.checkpoint_interval=0
   --set "fluid.write_interval=$opt_duration")
-refined_scene="$scene" refined_cells=() graded_cells=(--set 'fluid.cells=[200,25,62]')
-# While the scene ships its graded mesh (no [[refine]] tables: the band below
-# missed the load goal, docs/validation/speed.md), the refined row runs a copy
-# with the candidate band: Dn / 4 from --band's reach under the armour's face
-# to its reach over it (1.5 and 4 Dn), Dn / 2 elsewhere (fluid.cells along y even: 26).
-IFS=, read -r band_below band_above <<<"$opt_band"
-[[ "$band_below" =~ ^[0-9.]+$ && "$band_above" =~ ^[0-9.]+$ ]] ||
-  bench_fail "--band: two lengths in m, BELOW,ABOVE (got '$opt_band')"
-if ! grep -q '^\[\[refine\]\]' "$scene"; then
-  refined_scene="$out/stability_refined.toml" refined_cells=(--set 'fluid.cells=[200,26,62]')
-  cat "$scene" - >"$refined_scene" <<TOML
-
-[[refine]]
-name = "armour"
-type = "slope_band"
-wall = "slope"
-below = $band_below
-above = $band_above
-level = 1
-TOML
+refined_cells=() graded_cells=(--set 'fluid.cells=[200,25,62]')
+# The refined row is the scene as shipped (its [[refine]] band: Dn / 4 from
+# 1.5 Dn under the armour's face to 4 Dn over it); --band moves the band's reach.
+if [ -n "$opt_band" ]; then
+  IFS=, read -r band_below band_above <<<"$opt_band"
+  [[ "$band_below" =~ ^[0-9.]+$ && "$band_above" =~ ^[0-9.]+$ ]] ||
+    bench_fail "--band: two lengths in m, BELOW,ABOVE (got '$opt_band')"
+  refined_cells=(--set "refine.0.below=$band_below" --set "refine.0.above=$band_above")
 fi
 if [ -n "$opt_cells" ]; then
-  refined_cells=(--set "fluid.cells=[$opt_cells]") graded_cells=(--set "fluid.cells=[$opt_cells]")
+  refined_cells+=(--set "fluid.cells=[$opt_cells]") graded_cells=(--set "fluid.cells=[$opt_cells]")
 fi
 graded=(--set fluid.mesh=graded "${graded_cells[@]}")
 uniform=(--set "fluid.refine_min=[0.0, -0.124, 0.0]" --set "fluid.refine_max=[2.0, 0.124, 0.62]")
@@ -79,34 +78,39 @@ rows=(refined graded)
 IFS=, read -r -a extra <<<"$opt_extra_rows"
 for row in "${extra[@]}"; do
   case "$row" in
-    uniform | graded_serial | refined_serial) rows+=("$row") ;;
-    *) bench_fail "--extra-rows: unknown row '$row' (uniform, graded_serial, refined_serial)" ;;
+    uniform | graded_serial | refined_serial | graded_again) rows+=("$row") ;;
+    *) bench_fail "--extra-rows: unknown row '$row' (uniform, graded_serial, refined_serial, graded_again)" ;;
   esac
 done
-cut -d' ' -f1-3 /proc/loadavg >"$out/loadavg_before"
-settled="$out/refined/settle/scene.settled.toml"
+# The load average around the rows that run now (kept from the call that ran
+# them when a call only reads rows already run, e.g. with another --load-from).
+settled="$out/refined/settle/scene.settled.toml" ran=0
 for row in "${rows[@]}"; do
   run="$out/$row"
   [ -f "$run/summary.json" ] && continue
+  [ $ran = 1 ] || cut -d' ' -f1-3 /proc/loadavg >"$out/loadavg_before"
+  ran=1
   rm -rf "$run"
   echo "stability_speed: $row ..." >&2
   case "$row" in
-    refined) cmd=("$armour" run "$refined_scene" --np 2 "${refined_cells[@]}") ;;
+    refined) cmd=("$armour" run "$scene" --np 2 "${refined_cells[@]}") ;;
     graded) cmd=("$armour" run "$settled" --np 2 "${graded[@]}") ;;
+    graded_again) cmd=("$armour" run "$settled" --np 2 "${graded[@]}" --set fluid.max_interface_courant=0.495) ;;
     uniform) cmd=("$armour" run "$settled" "${graded[@]}" "${uniform[@]}") ;;
     graded_serial) cmd=("$armour" run "$settled" "${graded[@]}") ;;
     refined_serial) cmd=("$armour" run "$settled" "${refined_cells[@]}") ;;
   esac
   "${cmd[@]}" --out "$run" "${sets[@]}" >"$run.log" 2>&1 || bench_fail "$row: armour run failed: $run.log"
 done
-cut -d' ' -f1-3 /proc/loadavg >"$out/loadavg_after"
-/usr/bin/python3 - "$out" "$opt_load_from" "$opt_waves_from" "${rows[*]}" <<'PY'
+[ $ran = 0 ] || cut -d' ' -f1-3 /proc/loadavg >"$out/loadavg_after"
+/usr/bin/python3 - "$out" "$opt_load_from" "${opt_load_to:-inf}" "$opt_waves_from" "${rows[*]}" <<'PY'
 import json, os, re, sys
 import h5py
 import numpy as np
 from armour_results import read_summary
 
-out, load_from, waves_from, names = sys.argv[1], float(sys.argv[2]), float(sys.argv[3]), sys.argv[4].split()
+out, load_from, load_to, waves_from = sys.argv[1], float(sys.argv[2]), float(sys.argv[3]), float(sys.argv[4])
+names = sys.argv[5].split()
 # The scene's mean period at the toe (Tm0,2 of the incident wave over its long
 # runs, docs/stability.md): a "wave" of the cost figures.
 tm02 = 1.53
@@ -167,8 +171,32 @@ def incident_hm0(name, summary):
 def loads(name):
     with h5py.File(f"{out}/{name}/bodies.h5", "r") as h:
         t = h["time"][:]
-        keep = t >= load_from - 1e-9
+        keep = (t >= load_from - 1e-9) & (t <= load_to + 1e-9)
         return t[keep], h["bodies/external_force"][:][keep]
+
+weight = 2300 * 0.04**3 * 9.81
+
+def load_differences(reference, other):
+    """The units' loads of run `other` against run `reference` over the load window."""
+    tr, fr = loads(reference)
+    tn, fn = loads(other)
+    n = min(len(tr), len(tn))
+    fr, fn = fr[:n], fn[:n]
+    changing = fr - fr.mean(axis=0)
+    diff = fn - fr
+    rms = lambda a: float(np.sqrt((a**2).mean()))
+    # A unit's load intensity: the rms of its load's changing part (magnitude) over the window.
+    intensity = lambda f: np.sqrt((np.linalg.norm(f - f.mean(axis=0), axis=2) ** 2).mean(axis=0))
+    ir, io = intensity(fr), intensity(fn)
+    return {
+        "load_rms_difference": rms(np.linalg.norm(diff, axis=2)) / rms(np.linalg.norm(changing, axis=2)),
+        "load_rms_difference_of_whole_load": rms(np.linalg.norm(diff, axis=2)) / rms(np.linalg.norm(fr, axis=2)),
+        "load_max_difference_in_unit_weights": float(np.linalg.norm(diff, axis=2).max() / weight),
+        "load_intensity_difference": rms(io - ir) / rms(ir),
+        "layer_load_intensity_ratio": rms(io) / rms(ir),
+        "records_compared": int(n), "record_time_shift": float(np.abs(tr[:n] - tn[:n]).max()),
+        "load_window": [float(tr[0]), float(tr[n - 1])],
+    }
 
 rows, by_name = [], {}
 print(f"{'mesh':>15s} {'cells':>7s} {'steps':>5s} {'wall s/step':>11s} {'wall s/sim s':>12s} {'wall s/wave':>11s} "
@@ -191,34 +219,33 @@ for name in names:
           f"{row['wall_seconds_per_simulated_second']:12.1f} {row['wall_seconds_per_wave']:11.1f} {hi:8.4f} "
           + " ".join(f"{h:.4f}" for h in gauges))
 ref, new = by_name["graded"], by_name["refined"]
-tr, fr = loads("graded")
-tn, fn = loads("refined")
-n = min(len(tr), len(tn))
-changing = fr[:n] - fr[:n].mean(axis=0)
-diff = fn[:n] - fr[:n]
-weight = 2300 * 0.04**3 * 9.81
+loads_compared = load_differences("graded", "refined")
 summary = {
     "scene": "scenes/stability_cubes.toml",
     "wall_seconds_per_wave": {r["row"]: r["wall_seconds_per_wave"] for r in rows},
     "speedup": ref["wall_seconds_per_wave"] / new["wall_seconds_per_wave"],
     "incident_height_difference": new["incident_hm0"] / ref["incident_hm0"] - 1.0,
-    "load_rms_difference": float(np.sqrt((diff**2).sum(axis=2).mean()) / np.sqrt((changing**2).sum(axis=2).mean())),
-    "load_rms_difference_of_whole_load": float(np.sqrt((diff**2).sum(axis=2).mean()) /
-                                               np.sqrt((fr[:n] ** 2).sum(axis=2).mean())),
-    "load_max_difference_in_unit_weights": float(np.linalg.norm(diff, axis=2).max() / weight),
+    **loads_compared,
     "waves_window": [waves_from, float(waves_to)],
-    "records_compared": int(n), "record_time_shift": float(np.abs(tr[:n] - tn[:n]).max()),
     "cell_ratio": new["cells"] / ref["cells"],
     "wave_period": tm02, "rows": rows,
     "settle_wall_seconds": json.load(open(f"{out}/refined/settle/summary.json"))["wall_seconds"],
     "loadavg_before": load[0], "loadavg_after": load[1],
     "si_units": {"wall_seconds": "s", "wave_period": "s", "heights": "m", "fine_cell_size": "m",
-                 "window": "s", "record_time_shift": "s"},
+                 "window": "s", "load_window": "s", "record_time_shift": "s"},
 }
+if "graded_again" in by_name:
+    summary["load_floor"] = load_differences("graded", "graded_again")
+window = "{:.2f}-{:.2f} s".format(*summary["load_window"])
 print(f"speedup {summary['speedup']:.2f} ({new['cells']} against {ref['cells']} cells); incident Hm0 "
       f"{100 * summary['incident_height_difference']:+.2f} %; loads {100 * summary['load_rms_difference']:.1f} % rms "
-      f"of their changing part ({n} records from {load_from} s); load average before {' '.join(load[0])}, "
+      f"of their changing part, intensities {100 * summary['load_intensity_difference']:.1f} % "
+      f"({summary['records_compared']} records, {window}); load average before {' '.join(load[0])}, "
       f"after {' '.join(load[1])}")
+if "load_floor" in summary:
+    floor = summary["load_floor"]
+    print(f"floor (graded_again against graded): loads {100 * floor['load_rms_difference']:.1f} %, "
+          f"intensities {100 * floor['load_intensity_difference']:.1f} %")
 with open(f"{out}/summary.json.tmp", "w") as f:
     json.dump(summary, f, indent=2)
 os.replace(f"{out}/summary.json.tmp", f"{out}/summary.json")

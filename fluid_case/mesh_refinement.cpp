@@ -150,10 +150,12 @@ void check_units_refined(const Scene &scene, const SceneSetup &setup) {
             if (std::none_of(scene.refine.begin(), scene.refine.end(), [&](const SceneRefine &r) {
                     return r.level == levels && in_refine_region(scene, r, p, tolerance);
                 }))
-                throw InputError(scene.file + ": key '" + key + "': body " + std::to_string(i) + " (unit '" +
-                                 setup.units[b.unit].name + "') starts outside every region of level " +
-                                 std::to_string(levels) + " (vertex " + vector_text(p) +
-                                 " m): the loads need fluid.cells; widen a region or raise its level");
+                throw InputError(
+                    scene.file + ": key '" + key + "': body " + std::to_string(i) + " (unit '" +
+                    setup.units[b.unit].name + "') starts outside every region of level " +
+                    std::to_string(levels) + " (vertex " + vector_text(p) +
+                    " m): the loads need fluid.cells; widen a region, raise its level, or run the graded "
+                    "mesh (fluid.mesh = \"graded\")");
         }
     }
 }

@@ -59,14 +59,14 @@ TEST(FlumeMesh, UniformWithoutARefinedBox) {
     }
 }
 
-// The stability scene graded as docs/stability.md's bench does, with box
+// The stability scene's graded mesh (the bench's reference row), with box
 // edges that fall between fine nodes (x 1.153, z 0.183, just under the largest wave's trough bound 0.184) and
 // a box that touches the flume's end and top (nothing to grade there).
 TEST(FlumeMesh, GradedStabilityFlumeKeepsTheFineCellsInTheBoxAndGrowsSlowlyOutside) {
-    const armour::Scene scene =
-        armour::load_scene(scene_path("stability_cubes.toml"),
-                           {"fluid.refine_min=[1.153, -0.124, 0.183]", "fluid.refine_max=[2.0, 0.124, 0.62]",
-                            "fluid.coarse_cell_size=[0.05, 0.0, 0.03]"});
+    const armour::Scene scene = armour::load_scene(
+        scene_path("stability_cubes.toml"),
+        {"fluid.mesh=graded", "fluid.cells=[200,25,62]", "fluid.refine_min=[1.153, -0.124, 0.183]",
+         "fluid.refine_max=[2.0, 0.124, 0.62]", "fluid.coarse_cell_size=[0.05, 0.0, 0.03]"});
     const armour::FlumeMesh mesh = armour::flume_mesh(scene);
     ASSERT_TRUE(mesh.graded);
     const double h = 0.01; // m, the scene's fluid.cells
@@ -150,10 +150,10 @@ TEST(FlumeMesh, ShortStretchesOutsideTheBoxNeverMakeSmallCellsOrJumps) {
 // An axis whose coarse size is not above its fine cell stays exactly the
 // uniform fluid.cells, wherever the box's faces fall on it.
 TEST(FlumeMesh, AnAxisNotCoarsenedKeepsItsUniformCells) {
-    const armour::Scene scene =
-        armour::load_scene(scene_path("stability_cubes.toml"),
-                           {"fluid.refine_min=[1.153, -0.1, 0.18]", "fluid.refine_max=[2.0, 0.1, 0.62]",
-                            "fluid.coarse_cell_size=[0.05, 0.0, 0.03]"});
+    const armour::Scene scene = armour::load_scene(
+        scene_path("stability_cubes.toml"),
+        {"fluid.mesh=graded", "fluid.cells=[200,25,62]", "fluid.refine_min=[1.153, -0.1, 0.18]",
+         "fluid.refine_max=[2.0, 0.1, 0.62]", "fluid.coarse_cell_size=[0.05, 0.0, 0.03]"});
     const armour::MeshAxis y = armour::flume_mesh(scene).axes[1];
     ASSERT_EQ(y.cells, 25);
     EXPECT_EQ(y.grading, "1");

@@ -1,7 +1,8 @@
 // scenes/stability_cubes.toml end to end through `armour run`, CI-sized
 // (docs/stability.md): the shipped scene with 5 rows instead of 11 (45
-// cubes), a 4 cm mesh (1 cell per Dn; the scene's 1 cm one costs ~1400 s of
-// CPU per wave, bench/run_stability_speed.sh) and 10 s. The DEM settle, the irregular waves, the
+// cubes), a 4 cm mesh in the scene's [[refine]] band (1 cell per Dn, 8 cm
+// outside it in x and y; the scene's 1 cm band costs minutes of CPU per wave,
+// bench/run_stability_speed.sh) and 10 s. The DEM settle, the irregular waves, the
 // incident-wave analysis and the damage analysis all run as in the full scene.
 // Needs Debian's openfoam (built only with armourWaves and armourFoamCoupling).
 // Each test is one run, ~2-3 min on the shared 2-core machine.
@@ -199,8 +200,9 @@ TEST(StabilityCubes, ShortIrregularRunWritesEveryDamageFileAndKey) {
     const fs::path copy = run.dir / "copy";
     fs::copy(run.out, copy, fs::copy_options::recursive);
     {
-        std::string scene = read_text(copy / "scene.resolved.toml");
-        scene.erase(scene.rfind("[[body]]"));
+        std::string scene = read_text(copy / "scene.resolved.toml"); // the last [[body]] table out
+        const size_t last = scene.rfind("[[body]]"), next = scene.find("\n[", last);
+        scene.erase(last, next == std::string::npos ? std::string::npos : next + 1 - last);
         std::ofstream(copy / "scene.resolved.toml", std::ios::trunc) << scene;
     }
     for (const auto &[folder, until, why] :
@@ -282,9 +284,10 @@ namespace {
 // keeps the scene's own cube.
 TEST(StabilityCubes, AHullSettleGrowsItsCubesSoTheClumpsStartFromItsLayer) {
     // At the settle's friction 0.1 a hull or two slides off the toe onto the
-    // flume's floor (every settle tried, full layer and this one): the
-    // refined box reaches out to them.
+    // berm in front of the scene's band (every settle tried, full layer and
+    // this one): the graded mesh's fine box reaches out to them (docs/stability.md).
     const SceneRun run = run_stability("hull_settle", "--engine liggghts --set fluid.settle_engine=bullet "
+                                                      "--set fluid.mesh=graded "
                                                       "--set 'fluid.refine_min=[1.10,-0.124,0.18]' "
                                                       "--set run.duration=0.05");
     ASSERT_EQ(run.status, 0) << run.output;
@@ -305,7 +308,7 @@ TEST(StabilityCubes, AHullSettleGrowsItsCubesSoTheClumpsStartFromItsLayer) {
     EXPECT_EQ(hulls.output.find("slump"), std::string::npos) << hulls.output;
     // A layer the hulls settled for themselves (not grown) is refused to the
     // clumps before they run, the remedy named.
-    const SceneRun own = run_stability("hull_settle_own", "--engine bullet "
+    const SceneRun own = run_stability("hull_settle_own", "--engine bullet --set fluid.mesh=graded "
                                                           "--set 'fluid.refine_min=[1.10,-0.124,0.18]' "
                                                           "--set run.duration=0.05");
     ASSERT_EQ(own.status, 0) << own.output;
