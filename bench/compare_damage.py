@@ -17,7 +17,9 @@ Description
     unit's load less its mean over the window), for every unit and for the
     units that moved less than 0.1 Dn in both runs (whose loads are the
     mesh's, not their moves'), and each unit's largest load swing about its
-    mean, B over A (median and quartiles): summary.json "loads".
+    mean, B over A (median and quartiles), and the units' load intensities
+    (each unit's rms swing about its mean, B against A unit by unit: rms of
+    the differences over the rms of A's): summary.json "loads".
 
 Usage
     /usr/bin/python3 bench/compare_damage.py RUN_A RUN_B --out OUT [--until S] [--dn M] [--loads-from S]
@@ -60,7 +62,11 @@ def compare_loads(ba, bb, start, until, moved):
         swing_a = np.linalg.norm(fa - fa.mean(axis=0), axis=2)
         swing_b = np.linalg.norm(fb - fb.mean(axis=0), axis=2)
         ratio = swing_b.max(axis=0) / swing_a.max(axis=0)
+        # Each unit's load intensity, the rms of its swing over the window (as the bench's).
+        intensity_a, intensity_b = np.sqrt((swing_a**2).mean(axis=0)), np.sqrt((swing_b**2).mean(axis=0))
         out[name] = {"units": int(sel.sum()),
+                     "intensity_difference": float(np.sqrt(((intensity_b - intensity_a) ** 2).mean()) /
+                                                   np.sqrt((intensity_a**2).mean())),
                      "rms_difference_over_changing_part": float(np.sqrt(((fb - fa) ** 2).sum(axis=2).mean()) /
                                                                 np.sqrt((swing_a**2).mean())),
                      "peak_swing_ratio": {"median": float(np.median(ratio)), "quartiles": [
@@ -129,7 +135,7 @@ def main():
             v = lo[name]
             print(f"  loads, {lo['records']} records {lo['window'][0]:g} .. {lo['window'][1]:g} s, {v['units']} "
                   f"{name.replace('_', ' ')}: rms of b - a {v['rms_difference_over_changing_part']:.3f} of a's "
-                  f"changing part; largest swing b / a median {v['peak_swing_ratio']['median']:.3f} (quartiles "
+                  f"changing part; intensities {v['intensity_difference']:.3f}; largest swing b / a median {v['peak_swing_ratio']['median']:.3f} (quartiles "
                   f"{v['peak_swing_ratio']['quartiles'][0]:.3f}-{v['peak_swing_ratio']['quartiles'][1]:.3f})")
     u = summary["unit_by_unit"]
     print(f"  unit by unit: mean |b - a| {u['mean_abs_difference_Dn']:.4f} Dn, largest "
