@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Cost and accuracy of the stability scene's mesh (scenes/stability_cubes.toml,
 # issues 16 and 34; docs/stability.md, Cost): the scene as shipped, on its
-# refined mesh (the [[refine]] band: Dn/4 cells about the armour layer only,
+# refined mesh (the [[refine]] band and toe box: Dn/4 cells about the armour layer only,
 # fluid_case/mesh_refinement.h), against the graded Dn/4 mesh it shipped before
 # (one blockMesh block, Dn/4 in the whole box x > 1.15 m, z > 0.18 m:
 # fluid.mesh = "graded", fluid.cells = [200, 25, 62]),
@@ -61,8 +61,9 @@ scene="$root/scenes/stability_cubes.toml"
 sets=(--set "run.duration=$opt_duration" --set waves.ramp_time=0.9 --set run.checkpoint_interval=0
   --set "fluid.write_interval=$opt_duration")
 refined_cells=() graded_cells=(--set 'fluid.cells=[200,25,62]')
-# The refined row is the scene as shipped (its [[refine]] band: Dn / 4 from
-# 1.5 Dn under the armour's face to 4 Dn over it); --band moves the band's reach.
+# The refined row is the scene as shipped (its [[refine]] regions: Dn / 4 from
+# 1.5 Dn under the armour's face to 4 Dn over it, and over the toe berm);
+# --band moves the first region's reach.
 if [ -n "$opt_band" ]; then
   IFS=, read -r band_below band_above <<<"$opt_band"
   [[ "$band_below" =~ ^[0-9.]+$ && "$band_above" =~ ^[0-9.]+$ ]] ||

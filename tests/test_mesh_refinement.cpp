@@ -20,6 +20,7 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <sys/wait.h>
@@ -104,6 +105,35 @@ TEST(MeshRefinement, TheSlopeBandHoldsWhatLiesBetweenItsDistancesUnderAndOverThe
     EXPECT_GT(base.axes[0].smallest_cell(), 0.95 * 2.0 * graded.axes[0].smallest_cell());
     EXPECT_EQ(base.axes[2].nodes, graded.axes[2].nodes);
     fs::remove_all(dir);
+}
+
+// The shipped scene's regions hold the units its settle piles in front of the
+// toe (the settled poses of seeds 2 and 3 of the severe sea at 1540 kg/m^3,
+// clumps of 118 spheres: 0.173 and 0.183 m out from the face): the toe box
+// holds them where the band alone (4 Dn over the face) would not.
+TEST(MeshRefinement, TheShippedRegionsHoldTheUnitsTheSettlePilesInFrontOfTheToe) {
+    const armour::Scene scene =
+        armour::load_scene((fs::path(ARMOUR_SOURCE_DIR) / "scenes" / "stability_cubes.toml").string(), {});
+    ASSERT_EQ(scene.refine.size(), 2u);
+    const std::vector<std::pair<Eigen::Vector3d, Eigen::Quaterniond>> piled = {
+        {{1.3694419529270465, 0.04964362411495217, 0.34587645466605305},
+         {-0.2692252674716125, -0.6904992182713099, -0.3060525178207971, -0.5975453466115348}},
+        {{1.2230230025173605, -0.01965991022967483, 0.2627272650723094},
+         {0.683129474171701, -0.6088803531878099, -0.26860323323500296, 0.300750960290214}}};
+    const double half = 0.02; // m: the 4 cm cube
+    for (const auto &[position, orientation] : piled) {
+        bool band_alone_holds = true;
+        for (int corner = 0; corner < 8; ++corner) {
+            const Eigen::Vector3d local((corner & 1 ? half : -half), (corner & 2 ? half : -half),
+                                        (corner & 4 ? half : -half));
+            const Eigen::Vector3d p = position + orientation.normalized() * local;
+            EXPECT_TRUE(armour::in_refine_region(scene, scene.refine[0], p, 0.0) ||
+                        armour::in_refine_region(scene, scene.refine[1], p, 0.0))
+                << p.transpose();
+            band_alone_holds = band_alone_holds && armour::in_refine_region(scene, scene.refine[0], p, 0.0);
+        }
+        EXPECT_FALSE(band_alone_holds) << position.transpose();
+    }
 }
 
 // Bad [[refine]] and fluid.mesh keys: one line naming the key, before anything runs.
