@@ -33,6 +33,7 @@ import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "analysis"))
 from armour_results import read_bodies, read_summary  # noqa: E402
+from load_measures import intensity_difference, swings, time_series_difference  # noqa: E402
 
 
 def unit_motion(b, until, dn):
@@ -59,16 +60,11 @@ def compare_loads(ba, bb, start, until, moved):
            "record_time_shift": float(np.abs(ba.time[keep] - bb.time[keep]).max())}
     for name, sel in (("all_units", np.ones(ba.bodies, bool)), ("units_that_stayed", ~moved)):
         fa, fb = ba.external_force[keep][:, sel], bb.external_force[keep][:, sel]
-        swing_a = np.linalg.norm(fa - fa.mean(axis=0), axis=2)
-        swing_b = np.linalg.norm(fb - fb.mean(axis=0), axis=2)
+        swing_a, swing_b = swings(fa), swings(fb)
         ratio = swing_b.max(axis=0) / swing_a.max(axis=0)
-        # Each unit's load intensity, the rms of its swing over the window (as the bench's).
-        intensity_a, intensity_b = np.sqrt((swing_a**2).mean(axis=0)), np.sqrt((swing_b**2).mean(axis=0))
         out[name] = {"units": int(sel.sum()),
-                     "intensity_difference": float(np.sqrt(((intensity_b - intensity_a) ** 2).mean()) /
-                                                   np.sqrt((intensity_a**2).mean())),
-                     "rms_difference_over_changing_part": float(np.sqrt(((fb - fa) ** 2).sum(axis=2).mean()) /
-                                                                np.sqrt((swing_a**2).mean())),
+                     "intensity_difference": intensity_difference(fa, fb),
+                     "rms_difference_over_changing_part": time_series_difference(fa, fb),
                      "peak_swing_ratio": {"median": float(np.median(ratio)), "quartiles": [
                          float(np.percentile(ratio, 25)), float(np.percentile(ratio, 75))]},
                      "mean_peak_swing": [float(swing_a.max(axis=0).mean()), float(swing_b.max(axis=0).mean())]}

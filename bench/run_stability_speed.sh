@@ -109,6 +109,7 @@ import json, os, re, sys
 import h5py
 import numpy as np
 from armour_results import read_summary
+from load_measures import intensity, intensity_difference, time_series_difference
 
 out, load_from, load_to, waves_from = sys.argv[1], float(sys.argv[2]), float(sys.argv[3]), float(sys.argv[4])
 names = sys.argv[5].split()
@@ -183,18 +184,14 @@ def load_differences(reference, other):
     tn, fn = loads(other)
     n = min(len(tr), len(tn))
     fr, fn = fr[:n], fn[:n]
-    changing = fr - fr.mean(axis=0)
-    diff = fn - fr
+    diff = np.linalg.norm(fn - fr, axis=2)
     rms = lambda a: float(np.sqrt((a**2).mean()))
-    # A unit's load intensity: the rms of its load's changing part (magnitude) over the window.
-    intensity = lambda f: np.sqrt((np.linalg.norm(f - f.mean(axis=0), axis=2) ** 2).mean(axis=0))
-    ir, io = intensity(fr), intensity(fn)
     return {
-        "load_rms_difference": rms(np.linalg.norm(diff, axis=2)) / rms(np.linalg.norm(changing, axis=2)),
-        "load_rms_difference_of_whole_load": rms(np.linalg.norm(diff, axis=2)) / rms(np.linalg.norm(fr, axis=2)),
-        "load_max_difference_in_unit_weights": float(np.linalg.norm(diff, axis=2).max() / weight),
-        "load_intensity_difference": rms(io - ir) / rms(ir),
-        "layer_load_intensity_ratio": rms(io) / rms(ir),
+        "load_rms_difference": time_series_difference(fr, fn),
+        "load_rms_difference_of_whole_load": rms(diff) / rms(np.linalg.norm(fr, axis=2)),
+        "load_max_difference_in_unit_weights": float(diff.max() / weight),
+        "load_intensity_difference": intensity_difference(fr, fn),
+        "layer_load_intensity_ratio": rms(intensity(fn)) / rms(intensity(fr)),
         "records_compared": int(n), "record_time_shift": float(np.abs(tr[:n] - tn[:n]).max()),
         "load_window": [float(tr[0]), float(tr[n - 1])],
     }
