@@ -64,15 +64,22 @@ fs::path prepare_case(const RunRequest &r, const Scene &scene, const SceneSetup 
         return case_dir;
     }
     write_case(scene, setup, paths, case_dir);
-    const SceneFluid &f = *scene.fluid;
+    mesh_case(scene, case_dir);
+    // The meshed count first: on a refined mesh the block's cells are not the case's.
     const FlumeMesh mesh = flume_mesh(scene);
     const int levels = refine_levels(scene);
-    std::fprintf(stderr, "run: %s: %d x %d x %d cells%s%s, %d rank%s, engine %s -> %s\n", scene.name.c_str(),
-                 mesh.axes[0].cells, mesh.axes[1].cells, mesh.axes[2].cells, mesh.graded ? " (graded)" : "",
-                 levels > 0 ? (", refined " + std::to_string(levels) + "x in x and y in [[refine]]").c_str()
-                            : "",
-                 f.np, f.np > 1 ? "s" : "", scene.engine.c_str(), case_dir.c_str());
-    mesh_case(scene, case_dir);
+    std::string layout = std::to_string(mesh.axes[0].cells) + " x " + std::to_string(mesh.axes[1].cells) +
+                         " x " + std::to_string(mesh.axes[2].cells) +
+                         (mesh.graded ? " graded block" : " block");
+    if (levels > 0)
+        layout += ", cells halved in x and y " +
+                  std::string(levels > 1 ? "up to " + std::to_string(levels) + " times " : "") + "in " +
+                  std::to_string(scene.refine.size()) + " [[refine]] region" +
+                  (scene.refine.size() > 1 ? "s" : "");
+    const int np = scene.fluid->np;
+    std::fprintf(stderr, "run: %s: %ld cells (%s), %d rank%s, engine %s -> %s\n", scene.name.c_str(),
+                 mesh_cells(case_dir), layout.c_str(), np, np > 1 ? "s" : "", scene.engine.c_str(),
+                 case_dir.c_str());
     return case_dir;
 }
 

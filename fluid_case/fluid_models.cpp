@@ -16,7 +16,7 @@ namespace {
 std::string header(const std::string &cls, const std::string &object) {
     return "FoamFile\n{\n    version     2.0;\n    format      ascii;\n    class       " + cls +
            ";\n    object      " + object +
-           ";\n}\n// Written by armour run from the scene (apps/fluid_models.cpp).\n\n";
+           ";\n}\n// Written by armour run from the scene (fluid_case/fluid_models.cpp).\n\n";
 }
 
 // A turbulence field: `wall_type` on every patch of type wall (the patch
@@ -34,7 +34,7 @@ std::string turbulence_field(const std::string &name, const std::string &dimensi
 
 void append(const fs::path &path, const std::string &text) {
     write_text_file(path,
-                    read_text_file(path) + "\n// Appended by armour run (apps/fluid_models.cpp).\n" + text);
+                    read_text_file(path) + "\n// Appended by armour run (fluid_case/fluid_models.cpp).\n" + text);
 }
 
 void write_turbulence(const Scene &scene, const fs::path &case_dir) {

@@ -19,7 +19,7 @@ std::string header(const std::string &object) {
            "    object      " +
            object +
            ";\n}\n// Written by armour run from the scene's [[refine]] regions "
-           "(apps/mesh_refinement.cpp).\n\n";
+           "(fluid_case/mesh_refinement.cpp).\n\n";
 }
 
 std::string point(double x, double y, double z) {

@@ -125,7 +125,7 @@ struct SceneFluid {
     double water_level = 0.0;            // m, z of the still-water surface
     std::array<int, 3> cells{{0, 0, 0}}; // blockMesh cells along x, y, z (from cell_size when given)
     double cell_size = 0.0;              // m; 0 = `cells` was given
-    // A graded mesh (the wave_flume template, apps/flume_mesh.h): along each
+    // A graded mesh (the wave_flume template, fluid_case/flume_mesh.h): along each
     // axis cells keep the size `cells` gives inside refine_min..refine_max
     // and grow outside it, by at most 10 % per cell, to coarse_cell_size.
     std::optional<Eigen::Vector3d> refine_min, refine_max;      // m; absent = uniform
@@ -199,7 +199,7 @@ struct SceneFluid {
     // graded: one blockMesh block of `cells` (graded by refine_min/max), the
     // [[refine]] regions unused; refined: that block with cells 2^L times
     // larger in x and y, split back to `cells` in the [[refine]] regions of
-    // level L (apps/mesh_refinement.h). The parser's default: refined when the
+    // level L (fluid_case/mesh_refinement.h). The parser's default: refined when the
     // scene has [[refine]] regions.
     std::string mesh = "graded";
 
@@ -227,7 +227,7 @@ struct ScenePorous {
 };
 
 // [[refine]]: a region of a refined wave-flume mesh (fluid.mesh "refined",
-// apps/mesh_refinement.h) whose cells are halved in x and y `level` times
+// fluid_case/mesh_refinement.h) whose cells are halved in x and y `level` times
 // from the base cells: a box, or a band about a slope wall's face and crest
 // from `below` under them to `above` over them (along their normals).
 struct SceneRefine {
