@@ -22,6 +22,13 @@ const std::vector<EngineStyle> &engine_styles() {
     return styles;
 }
 
+std::vector<std::string> engine_style_names() {
+    std::vector<std::string> names;
+    for (const EngineStyle &style : engine_styles())
+        names.push_back(style.name);
+    return names;
+}
+
 const EngineStyle &engine_style(const std::string &name) {
     const auto &styles = engine_styles();
     const auto it =
@@ -29,8 +36,8 @@ const EngineStyle &engine_style(const std::string &name) {
     if (it != styles.end())
         return *it;
     std::string known;
-    for (const auto &s : styles)
-        known += (known.empty() ? "" : ", ") + s.name;
+    for (const std::string &n : engine_style_names())
+        known += (known.empty() ? "" : ", ") + n;
     throw InputError("run.engine: '" + name + "' is not available in this build (available: " + known + ")");
 }
 

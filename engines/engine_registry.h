@@ -57,6 +57,9 @@ struct EngineStyle {
 // Every style of this build, in the order a capability query prefers them.
 const std::vector<EngineStyle> &engine_styles();
 
+// Their names, in that order (what run.engine accepts).
+std::vector<std::string> engine_style_names();
+
 // Throws InputError naming run.engine and listing the styles of this build.
 const EngineStyle &engine_style(const std::string &name);
 
