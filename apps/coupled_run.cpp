@@ -65,21 +65,11 @@ fs::path prepare_case(const RunRequest &r, const Scene &scene, const SceneSetup 
     }
     write_case(scene, setup, paths, case_dir);
     mesh_case(scene, case_dir);
-    // The meshed count first: on a refined mesh the block's cells are not the case's.
-    const FlumeMesh mesh = flume_mesh(scene);
-    const int levels = refine_levels(scene);
-    std::string layout = std::to_string(mesh.axes[0].cells) + " x " + std::to_string(mesh.axes[1].cells) +
-                         " x " + std::to_string(mesh.axes[2].cells) +
-                         (mesh.graded ? " graded block" : " block");
-    if (levels > 0)
-        layout += ", cells halved in x and y " +
-                  std::string(levels > 1 ? "up to " + std::to_string(levels) + " times " : "") + "in " +
-                  std::to_string(scene.refine.size()) + " [[refine]] region" +
-                  (scene.refine.size() > 1 ? "s" : "");
     const int np = scene.fluid->np;
+    // The meshed count: on a refined mesh the block's cells are not the case's.
     std::fprintf(stderr, "run: %s: %ld cells (%s), %d rank%s, engine %s -> %s\n", scene.name.c_str(),
-                 mesh_cells(case_dir), layout.c_str(), np, np > 1 ? "s" : "", scene.engine.c_str(),
-                 case_dir.c_str());
+                 mesh_cells(case_dir), mesh_layout(scene).c_str(), np, np > 1 ? "s" : "",
+                 scene.engine.c_str(), case_dir.c_str());
     return case_dir;
 }
 

@@ -233,12 +233,10 @@ void print_plan(const RunRequest &r, const Scene &scene, const RunCheck &check, 
     std::printf("\n  engine %s; ", scene.engine.c_str());
     if (scene.fluid) {
         const SceneFluid &f = *scene.fluid;
-        const FlumeMesh mesh = flume_mesh(scene);
         const int np = r.np > 0 ? r.np : f.np;
-        std::printf(
-            "coupled with interFoam: template '%s', %d x %d x %d cells%s, %d rank%s, fluid steps <= %s s",
-            f.case_name.c_str(), mesh.axes[0].cells, mesh.axes[1].cells, mesh.axes[2].cells,
-            mesh.graded ? " (graded)" : "", np, np > 1 ? "s" : "", number_text(f.max_time_step).c_str());
+        std::printf("coupled with interFoam: template '%s', %s, %d rank%s, fluid steps <= %s s",
+                    f.case_name.c_str(), mesh_layout(scene).c_str(), np, np > 1 ? "s" : "",
+                    number_text(f.max_time_step).c_str());
         if (f.settle_time > 0.0 && !resume_time)
             std::printf("; a dry settle of %s s first", number_text(f.settle_time).c_str());
     } else {

@@ -271,13 +271,11 @@ int dry_run_series(const RunRequest &r, const Scene &scene) {
     if (!settles) // the layer the waves meet is known (a settle's is not yet)
         for (const std::string &w : warnings)
             std::fprintf(stderr, "armour: warning: %s\n", w.c_str());
-    const FlumeMesh mesh = flume_mesh(scene);
     std::printf("%s: dry run, nothing written; checked: the scene, its units and engine, every step's waves "
                 "and fluid case, OpenFOAM's tools and --out %s\n",
                 r.scene.c_str(), out.c_str());
-    std::printf("  %zu units, engine %s; coupled with interFoam: %d x %d x %d cells%s, %d rank%s%s\n",
-                setup.bodies.size(), scene.engine.c_str(), mesh.axes[0].cells, mesh.axes[1].cells,
-                mesh.axes[2].cells, mesh.graded ? " (graded)" : "", r.np > 0 ? r.np : scene.fluid->np,
+    std::printf("  %zu units, engine %s; coupled with interFoam: %s, %d rank%s%s\n", setup.bodies.size(),
+                scene.engine.c_str(), mesh_layout(scene).c_str(), r.np > 0 ? r.np : scene.fluid->np,
                 (r.np > 0 ? r.np : scene.fluid->np) > 1 ? "s" : "",
                 settles && !r.resume
                     ? ("; a dry settle of " + number_text(scene.fluid->settle_time) + " s first (" +

@@ -145,6 +145,20 @@ int refine_levels(const Scene &scene) {
     return levels;
 }
 
+std::string mesh_layout(const Scene &scene) {
+    const FlumeMesh mesh = flume_mesh(scene);
+    std::string text = std::to_string(mesh.axes[0].cells) + " x " + std::to_string(mesh.axes[1].cells) +
+                       " x " + std::to_string(mesh.axes[2].cells) +
+                       (mesh.graded ? " graded block" : " block");
+    const int levels = refine_levels(scene);
+    if (levels == 0)
+        return text;
+    const std::size_t regions = scene.refine.size();
+    return text + ", cells halved in x and y " +
+           (levels > 1 ? "up to " + std::to_string(levels) + " times " : "") + "in " +
+           std::to_string(regions) + " [[refine]] region" + (regions > 1 ? "s" : "");
+}
+
 Eigen::Vector3d fine_cell_size(const Scene &scene) {
     return scene.fluid->fine_cell(scene.domain_max - scene.domain_min);
 }

@@ -66,6 +66,11 @@ int refine_levels(const Scene &scene);
 // box; a refined mesh's base block: mesh_refinement.h).
 FlumeMesh flume_mesh(const Scene &scene);
 
+// The mesh in words, as a run reports it: "70 x 13 x 55 graded block, cells
+// halved in x and y in 2 [[refine]] regions" (the block's cells, not the
+// case's: a refined mesh's count is known once meshed).
+std::string mesh_layout(const Scene &scene);
+
 // Throws InputError when a graded or refined scene cannot run: its template
 // has no @GRADING@ token (a fixed block structure), or a unit starts outside
 // the refined box (its cells would be coarser than the loads need; the

@@ -755,6 +755,46 @@ TEST_F(SlurmSweepTest, TiltSweepRunsAsOneJobArray) {
     EXPECT_NE(read_text(out / "slurm" / "array.sbatch").find("#SBATCH --array=0-3"), std::string::npos);
 }
 
+// One coupled case on two MPI ranks inside its Slurm task (the way a case
+// spans a cluster's cores: the array task holds run.np tasks and the run's
+// mpirun starts interFoam's ranks in that allocation). The case is
+// CoupledRun.LiggghtsSerialAndTwoRanksAgree's: a concrete cube sinking 6 cm
+// in still water, ~3 s a run. Checked: the case ran on 2 ranks (both
+// LIGGGHTS replicas wrote their logs and agreed to the bit), and it follows
+// the serial run outside Slurm to that test's tolerance, 1e-4 of the edge
+// (20 um; measured 1.3e-7 m).
+TEST_F(SlurmSweepTest, ACoupledCaseRunsOnTwoRanksInsideItsSlurmTask) {
+    const std::string scene = kSource + "/scenes/still_water_cube.toml";
+    const std::vector<std::pair<std::string, std::string>> sets = {
+        {"run.engine", "\"liggghts\""}, {"body.0.position", "[0.0, 0.0, 0.17]"}, {"run.duration", "0.4"}};
+    // A sweep varies something: the penalty, over its one value.
+    std::string sweep_text = "scene = \"" + scene + "\"\n[vary]\n\"fluid.penalty\" = [1e4]\n[set]\n";
+    std::string flags = " --set fluid.penalty=1e4";
+    for (const auto &[key, value] : sets) {
+        sweep_text += "\"" + key + "\" = " + value + "\n";
+        flags += " --set '" + key + "=" + value + "'";
+    }
+    const fs::path sweep = dir_ / "two-ranks.toml", out = dir_ / "out", serial = dir_ / "serial";
+    write(sweep, sweep_text + "[run]\nnp = 2\n");
+    const Result r =
+        run(env() + kArmour + " sweep " + sweep.string() + " --out " + out.string() + " --executor slurm");
+    ASSERT_EQ(r.status, 0) << r.output << read_text(slurm_dir_ / "slurmctld.log");
+    EXPECT_NE(read_text(out / "slurm" / "array.sbatch").find("#SBATCH --ntasks=2"), std::string::npos);
+    const fs::path run_dir = out / "cases" / "penalty-10000.0" / "run";
+    const json parallel = json::parse(read_text(run_dir / "summary.json"));
+    EXPECT_EQ(parallel["fluid"]["np"], 2);
+    const json times = json::parse(read_text(run_dir / "coupling_times.json"));
+    EXPECT_EQ(times.value("replicas_identical", false), true) << times.dump();
+    EXPECT_TRUE(fs::is_regular_file(run_dir / "case" / "armourEngine" / "processor1" / "log.liggghts"));
+
+    const Result alone = run(kArmour + " run " + scene + " --out " + serial.string() + flags);
+    ASSERT_EQ(alone.status, 0) << alone.output;
+    const json one = json::parse(read_text(serial / "summary.json"));
+    const double sinks = one["max_displacement"].get<double>();
+    EXPECT_GT(sinks, 0.02); // a moving cube is compared
+    EXPECT_NEAR(parallel["max_displacement"].get<double>(), sinks, 1e-4 * 0.2);
+}
+
 TEST_F(SlurmSweepTest, FailedTaskIsReportedWithSlurmStateAndLogTail) {
     // A cube thrown up at 30 m/s: every check before the run passes, the run
     // stops when it leaves the domain (a cube placed into the plate, the case
