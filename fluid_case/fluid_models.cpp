@@ -33,8 +33,8 @@ std::string turbulence_field(const std::string &name, const std::string &dimensi
 }
 
 void append(const fs::path &path, const std::string &text) {
-    write_text_file(path,
-                    read_text_file(path) + "\n// Appended by armour run (fluid_case/fluid_models.cpp).\n" + text);
+    write_text_file(path, read_text_file(path) +
+                              "\n// Appended by armour run (fluid_case/fluid_models.cpp).\n" + text);
 }
 
 void write_turbulence(const Scene &scene, const fs::path &case_dir) {
