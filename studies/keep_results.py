@@ -6,7 +6,10 @@ Description
     outside the repository) into DEST: results.csv, summary.json, report.md,
     sweep.toml, figures/*.png, and from each case its run's summary.json,
     damage.csv and damage_history.csv (when the analysis wrote them) under
-    DEST/cases/<case>/run/, where report.md's links point. Paths of the source
+    DEST/cases/<case>/run/, where report.md's links point, and its record
+    (case.json: status, scene hash, wall time), so that a sweep on another
+    machine counts the kept cases done: copy DEST/cases into its RUN/cases
+    and it runs only the others. Paths of the source
     tree in summary.json (the scene, the sweep file) are written relative to
     it, so the kept files name no machine's folders. Bodies, fields and
     checkpoints stay in the sweep folder. DEST is written afresh: files of
@@ -15,6 +18,7 @@ Description
 
 Usage
     python3 studies/keep_results.py RUN docs/results/stability_curve
+    armour sweep STUDY --out NEW_RUN --kept docs/results/stability_curve   # elsewhere: the other cases
 """
 import json
 import os
@@ -75,6 +79,9 @@ def keep(run, dest):
         os.makedirs(target, exist_ok=True)
         for name in files:
             shutil.copyfile(os.path.join(source, name), os.path.join(target, name))
+        # The record lets `armour sweep` resume from the kept cases elsewhere.
+        shutil.copyfile(os.path.join(run, case["folder"], "case.json"),
+                        os.path.join(dest, case["folder"], "case.json"))
         kept += 1
     print(f"kept {kept} of {len(summary['cases'])} cases' results in {dest}")
 

@@ -276,6 +276,59 @@ TEST_F(SweepTest, DoneCasesStayDoneFromAnotherFolderAndUnderTheEarlierHash) {
     EXPECT_EQ(action("a"), "run");
 }
 
+// A curve's cases outlive the machine they ran on: the small results that
+// studies/keep_results.py keeps in the repository let a sweep in a new folder
+// (another machine, the run folder lost) take those cases as done and run
+// only the others; a kept case of another scene runs again.
+TEST_F(SweepTest, KeptResultsLetASweepElsewhereRunOnlyTheOtherCases) {
+    const auto sweep_file = [&](const std::string &name, const std::string &duration,
+                                const std::string &frictions) {
+        const fs::path file = dir_ / name;
+        write(file, "scene = \"" + kSource + "/scenes/tilt_cube.toml\"\n[set]\n\"run.duration\" = " +
+                        duration + "\n[vary]\n\"material.0.friction\" = [" + frictions + "]\n");
+        return file.string();
+    };
+    const Result first = run(kArmour + " sweep " + sweep_file("one.toml", "3.0", "0.5") + " --out " +
+                             (dir_ / "first").string());
+    ASSERT_EQ(first.status, 0) << first.output;
+    const fs::path kept = dir_ / "kept";
+    const Result keep = run("/usr/bin/python3 " + kSource + "/studies/keep_results.py " +
+                            (dir_ / "first").string() + " " + kept.string());
+    ASSERT_EQ(keep.status, 0) << keep.output;
+    ASSERT_TRUE(fs::exists(kept / "cases" / "friction-0.5" / "case.json"));
+
+    const std::string two = sweep_file("two.toml", "3.0", "0.3, 0.5");
+    const fs::path out = dir_ / "elsewhere";
+    const Result resumed =
+        run(kArmour + " sweep " + two + " --out " + out.string() + " --kept " + kept.string());
+    ASSERT_EQ(resumed.status, 0) << resumed.output;
+    EXPECT_NE(resumed.output.find("2 cases, 1 to run, 1 done before"), std::string::npos) << resumed.output;
+    std::map<std::string, Row> rows;
+    for (const Row &row : read_csv(out / "results.csv"))
+        rows[row.at("case")] = row;
+    ASSERT_EQ(rows.size(), 2u);
+    EXPECT_EQ(rows["friction-0.3"].at("status"), "done");
+    EXPECT_EQ(rows["friction-0.5"].at("status"), "done");
+    EXPECT_EQ(rows["friction-0.5"].at("attempts"), "1"); // the kept run's record, not a rerun
+    EXPECT_EQ(read_text(out / "cases" / "friction-0.5" / "run" / "summary.json"),
+              read_text(kept / "cases" / "friction-0.5" / "run" / "summary.json"));
+    EXPECT_EQ(rows["friction-0.5"].at("steps"), read_csv(dir_ / "first" / "results.csv").at(0).at("steps"));
+    EXPECT_FALSE(rows["friction-0.3"].at("steps").empty()); // the case the kept folder lacked ran here
+
+    // Another scene (a shorter run): the kept case is not this sweep's.
+    const Result other = run(kArmour + " sweep " + sweep_file("short.toml", "2.0", "0.5") + " --out " +
+                             (dir_ / "other").string() + " --kept " + kept.string() + " --dry-run");
+    ASSERT_EQ(other.status, 0) << other.output;
+    EXPECT_NE(other.output.find("1 would run"), std::string::npos) << other.output;
+
+    // A folder that keep_results.py did not write: one error line, nothing made.
+    const Result bad = run(kArmour + " sweep " + two + " --out " + (dir_ / "bad").string() + " --kept " +
+                           (dir_ / "nowhere").string());
+    EXPECT_EQ(bad.status, 2) << bad.output;
+    EXPECT_NE(bad.output.find("armour: error: --kept"), std::string::npos) << bad.output;
+    EXPECT_FALSE(fs::exists(dir_ / "bad"));
+}
+
 // The shipped studies as a user starts them: every case passes what
 // `armour run` checks before it writes (the scene reader, the placement, the
 // engine's step, the fluid case): a case refused at its start on a cluster

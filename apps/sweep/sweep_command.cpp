@@ -38,6 +38,36 @@ std::string self_exe() {
     return exe.string();
 }
 
+// The cases of this plan that a folder written by studies/keep_results.py
+// holds done, with the same scene: a sweep resumed on another machine, whose
+// own folder lost them. Only cases not done in DIR already.
+std::set<std::size_t> kept_cases(const fs::path &kept, const SweepPlan &plan, const SweepTable &before) {
+    if (!fs::is_directory(kept / "cases"))
+        throw InputError("--kept " + kept.string() +
+                         ": holds no cases/ (not a folder written by studies/keep_results.py)");
+    std::set<std::size_t> found;
+    for (std::size_t i = 0; i < plan.cases.size(); ++i) {
+        const fs::path dir = kept / "cases" / plan.cases[i].id;
+        if (before.rows[i].status == "done" || !fs::is_regular_file(dir / "case.json"))
+            continue;
+        const CaseRecord record = read_case_record(dir);
+        if (record.status == "done" && same_scene(record.scene_hash, plan.cases[i]) &&
+            fs::is_regular_file(dir / "run" / "summary.json"))
+            found.insert(i);
+    }
+    return found;
+}
+
+// Copies a kept case (its run's small results, then its record) into DIR.
+void copy_kept_case(const fs::path &from, const fs::path &to) {
+    fs::create_directories(to / "run");
+    for (const auto &entry : fs::directory_iterator(from / "run"))
+        if (entry.is_regular_file())
+            fs::copy_file(entry.path(), to / "run" / entry.path().filename(),
+                          fs::copy_options::overwrite_existing);
+    fs::copy_file(from / "case.json", to / "case.json", fs::copy_options::overwrite_existing);
+}
+
 // [set] and --set, as KEY=VALUE: what every case shares (sweep.toml lacks --set).
 std::vector<std::string> set_overrides(const SweepSpec &spec) {
     std::vector<std::string> out;
@@ -177,6 +207,9 @@ CLI::App *add_sweep_command(CLI::App &app, SweepRequest &r) {
     cmd->add_flag("--retry-failed", r.retry_failed, "Run failed cases again (finished ones are always kept)");
     cmd->add_flag("--no-wait", r.no_wait,
                   "slurm: submit and return; `armour sweep --collect DIR` gathers later");
+    cmd->add_option("--kept", r.kept,
+                    "Folder of results kept by studies/keep_results.py: its finished cases with the "
+                    "same scene are copied into --out and count as done (resume on another machine)");
     cmd->add_option("--collect", r.collect,
                     "Gather the results of a sweep submitted earlier into DIR (waits for "
                     "its Slurm job to end)");
@@ -192,8 +225,9 @@ int run_sweep(const SweepRequest &r) {
         return status;
     }
     if (!r.collect.empty()) {
-        if (!r.sweep_file.empty() || !r.out.empty() || !r.overrides.empty())
-            throw InputError("--collect: takes the sweep's folder alone (no SWEEP.toml, no --out, no --set)");
+        if (!r.sweep_file.empty() || !r.out.empty() || !r.overrides.empty() || !r.kept.empty())
+            throw InputError(
+                "--collect: takes the sweep's folder alone (no SWEEP.toml, no --out, no --set, no --kept)");
         return collect(r);
     }
     if (r.sweep_file.empty())
@@ -232,6 +266,8 @@ int run_sweep(const SweepRequest &r) {
     }
 
     const SweepTable before = read_sweep_table(ctx.out, ctx.plan);
+    const std::set<std::size_t> from_kept =
+        r.kept.empty() ? std::set<std::size_t>{} : kept_cases(fs::path(r.kept), ctx.plan, before);
     std::vector<std::size_t> to_run;
     std::set<std::string> skipped;
     std::ostringstream listing;
@@ -241,6 +277,9 @@ int run_sweep(const SweepRequest &r) {
         std::string action = "run";
         if (status == "done") {
             action = "skip: done";
+            skipped.insert(c.id);
+        } else if (from_kept.count(i)) {
+            action = "skip: done in --kept";
             skipped.insert(c.id);
         } else if (status == "running") {
             action = "skip: running in another sweep";
@@ -292,6 +331,12 @@ int run_sweep(const SweepRequest &r) {
         text << in.rdbuf();
         write_text_file(ctx.out / "sweep.toml", text.str());
     }
+    for (const std::size_t i : from_kept) // the record last: a copy cut short stays pending
+        copy_kept_case(fs::path(r.kept) / "cases" / ctx.plan.cases[i].id,
+                       case_dir(ctx.out, ctx.plan.cases[i]));
+    if (!r.kept.empty())
+        std::fprintf(stderr, "sweep: %zu finished cases taken from --kept %s\n", from_kept.size(),
+                     r.kept.c_str());
     for (const std::size_t i : to_run) {
         const SweepCase &c = ctx.plan.cases[i];
         const fs::path dir = case_dir(ctx.out, c);

@@ -1,5 +1,5 @@
 // `armour sweep SWEEP.toml --out DIR [--set KEY=VALUE]... [--executor local|slurm] [--jobs N]
-//  [--dry-run] [--retry-failed] [--no-wait]` and `armour sweep --collect DIR`.
+//  [--dry-run] [--retry-failed] [--no-wait] [--kept KEPT]` and `armour sweep --collect DIR`.
 //
 // Description
 //     Runs every case of a sweep file (sweep_file.h, docs/sweeps.md) as its own
@@ -8,8 +8,10 @@
 //     ends with DIR/report.md (charts by sweep_report.py). Every case's scene
 //     is checked before anything runs. Running the same command again resumes:
 //     finished cases with the same scene hash are skipped, failed ones are run
-//     again only with --retry-failed. --set overrides a scene key for every
-//     case after the sweep file's [set] (a shorter run.duration for a trial).
+//     again only with --retry-failed; with --kept, the finished cases that a
+//     folder of studies/keep_results.py holds (same scene) are copied in and
+//     skipped. --set overrides a scene key for every case after the sweep
+//     file's [set] (a shorter run.duration for a trial).
 //
 // Usage
 //     SweepRequest r;  r.sweep_file = "studies/tilt_friction.toml";  r.out = "tilt-sweep";
@@ -34,6 +36,7 @@ struct SweepRequest {
     bool dry_run = false;
     bool retry_failed = false;
     bool no_wait = false; // slurm: submit and return
+    std::string kept;     // DIR of studies/keep_results.py: its done cases count as done here
     std::string collect;  // DIR: gather a sweep submitted earlier
     std::string run_case; // internal: run one case folder (what each executor starts)
 };
