@@ -182,6 +182,101 @@ int collect(const SweepRequest &r) {
     return finish(ctx, {});
 }
 
+// What a sweep does with each case of its plan: run it, or skip it and why.
+struct SweepActions {
+    std::vector<std::size_t> to_run;
+    std::set<std::string> skipped; // done before (here or in --kept)
+    std::string listing;           // a line per case, for --dry-run
+};
+
+SweepActions decide_actions(const SweepPlan &plan, const SweepTable &before,
+                            const std::set<std::size_t> &from_kept, bool retry_failed) {
+    SweepActions a;
+    std::ostringstream listing;
+    for (std::size_t i = 0; i < plan.cases.size(); ++i) {
+        const SweepCase &c = plan.cases[i];
+        const std::string &status = before.rows[i].status;
+        std::string action = "run";
+        if (status == "done") {
+            action = "skip: done";
+            a.skipped.insert(c.id);
+        } else if (from_kept.count(i)) {
+            action = "skip: done in --kept";
+            a.skipped.insert(c.id);
+        } else if (status == "running") {
+            action = "skip: running in another sweep";
+        } else if (status == "failed" && !retry_failed) {
+            action = "skip: failed before (--retry-failed runs it)";
+        }
+        if (action == "run")
+            a.to_run.push_back(i);
+        listing << "  " << c.id << "  scene " << c.scene_hash << "  " << action << "\n";
+    }
+    a.listing = listing.str();
+    return a;
+}
+
+// Each case to run as `armour run` checks it before it writes (placement,
+// engine step, fluid case, waves): beyond the scene reader, a case refused
+// at its start on a cluster costs a queue, and a local sweep's hours.
+void check_cases_run(const SweepPlan &plan, const std::vector<std::size_t> &to_run) {
+    const bool terminal = ::isatty(STDERR_FILENO) != 0;
+    for (std::size_t k = 0; k < to_run.size(); ++k) {
+        const SweepCase &c = plan.cases[to_run[k]];
+        if (terminal)
+            std::fprintf(stderr, "\rsweep: checking case %zu / %zu (%s)\033[K", k + 1, to_run.size(),
+                         c.id.c_str());
+        try {
+            const Scene scene = load_scene(plan.spec.scene, c.overrides);
+            check_scene_runs(scene, default_cache_dir(), plan.spec.np);
+        } catch (const InputError &e) {
+            if (terminal)
+                std::fprintf(stderr, "\r\033[K");
+            throw InputError(plan.spec.file + ": case " + c.id + ": " + e.what());
+        }
+    }
+    if (terminal && !to_run.empty())
+        std::fprintf(stderr, "\r\033[K");
+}
+
+// The sweep's own files in DIR (its marker first) and each case to run's
+// scene and plan.
+void write_sweep_folder(const SweepContext &ctx, const std::string &sweep_file,
+                        const std::vector<std::size_t> &to_run) {
+    fs::create_directories(ctx.out / "cases");
+    std::string marker = "armour sweep\n";
+    for (const auto &e : kEntries)
+        marker += e + "\n";
+    write_text_file(ctx.out / ".armour-output", marker);
+    write_text_file(ctx.out / "sweep.json", plan_json(ctx).dump(2) + "\n");
+    {
+        std::ifstream in(sweep_file);
+        std::stringstream text;
+        text << in.rdbuf();
+        write_text_file(ctx.out / "sweep.toml", text.str());
+    }
+    for (const std::size_t i : to_run) {
+        const SweepCase &c = ctx.plan.cases[i];
+        const fs::path dir = case_dir(ctx.out, c);
+        fs::create_directories(dir);
+        write_text_file(dir / "scene.toml", c.scene_text);
+        json values = json::object();
+        for (std::size_t k = 0; k < ctx.plan.columns.size(); ++k)
+            values[ctx.plan.columns[k]] = c.column_values[k];
+        write_text_file(dir / "plan.json", json{{"case", c.id},
+                                                {"values", values},
+                                                {"seed", c.seed ? json(*c.seed) : json(nullptr)},
+                                                {"overrides", c.overrides},
+                                                {"scene_hash", c.scene_hash},
+                                                {"earlier_scene_hash", c.earlier_scene_hash},
+                                                {"np", ctx.plan.spec.np},
+                                                {"timeout", ctx.plan.spec.timeout},
+                                                {"si_units", {{"timeout", "s"}}}}
+                                                   .dump(2) +
+                                               "\n");
+    }
+}
+
 } // namespace
 
 CLI::App *add_sweep_command(CLI::App &app, SweepRequest &r) {
@@ -268,95 +363,26 @@ int run_sweep(const SweepRequest &r) {
     const SweepTable before = read_sweep_table(ctx.out, ctx.plan);
     const std::set<std::size_t> from_kept =
         r.kept.empty() ? std::set<std::size_t>{} : kept_cases(fs::path(r.kept), ctx.plan, before);
-    std::vector<std::size_t> to_run;
-    std::set<std::string> skipped;
-    std::ostringstream listing;
-    for (std::size_t i = 0; i < ctx.plan.cases.size(); ++i) {
-        const SweepCase &c = ctx.plan.cases[i];
-        const std::string &status = before.rows[i].status;
-        std::string action = "run";
-        if (status == "done") {
-            action = "skip: done";
-            skipped.insert(c.id);
-        } else if (from_kept.count(i)) {
-            action = "skip: done in --kept";
-            skipped.insert(c.id);
-        } else if (status == "running") {
-            action = "skip: running in another sweep";
-        } else if (status == "failed" && !r.retry_failed) {
-            action = "skip: failed before (--retry-failed runs it)";
-        }
-        if (action == "run")
-            to_run.push_back(i);
-        listing << "  " << c.id << "  scene " << c.scene_hash << "  " << action << "\n";
-    }
-    // Each case to run as `armour run` checks it before it writes (placement,
-    // engine step, fluid case, waves): beyond the scene reader, a case refused
-    // at its start on a cluster costs a queue, and a local sweep's hours.
-    const bool terminal = ::isatty(STDERR_FILENO) != 0;
-    for (std::size_t k = 0; k < to_run.size(); ++k) {
-        const SweepCase &c = ctx.plan.cases[to_run[k]];
-        if (terminal)
-            std::fprintf(stderr, "\rsweep: checking case %zu / %zu (%s)\033[K", k + 1, to_run.size(),
-                         c.id.c_str());
-        try {
-            const Scene scene = load_scene(ctx.plan.spec.scene, c.overrides);
-            check_scene_runs(scene, default_cache_dir(), ctx.plan.spec.np);
-        } catch (const InputError &e) {
-            if (terminal)
-                std::fprintf(stderr, "\r\033[K");
-            throw InputError(ctx.plan.spec.file + ": case " + c.id + ": " + e.what());
-        }
-    }
-    if (terminal && !to_run.empty())
-        std::fprintf(stderr, "\r\033[K");
+    const SweepActions actions = decide_actions(ctx.plan, before, from_kept, r.retry_failed);
+    const std::vector<std::size_t> &to_run = actions.to_run;
+    const std::set<std::string> &skipped = actions.skipped;
+    check_cases_run(ctx.plan, to_run);
     if (r.dry_run) {
         std::printf("sweep: %zu cases of %s, all checked; %zu would run:\n%s", ctx.plan.cases.size(),
-                    ctx.plan.spec.scene.c_str(), to_run.size(), listing.str().c_str());
+                    ctx.plan.spec.scene.c_str(), to_run.size(), actions.listing.c_str());
         if (r.executor == "slurm" && !to_run.empty())
             std::printf("--- %s ---\n%s", (ctx.out / "slurm" / "array.sbatch").c_str(),
                         slurm_script(ctx, to_run.size()).c_str());
         return 0;
     }
 
-    fs::create_directories(ctx.out / "cases");
-    std::string marker = "armour sweep\n";
-    for (const auto &e : kEntries)
-        marker += e + "\n";
-    write_text_file(ctx.out / ".armour-output", marker);
-    write_text_file(ctx.out / "sweep.json", plan_json(ctx).dump(2) + "\n");
-    {
-        std::ifstream in(r.sweep_file);
-        std::stringstream text;
-        text << in.rdbuf();
-        write_text_file(ctx.out / "sweep.toml", text.str());
-    }
+    write_sweep_folder(ctx, r.sweep_file, to_run);
     for (const std::size_t i : from_kept) // the record last: a copy cut short stays pending
         copy_kept_case(fs::path(r.kept) / "cases" / ctx.plan.cases[i].id,
                        case_dir(ctx.out, ctx.plan.cases[i]));
     if (!r.kept.empty())
         std::fprintf(stderr, "sweep: %zu finished cases taken from --kept %s\n", from_kept.size(),
                      r.kept.c_str());
-    for (const std::size_t i : to_run) {
-        const SweepCase &c = ctx.plan.cases[i];
-        const fs::path dir = case_dir(ctx.out, c);
-        fs::create_directories(dir);
-        write_text_file(dir / "scene.toml", c.scene_text);
-        json values = json::object();
-        for (std::size_t k = 0; k < ctx.plan.columns.size(); ++k)
-            values[ctx.plan.columns[k]] = c.column_values[k];
-        write_text_file(dir / "plan.json", json{{"case", c.id},
-                                                {"values", values},
-                                                {"seed", c.seed ? json(*c.seed) : json(nullptr)},
-                                                {"overrides", c.overrides},
-                                                {"scene_hash", c.scene_hash},
-                                                {"earlier_scene_hash", c.earlier_scene_hash},
-                                                {"np", ctx.plan.spec.np},
-                                                {"timeout", ctx.plan.spec.timeout},
-                                                {"si_units", {{"timeout", "s"}}}}
-                                                   .dump(2) +
-                                               "\n");
-    }
     std::fprintf(stderr, "sweep: %zu cases, %zu to run, %zu done before -> %s\n", ctx.plan.cases.size(),
                  to_run.size(), skipped.size(), ctx.out.c_str());
     refresh_tables(ctx, skipped);
