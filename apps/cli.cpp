@@ -116,6 +116,9 @@ int armour_main(int argc, const char *const *argv) {
                       "the Courant limits may differ; on the run's ranks unless --np gives others (the "
                       "fields are split anew); a run that settled first is not settled again "
                       "(docs/checkpoints.md)");
+    run_cmd->add_flag("--restart", run.restart,
+                      "Start again in an --out that holds a run stopped before its end (its checkpoints "
+                      "are replaced); without --resume or --restart such a folder is refused");
     run_cmd->add_flag("--dry-run", run.dry_run,
                       "Check everything the run checks before it starts (scene, --set, units, engine, fluid "
                       "case and tools, --out, --resume) and print its plan; write nothing to --out");

@@ -277,6 +277,35 @@ int dry_run(const RunRequest &r, const Scene &scene) {
     return 0;
 }
 
+// The latest checkpoint of a run in `out` that stopped before its end (no
+// summary.json): a single run's, or any step's of a series.
+std::optional<Checkpoint> stopped_run(const fs::path &out) {
+    if (!fs::is_directory(out) || fs::exists(out / "summary.json"))
+        return std::nullopt;
+    std::optional<Checkpoint> latest = last_checkpoint(out);
+    std::error_code ec;
+    if (fs::is_directory(out / "series", ec))
+        for (const auto &step : fs::directory_iterator(out / "series", ec))
+            if (const auto last = last_checkpoint(step.path());
+                last && (!latest || last->time > latest->time))
+                latest = last;
+    return latest;
+}
+
+// The same command without --resume would replace a stopped run, hours or
+// days of waves: the user says which they mean.
+void refuse_replacing_stopped_run(const RunRequest &r) {
+    if (r.resume && r.restart)
+        throw InputError("--resume and --restart: choose one (continue the run in --out, or start it again)");
+    if (r.resume || r.restart)
+        return;
+    if (const auto stopped = stopped_run(fs::path(r.out)))
+        throw InputError("--out " + r.out + ": holds a run that stopped at its checkpoint t = " +
+                         checkpoint_name(stopped->time) +
+                         " s (no summary.json): --resume continues it, --restart starts again (its "
+                         "checkpoints are replaced)");
+}
+
 } // namespace
 
 std::vector<std::string> check_scene_runs(const Scene &scene, const std::string &cache_dir, int np) {
@@ -285,6 +314,7 @@ std::vector<std::string> check_scene_runs(const Scene &scene, const std::string 
 
 int run_scene(const RunRequest &r) {
     const Scene scene = load_scene(r.scene, r.overrides);
+    refuse_replacing_stopped_run(r);
     if (!scene.series.empty())
         return run_series(r, scene);
     if (r.dry_run)

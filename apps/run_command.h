@@ -1,4 +1,4 @@
-// `armour run SCENE --out DIR [--set key=value ...] [--np N] [--resume] [--dry-run]`.
+// `armour run SCENE --out DIR [--set key=value ...] [--np N] [--resume] [--restart] [--dry-run]`.
 #pragma once
 
 #include <string>
@@ -15,6 +15,7 @@ struct RunRequest {
     std::string cache;                  // clump cache folder; empty = default
     int np = 0;                         // MPI ranks of a coupled run; 0 = the scene's fluid.np
     bool resume = false;                // continue DIR from its last checkpoint (docs/checkpoints.md)
+    bool restart = false;               // replace a run DIR holds that stopped before its end
     bool dry_run = false;               // every check of a run, a plan on stdout, nothing written to DIR
 };
 

@@ -267,6 +267,53 @@ TEST_P(Resume, RefusesAChangedSceneAndAFolderWithoutCheckpoint) {
         << none_err;
 }
 
+// A run stopped before its end (killed: checkpoints, no summary.json) is
+// hours or days of waves: the same command without --resume would replace
+// it, so it is refused until the user says --resume or --restart.
+TEST_P(Resume, AStoppedRunIsReplacedOnlyWhenAskedTo) {
+    if (GetParam() != "free_body")
+        GTEST_SKIP() << "engine-independent";
+    const fs::path file = scene(drop_scene(GetParam(), 0.3));
+    const fs::path out = dir_ / "out";
+    ASSERT_EQ(run(args(file, out, false)), 0);
+    fs::remove(out / "summary.json"); // as a killed run leaves it: its checkpoints at 0.1 and 0.2 s
+    ASSERT_TRUE(armour::last_checkpoint(out).has_value());
+    const auto main_with = [&](const std::vector<std::string> &extra, std::string &err) {
+        std::vector<std::string> a = args(file, out, false);
+        a.insert(a.end(), extra.begin(), extra.end());
+        std::vector<const char *> argv;
+        for (const auto &s : a)
+            argv.push_back(s.c_str());
+        ::testing::internal::CaptureStderr();
+        const int code = armour::armour_main(static_cast<int>(argv.size()), argv.data());
+        err = ::testing::internal::GetCapturedStderr();
+        return code;
+    };
+    std::string err;
+    for (const std::vector<std::string> &extra : {std::vector<std::string>{}, {"--dry-run"}}) {
+        EXPECT_EQ(main_with(extra, err), 2) << err;
+        EXPECT_NE(err.find("armour: error: --out " + out.string() +
+                           ": holds a run that stopped at its checkpoint t = 0.2 s (no summary.json): "
+                           "--resume continues it, --restart starts again"),
+                  std::string::npos)
+            << err;
+        EXPECT_NEAR(armour::last_checkpoint(out)->time, 0.2, 1e-12) << "a refused run touched the folder";
+        EXPECT_TRUE(fs::exists(out / "bodies.h5"));
+    }
+    EXPECT_EQ(main_with({"--resume", "--restart"}, err), 2) << err;
+    EXPECT_NE(err.find("armour: error: --resume and --restart: choose one"), std::string::npos) << err;
+
+    ASSERT_EQ(run([&] {
+                  std::vector<std::string> a = args(file, out, false);
+                  a.push_back("--restart");
+                  return a;
+              }()),
+              0);
+    EXPECT_TRUE(fs::exists(out / "summary.json"));
+    // A finished run is replaced by the same command as before, unasked.
+    ASSERT_EQ(run(args(file, out, false)), 0);
+}
+
 // Checkpoints fall at multiples of the interval and never at the last step,
 // so an interval not below the duration writes none: the run says so at its
 // start, and a run just longer than one interval writes one and says nothing.

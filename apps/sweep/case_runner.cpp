@@ -178,8 +178,9 @@ int run_case(const fs::path &case_dir, const std::string &armour_exe) {
         args.push_back("--np");
         args.push_back(std::to_string(np));
     }
-    if (checkpoint)
-        args.emplace_back("--resume");
+    // Without a checkpoint of the same scene the run starts again, replacing
+    // whatever an earlier attempt left in run/.
+    args.emplace_back(checkpoint ? "--resume" : "--restart");
     std::signal(SIGTERM, on_stop);
     std::signal(SIGINT, on_stop);
     std::signal(SIGHUP, on_stop);
