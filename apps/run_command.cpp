@@ -308,6 +308,10 @@ void refuse_replacing_stopped_run(const RunRequest &r) {
 
 } // namespace
 
+std::string resume_key_text(const Scene &scene) {
+    return resumable_form(scene, true);
+}
+
 std::vector<std::string> check_scene_runs(const Scene &scene, const std::string &cache_dir, int np) {
     return check_run(scene, cache_dir, np).warnings;
 }

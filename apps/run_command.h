@@ -31,4 +31,10 @@ int run_scene(const RunRequest &request);
 // any runs. Throws InputError; returns the warnings.
 std::vector<std::string> check_scene_runs(const Scene &scene, const std::string &cache_dir, int np);
 
+// The scene's keys with those a resume may change (run.duration, the
+// checkpoint interval, the Courant limits, the ranks; docs/checkpoints.md)
+// set to fixed values: a run of one scene goes on from a checkpoint of
+// another with the same text (`armour run --resume` compares them).
+std::string resume_key_text(const Scene &scene);
+
 } // namespace armour

@@ -276,6 +276,43 @@ TEST_F(SweepTest, DoneCasesStayDoneFromAnotherFolderAndUnderTheEarlierHash) {
     EXPECT_EQ(action("a"), "run");
 }
 
+// More waves for a finished sweep: a longer run.duration (a key a resume may
+// change) takes each case on from its run's last checkpoint instead of from
+// t = 0; another scene key still runs it from the start.
+TEST_F(SweepTest, ALongerRunGoesOnFromEachCasesLastCheckpoint) {
+    const fs::path sweep = dir_ / "tilt.toml", out = dir_ / "out";
+    const auto run_with = [&](const std::string &set) {
+        write(sweep, "scene = \"" + kSource +
+                         "/scenes/tilt_cube.toml\"\n[set]\n\"run.checkpoint_interval\" = 1.0\n" + set +
+                         "[vary]\n\"material.0.friction\" = [0.5]\n");
+        return run(kArmour + " sweep " + sweep.string() + " --out " + out.string());
+    };
+    const fs::path record = out / "cases" / "friction-0.5" / "case.json";
+    const auto simulated = [&] {
+        return json::parse(read_text(out / "cases" / "friction-0.5" / "run" / "summary.json"))
+            .at("simulated_seconds")
+            .get<double>();
+    };
+    const Result first = run_with("\"run.duration\" = 3.0\n");
+    ASSERT_EQ(first.status, 0) << first.output;
+    EXPECT_EQ(json::parse(read_text(record)).at("resumed_from"), 0.0);
+
+    const Result longer = run_with("\"run.duration\" = 4.0\n");
+    ASSERT_EQ(longer.status, 0) << longer.output;
+    json r = json::parse(read_text(record));
+    EXPECT_EQ(r.at("status"), "done");
+    EXPECT_EQ(r.at("attempts"), 2);
+    EXPECT_NEAR(r.at("resumed_from").get<double>(), 2.0, 1e-3) << "the 3 s run's last checkpoint";
+    EXPECT_NEAR(simulated(), 4.0, 1e-3);
+
+    const Result other = run_with("\"run.duration\" = 4.0\n\"material.0.restitution\" = 0.4\n");
+    ASSERT_EQ(other.status, 0) << other.output;
+    r = json::parse(read_text(record));
+    EXPECT_EQ(r.at("attempts"), 3);
+    EXPECT_EQ(r.at("resumed_from"), 0.0) << "another material: not the run that checkpointed";
+    EXPECT_NEAR(simulated(), 4.0, 1e-3);
+}
+
 // A curve's cases outlive the machine they ran on: the small results that
 // studies/keep_results.py keeps in the repository let a sweep in a new folder
 // (another machine, the run folder lost) take those cases as done and run

@@ -67,6 +67,8 @@ CaseRecord read_case_record(const fs::path &case_dir) {
     try {
         const json j = json::parse(in);
         r.scene_hash = j.value("scene_hash", "");
+        r.resume_hash = j.value("resume_hash", "");
+        r.duration = j.value("duration", 0.0);
         r.status = j.value("status", "pending");
         r.attempts = j.value("attempts", 0);
         r.wall_seconds = j.value("wall_seconds", 0.0);
@@ -84,20 +86,25 @@ CaseRecord read_case_record(const fs::path &case_dir) {
 }
 
 void write_case_record(const fs::path &case_dir, const CaseRecord &r) {
-    const json j = {
-        {"case", r.id},
-        {"scene_hash", r.scene_hash},
-        {"status", r.status},
-        {"attempts", r.attempts},
-        {"wall_seconds", r.wall_seconds},
-        {"resumed_from", r.resumed_from},
-        {"reason", r.reason},
-        {"started", r.started},
-        {"finished", r.finished},
-        {"host", r.host},
-        {"slurm_job", r.slurm_job},
-        {"slurm_state", r.slurm_state},
-        {"si_units", {{"wall_seconds", "s"}, {"resumed_from", "s"}, {"started", "s since 1970-01-01 UTC"}}}};
+    const json j = {{"case", r.id},
+                    {"scene_hash", r.scene_hash},
+                    {"resume_hash", r.resume_hash},
+                    {"duration", r.duration},
+                    {"status", r.status},
+                    {"attempts", r.attempts},
+                    {"wall_seconds", r.wall_seconds},
+                    {"resumed_from", r.resumed_from},
+                    {"reason", r.reason},
+                    {"started", r.started},
+                    {"finished", r.finished},
+                    {"host", r.host},
+                    {"slurm_job", r.slurm_job},
+                    {"slurm_state", r.slurm_state},
+                    {"si_units",
+                     {{"wall_seconds", "s"},
+                      {"resumed_from", "s"},
+                      {"duration", "s"},
+                      {"started", "s since 1970-01-01 UTC"}}}};
     write_text_file(case_dir / "case.json", j.dump(2) + "\n");
 }
 
@@ -141,13 +148,22 @@ int run_case(const fs::path &case_dir, const std::string &armour_exe) {
         throw InputError((case_dir / "plan.json").string() + ": cannot read the case's plan");
     }
     // A case stopped before it ended (killed, timed out, a Slurm time limit)
-    // goes on from its run's last checkpoint when its scene is the same.
-    const std::optional<Checkpoint> checkpoint =
-        r.attempts > 0 && (r.scene_hash == plan.value("scene_hash", "") ||
-                           r.scene_hash == plan.value("earlier_scene_hash", "-"))
-            ? last_checkpoint(case_dir / "run")
-            : std::nullopt;
+    // goes on from its run's last checkpoint when its scene is the same or
+    // differs only in keys a resume may change; a finished one only to run
+    // longer (more waves without running the first again). A checkpoint at or
+    // past the new end: from the start.
+    const double duration = plan.value("duration", 0.0);
+    const bool same =
+        r.scene_hash == plan.value("scene_hash", "") || r.scene_hash == plan.value("earlier_scene_hash", "-");
+    const bool resumable = !r.resume_hash.empty() && r.resume_hash == plan.value("resume_hash", "") &&
+                           (r.status != "done" || r.duration < duration);
+    std::optional<Checkpoint> checkpoint =
+        r.attempts > 0 && (same || resumable) ? last_checkpoint(case_dir / "run") : std::nullopt;
+    if (checkpoint && duration > 0.0 && checkpoint->time >= duration)
+        checkpoint.reset();
     r.scene_hash = plan.value("scene_hash", "");
+    r.resume_hash = plan.value("resume_hash", "");
+    r.duration = duration;
     const int np = plan.value("np", 0);
     const double timeout = plan.value("timeout", 0.0);
     r.status = "running";

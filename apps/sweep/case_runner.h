@@ -29,6 +29,8 @@ namespace armour {
 struct CaseRecord {
     std::string id;
     std::string scene_hash;
+    std::string resume_hash;        // of the keys a resume may not change (SweepCase::resume_hash)
+    double duration = 0.0;          // s, the run.duration of the last attempt
     std::string status = "pending"; // pending | running | done | failed
     int attempts = 0;               // times the case was started
     double wall_seconds = 0.0;      // s, of the last attempt

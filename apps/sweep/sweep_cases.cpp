@@ -1,6 +1,7 @@
 #include "sweep_cases.h"
 
 #include "input_error.h"
+#include "run_command.h"
 #include "scene.h"
 #include "scene_text.h"
 #include "sweep_toml.h"
@@ -206,6 +207,8 @@ SweepPlan plan_sweep(const SweepSpec &spec) {
             c.scene_text = resolved_scene_toml(scene);
             c.scene_hash = scene_hash(c.scene_text);
             c.earlier_scene_hash = fnv1a_hex(c.scene_text);
+            c.resume_hash = fnv1a_hex(resume_key_text(scene));
+            c.duration = scene.duration;
             for (const auto &key : plan.columns)
                 c.column_values.push_back(toml_value_at(c.scene_text, key));
             plan.cases.push_back(std::move(c));

@@ -34,6 +34,11 @@ struct SweepCase {
     // comment (which names the scene's absolute path): a case done under it
     // is still done when the sweep resumes from the same checkout.
     std::string earlier_scene_hash;
+    // Of the scene's keys but those a resume may change (resume_key_text): a
+    // case whose record has the same goes on from its run's last checkpoint
+    // (a longer run.duration: more waves without running the first again).
+    std::string resume_hash;
+    double duration = 0.0; // s, run.duration
 };
 
 struct SweepPlan {

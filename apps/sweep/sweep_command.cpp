@@ -269,9 +269,11 @@ void write_sweep_folder(const SweepContext &ctx, const std::string &sweep_file,
                                                 {"overrides", c.overrides},
                                                 {"scene_hash", c.scene_hash},
                                                 {"earlier_scene_hash", c.earlier_scene_hash},
+                                                {"resume_hash", c.resume_hash},
+                                                {"duration", c.duration},
                                                 {"np", ctx.plan.spec.np},
                                                 {"timeout", ctx.plan.spec.timeout},
-                                                {"si_units", {{"timeout", "s"}}}}
+                                                {"si_units", {{"timeout", "s"}, {"duration", "s"}}}}
                                                    .dump(2) +
                                                "\n");
     }
