@@ -506,11 +506,11 @@ fs::path report_run() {
                               std::to_string(fs::file_size(kArmour));
     if (read_text(dir / "report_run.stamp") != stamp || !fs::is_regular_file(run / "summary.json")) {
         int status = 0;
-        const std::string output = run_capture("'" + kArmour.string() + "' run '" +
-                                                   (kSource / "scenes" / "dambreak_two_cubes.toml").string() +
-                                                   "' --out '" + run.string() + "' --cache '" +
-                                                   (dir / "cache").string() + "' --set run.duration=0.05",
-                                               status);
+        const std::string output = run_capture(
+            "'" + kArmour.string() + "' run '" + (kSource / "scenes" / "dambreak_two_cubes.toml").string() +
+                "' --out '" + run.string() + "' --cache '" + (dir / "cache").string() +
+                "' --set run.duration=0.05 --restart",
+            status);
         EXPECT_EQ(status, 0) << "the run for `armour report RUN` failed:\n" << last_lines(output, 30);
         std::ofstream(dir / "report_run.stamp") << stamp;
     }
