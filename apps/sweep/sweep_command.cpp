@@ -45,16 +45,12 @@ std::set<std::size_t> kept_cases(const fs::path &kept, const SweepPlan &plan, co
     if (!fs::is_directory(kept / "cases"))
         throw InputError("--kept " + kept.string() +
                          ": holds no cases/ (not a folder written by studies/keep_results.py)");
+    // A kept folder reads as a sweep's: done means the same scene and a summary.
+    const SweepTable kept_table = read_sweep_table(kept, plan);
     std::set<std::size_t> found;
-    for (std::size_t i = 0; i < plan.cases.size(); ++i) {
-        const fs::path dir = kept / "cases" / plan.cases[i].id;
-        if (before.rows[i].status == "done" || !fs::is_regular_file(dir / "case.json"))
-            continue;
-        const CaseRecord record = read_case_record(dir);
-        if (record.status == "done" && same_scene(record.scene_hash, plan.cases[i]) &&
-            fs::is_regular_file(dir / "run" / "summary.json"))
+    for (std::size_t i = 0; i < plan.cases.size(); ++i)
+        if (before.rows[i].status != "done" && kept_table.rows[i].status == "done")
             found.insert(i);
-    }
     return found;
 }
 
