@@ -149,6 +149,6 @@ bench_settled_layer_dry() {
     "$build/apps/armour" run "$root/scenes/stability_cubes.toml" --out "$layer" --set 'fluid.cells=[100,12,31]' \
       --set run.duration=0.05 >"$layer.log" 2>&1
   fi
-  awk '/^\[/ { skip = ($0 ~ /^\[fluid\]|^\[waves\]|^\[\[porous\]\]|^\[\[series\]\]|^\[analysis\]/) } !skip' \
+  awk '/^\[/ { skip = ($0 ~ /^\[fluid\]|^\[waves\]|^\[\[porous\]\]|^\[\[series\]\]|^\[\[refine\]\]|^\[analysis\]/) } !skip' \
     "$layer/settle/scene.settled.toml" >"$out/hold.toml"
 }
