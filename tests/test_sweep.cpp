@@ -366,6 +366,43 @@ TEST_F(SweepTest, KeptResultsLetASweepElsewhereRunOnlyTheOtherCases) {
     EXPECT_FALSE(fs::exists(dir_ / "bad"));
 }
 
+// A long study is taken a few cases a sitting, in the order its user needs
+// them (the realisations of one point first): --cases runs only those, the
+// others stay pending in the same folder for the next sweep, which runs only
+// them. An id that is not a case: one error line, nothing made.
+TEST_F(SweepTest, CasesRunsOnlyTheNamedCasesAndTheRestLater) {
+    const fs::path file = dir_ / "three.toml";
+    write(file, "scene = \"" + kSource +
+                    "/scenes/tilt_cube.toml\"\n[set]\n\"run.duration\" = 2.0\n[vary]\n"
+                    "\"material.0.friction\" = [0.3, 0.5, 0.7]\n");
+    const fs::path out = dir_ / "some";
+    const std::string sweep = kArmour + " sweep " + file.string() + " --out " + out.string();
+    const Result some = run(sweep + " --cases friction-0.7,friction-0.3");
+    ASSERT_EQ(some.status, 0) << "every named case done: " << some.output;
+    EXPECT_NE(some.output.find("3 cases, 2 to run"), std::string::npos) << some.output;
+    EXPECT_NE(some.output.find("2 of the 2 cases of --cases done"), std::string::npos) << some.output;
+    std::map<std::string, std::string> status;
+    for (const Row &row : read_csv(out / "results.csv"))
+        status[row.at("case")] = row.at("status");
+    EXPECT_EQ(status, (std::map<std::string, std::string>{
+                          {"friction-0.3", "done"}, {"friction-0.5", "pending"}, {"friction-0.7", "done"}}));
+
+    const Result rest = run(sweep);
+    ASSERT_EQ(rest.status, 0) << rest.output;
+    EXPECT_NE(rest.output.find("3 cases, 1 to run, 2 done before"), std::string::npos) << rest.output;
+    for (const Row &row : read_csv(out / "results.csv"))
+        EXPECT_EQ(row.at("status"), "done") << row.at("case");
+
+    const Result bad = run(kArmour + " sweep " + file.string() + " --out " + (dir_ / "bad").string() +
+                           " --cases friction-0.3,friction-0.9");
+    EXPECT_EQ(bad.status, 2) << bad.output;
+    EXPECT_NE(bad.output.find("armour: error: --cases: 'friction-0.9' is not a case of"), std::string::npos)
+        << bad.output;
+    EXPECT_NE(bad.output.find("friction-0.5"), std::string::npos)
+        << "names the sweep's cases: " << bad.output;
+    EXPECT_FALSE(fs::exists(dir_ / "bad"));
+}
+
 // The shipped studies as a user starts them: every case passes what
 // `armour run` checks before it writes (the scene reader, the placement, the
 // engine's step, the fluid case): a case refused at its start on a cluster

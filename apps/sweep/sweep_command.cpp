@@ -54,6 +54,28 @@ std::set<std::size_t> kept_cases(const fs::path &kept, const SweepPlan &plan, co
     return found;
 }
 
+// The plan indices of the case ids --cases names; an id that is not a case
+// of this sweep is refused, with the sweep's ids (or the first of them).
+std::set<std::size_t> selected_cases(const SweepPlan &plan, const std::vector<std::string> &ids) {
+    std::set<std::size_t> selected;
+    for (const std::string &id : ids) {
+        std::size_t i = 0;
+        while (i < plan.cases.size() && plan.cases[i].id != id)
+            ++i;
+        if (i == plan.cases.size()) {
+            std::string known;
+            for (std::size_t k = 0; k < plan.cases.size() && k < 8; ++k)
+                known += (k ? ", " : "") + plan.cases[k].id;
+            if (plan.cases.size() > 8)
+                known += ", ... (" + std::to_string(plan.cases.size()) + " in all; --dry-run lists them)";
+            throw InputError("--cases: '" + id + "' is not a case of " + plan.spec.file +
+                             " (its cases: " + known + ")");
+        }
+        selected.insert(i);
+    }
+    return selected;
+}
+
 // Copies a kept case (its run's small results, then its record) into DIR.
 void copy_kept_case(const fs::path &from, const fs::path &to) {
     fs::create_directories(to / "run");
@@ -155,10 +177,21 @@ void write_report(const fs::path &out) {
                      (out / "report.md").c_str());
 }
 
-int finish(const SweepContext &ctx, const std::set<std::string> &skipped) {
+// `selected`: the --cases given (case ids), whose completion decides the exit
+// status; empty: every case.
+int finish(const SweepContext &ctx, const std::set<std::string> &skipped,
+           const std::set<std::string> &selected = {}) {
     const SweepTable table = refresh_tables(ctx, skipped);
     write_report(ctx.out);
     const int failed = table.count("failed");
+    int selected_done = 0, others_left = 0;
+    for (std::size_t i = 0; i < table.rows.size(); ++i) {
+        const bool done = table.rows[i].status == "done";
+        if (selected.count(ctx.plan.cases[i].id))
+            selected_done += done;
+        else
+            others_left += !done;
+    }
     std::printf(
         "sweep: %d of %zu cases done (%zu skipped as done before), %d failed, %d not finished -> %s\n",
         table.count("done"), table.rows.size(), skipped.size(), failed,
@@ -168,6 +201,13 @@ int finish(const SweepContext &ctx, const std::set<std::string> &skipped) {
                      "sweep: %d case(s) failed (results.csv says which, cases/<id>/log.txt why); run the "
                      "same command with --retry-failed to run them again\n",
                      failed);
+    if (!selected.empty()) {
+        std::printf("sweep: %d of the %zu cases of --cases done", selected_done, selected.size());
+        if (others_left > 0)
+            std::printf("; %d other case(s) left: the same command without --cases runs them", others_left);
+        std::printf("\n");
+        return selected_done == static_cast<int>(selected.size()) ? 0 : 1;
+    }
     return failed > 0 || table.count("done") != static_cast<int>(table.rows.size()) ? 1 : 0;
 }
 
@@ -185,8 +225,10 @@ struct SweepActions {
     std::string listing;           // a line per case, for --dry-run
 };
 
+// `selected`: the cases --cases names (plan indices); empty: every case.
 SweepActions decide_actions(const SweepPlan &plan, const SweepTable &before,
-                            const std::set<std::size_t> &from_kept, bool retry_failed) {
+                            const std::set<std::size_t> &from_kept, const std::set<std::size_t> &selected,
+                            bool retry_failed) {
     SweepActions a;
     std::ostringstream listing;
     for (std::size_t i = 0; i < plan.cases.size(); ++i) {
@@ -203,6 +245,8 @@ SweepActions decide_actions(const SweepPlan &plan, const SweepTable &before,
             action = "skip: running in another sweep";
         } else if (status == "failed" && !retry_failed) {
             action = "skip: failed before (--retry-failed runs it)";
+        } else if (!selected.empty() && !selected.count(i)) {
+            action = "skip: not in --cases";
         }
         if (action == "run")
             a.to_run.push_back(i);
@@ -303,6 +347,11 @@ CLI::App *add_sweep_command(CLI::App &app, SweepRequest &r) {
     cmd->add_option("--kept", r.kept,
                     "Folder of results kept by studies/keep_results.py: its finished cases with the "
                     "same scene are copied into --out and count as done (resume on another machine)");
+    cmd->add_option("--cases", r.cases,
+                    "Run only these cases now (ids as in DIR/cases, comma-separated: "
+                    "--cases density-1685_seed-1,density-1685_seed-3); the others stay for a later sweep "
+                    "into the same --out")
+        ->delimiter(',');
     cmd->add_option("--collect", r.collect,
                     "Gather the results of a sweep submitted earlier into DIR (waits for "
                     "its Slurm job to end)");
@@ -318,9 +367,10 @@ int run_sweep(const SweepRequest &r) {
         return status;
     }
     if (!r.collect.empty()) {
-        if (!r.sweep_file.empty() || !r.out.empty() || !r.overrides.empty() || !r.kept.empty())
-            throw InputError(
-                "--collect: takes the sweep's folder alone (no SWEEP.toml, no --out, no --set, no --kept)");
+        if (!r.sweep_file.empty() || !r.out.empty() || !r.overrides.empty() || !r.kept.empty() ||
+            !r.cases.empty())
+            throw InputError("--collect: takes the sweep's folder alone (no SWEEP.toml, no --out, no --set, "
+                             "no --kept, no --cases)");
         return collect(r);
     }
     if (r.sweep_file.empty())
@@ -342,6 +392,10 @@ int run_sweep(const SweepRequest &r) {
     SweepSpec spec = read_sweep_file(r.sweep_file);
     add_command_line_sets(spec, r.overrides);
     ctx.plan = plan_sweep(spec); // every case checked before anything runs
+    const std::set<std::size_t> selected = selected_cases(ctx.plan, r.cases);
+    std::set<std::string> selected_ids;
+    for (const std::size_t i : selected)
+        selected_ids.insert(ctx.plan.cases[i].id);
     ctx.out = fs::absolute(r.out).lexically_normal();
     ctx.executor = r.executor;
     ctx.armour_exe = self_exe();
@@ -361,7 +415,7 @@ int run_sweep(const SweepRequest &r) {
     const SweepTable before = read_sweep_table(ctx.out, ctx.plan);
     const std::set<std::size_t> from_kept =
         r.kept.empty() ? std::set<std::size_t>{} : kept_cases(fs::path(r.kept), ctx.plan, before);
-    const SweepActions actions = decide_actions(ctx.plan, before, from_kept, r.retry_failed);
+    const SweepActions actions = decide_actions(ctx.plan, before, from_kept, selected, r.retry_failed);
     const std::vector<std::size_t> &to_run = actions.to_run;
     const std::set<std::string> &skipped = actions.skipped;
     check_cases_run(ctx.plan, to_run);
@@ -385,13 +439,13 @@ int run_sweep(const SweepRequest &r) {
                  to_run.size(), skipped.size(), ctx.out.c_str());
     refresh_tables(ctx, skipped);
     if (to_run.empty())
-        return finish(ctx, skipped);
+        return finish(ctx, skipped, selected_ids);
 
     if (r.executor == "local") {
         const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
         const int jobs = r.jobs > 0 ? r.jobs : std::max(1, cores / std::max(1, ctx.plan.spec.np));
         run_local(ctx, to_run, jobs, skipped);
-        return finish(ctx, skipped);
+        return finish(ctx, skipped, selected_ids);
     }
     submit_slurm(ctx, to_run);
     if (r.no_wait) {
@@ -401,7 +455,7 @@ int run_sweep(const SweepRequest &r) {
         return 0;
     }
     follow_slurm(ctx, skipped);
-    return finish(ctx, skipped);
+    return finish(ctx, skipped, selected_ids);
 }
 
 } // namespace armour

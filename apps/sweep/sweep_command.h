@@ -1,5 +1,6 @@
 // `armour sweep SWEEP.toml --out DIR [--set KEY=VALUE]... [--executor local|slurm] [--jobs N]
-//  [--dry-run] [--retry-failed] [--no-wait] [--kept KEPT]` and `armour sweep --collect DIR`.
+//  [--dry-run] [--retry-failed] [--no-wait] [--kept KEPT] [--cases ID,...]` and
+//  `armour sweep --collect DIR`.
 //
 // Description
 //     Runs every case of a sweep file (sweep_file.h, docs/sweeps.md) as its own
@@ -10,12 +11,15 @@
 //     finished cases with the same scene hash are skipped, failed ones are run
 //     again only with --retry-failed; with --kept, the finished cases that a
 //     folder of studies/keep_results.py holds (same scene) are copied in and
-//     skipped. --set overrides a scene key for every case after the sweep
-//     file's [set] (a shorter run.duration for a trial).
+//     skipped. --cases runs only the named cases now (the others stay as they
+//     are, for a later sweep into the same DIR): a long study taken a few
+//     cases a sitting, in the order its user needs them. --set overrides a
+//     scene key for every case after the sweep file's [set] (a shorter
+//     run.duration for a trial).
 //
 // Usage
 //     SweepRequest r;  r.sweep_file = "studies/tilt_friction.toml";  r.out = "tilt-sweep";
-//     return run_sweep(r);   // 0 when every case is done
+//     return run_sweep(r);   // 0 when every case (of --cases, when given) is done
 #pragma once
 
 #include <string>
@@ -35,10 +39,11 @@ struct SweepRequest {
     int jobs = 0;                       // local: parallel cases (--jobs, >= 1); 0 = not given: cores / np
     bool dry_run = false;
     bool retry_failed = false;
-    bool no_wait = false; // slurm: submit and return
-    std::string kept;     // DIR of studies/keep_results.py: its done cases count as done here
-    std::string collect;  // DIR: gather a sweep submitted earlier
-    std::string run_case; // internal: run one case folder (what each executor starts)
+    bool no_wait = false;           // slurm: submit and return
+    std::string kept;               // DIR of studies/keep_results.py: its done cases count as done here
+    std::vector<std::string> cases; // --cases: only these case ids run now; empty: every case
+    std::string collect;            // DIR: gather a sweep submitted earlier
+    std::string run_case;           // internal: run one case folder (what each executor starts)
 };
 
 // Adds the `sweep` subcommand to `app`, filling `request`.
