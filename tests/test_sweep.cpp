@@ -589,6 +589,67 @@ TEST_F(SweepTest, StoppedSweepLeavesItsRunningCasesPending) {
         EXPECT_TRUE(c["status"] == "done" || c["status"] == "pending") << c.dump();
 }
 
+// A series case checkpoints in its steps' folders, not in its run's: a sweep
+// stopped in its second step goes on from there when run again (its first
+// step and its settle kept, not run again), as `armour run --resume` would.
+// The shipped stability scene made CI-sized as test_stability_series.cpp
+// makes it (45 cubes, 4 cm cells), two steps of 2 s. ~2-3 min.
+TEST_F(SweepTest, AStoppedSeriesCaseGoesOnFromItsSteps) {
+#ifndef ARMOUR_HAS_OPENFOAM
+    GTEST_SKIP() << "needs the OpenFOAM coupling (Debian's openfoam)";
+#endif
+    const fs::path scene = dir_ / "series.toml", sweep = dir_ / "series_sweep.toml", out = dir_ / "out";
+    write(scene, read_text(fs::path(kSource) / "scenes" / "stability_cubes.toml") +
+                     "\n[[series]]\nHs = 0.10\nTp = 1.8\nramp_time = 0.9\nduration = 2.0\n"
+                     "\n[[series]]\nHs = 0.12\nTp = 1.6\nseed = 2\nramp_time = 0.8\nduration = 2.0\n");
+    write(sweep, "scene = \"" + scene.string() +
+                     "\"\n[set]\n\"pattern.0.rows\" = 5\n\"fluid.cells\" = [50, 6, 16]\n"
+                     "\"fluid.penalty\" = 200.0\n\"run.checkpoint_interval\" = 1.0\n"
+                     "[[case]]\n\"series.1.Hs\" = 0.12\n");
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        ::freopen("/dev/null", "w", stderr);
+        ::execl(kArmour.c_str(), kArmour.c_str(), "sweep", sweep.c_str(), "--out", out.c_str(),
+                static_cast<char *>(nullptr));
+        ::_exit(127);
+    }
+    // SIGTERM once the first step is done (the second then runs), however
+    // long that takes; a sweep that ended first failed.
+    fs::path run_dir;
+    bool first_done = false;
+    int status = 0;
+    pid_t ended = 0;
+    while (!first_done && (ended = ::waitpid(pid, &status, WNOHANG)) == 0) {
+        std::error_code ec;
+        for (const auto &entry : fs::directory_iterator(out / "cases", ec)) {
+            run_dir = entry.path() / "run";
+            first_done = fs::exists(run_dir / "series" / "1" / "summary.json");
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    ASSERT_EQ(ended, 0) << "the sweep ended before its first step was seen done";
+    ::kill(pid, SIGTERM);
+    ::waitpid(pid, &status, 0);
+    ASSERT_FALSE(fs::exists(run_dir / "summary.json")) << "the series ended before it was stopped";
+    const std::string step1 = read_text(run_dir / "series" / "1" / "summary.json");
+    const double step1_seconds = json::parse(step1).at("simulated_seconds").get<double>();
+
+    const Result resumed = run(kArmour + " sweep " + sweep.string() + " --out " + out.string());
+    ASSERT_EQ(resumed.status, 0) << resumed.output;
+    const fs::path case_dir = run_dir.parent_path();
+    const std::string log = read_text(case_dir / "log.txt");
+    EXPECT_NE(log.find("attempt 2"), std::string::npos) << log;
+    EXPECT_NE(log.find("its series resumed at t = "), std::string::npos) << log;
+    EXPECT_NE(log.find("series step 1 of 2: done in"), std::string::npos) << "step 1 kept: " << log;
+    EXPECT_EQ(read_text(run_dir / "series" / "1" / "summary.json"), step1) << "step 1 ran again";
+    const json record = json::parse(read_text(case_dir / "case.json"));
+    EXPECT_EQ(record.at("status"), "done");
+    EXPECT_GE(record.at("resumed_from").get<double>(), step1_seconds) << "from step 2, not the start";
+    const json summary = json::parse(read_text(run_dir / "summary.json"));
+    ASSERT_EQ(summary.at("series").size(), 2u);
+    EXPECT_NEAR(summary.at("simulated_seconds").get<double>(), 4.0, 0.05);
+}
+
 TEST_F(SweepTest, ACaseLockedByAnotherProcessIsNotRunTwice) {
     const fs::path out = dir_ / "out", sweep = dir_ / "two.toml";
     auto write_sweep = [&](double tilt_max) {

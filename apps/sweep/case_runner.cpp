@@ -50,6 +50,30 @@ int take_lock(const fs::path &case_dir) {
     return fd;
 }
 
+// Whether a series stopped in `run` goes on from its steps, and from where
+// (`from`, s of the series' simulated time): its steps done (their own
+// simulated time) and the last checkpoint of the first step not done. Not
+// before its settle has ended (no run/series: the run starts again). A series
+// checkpoints in its steps' folders (run/series/<k>/), not in run/ itself.
+bool series_resume_point(const fs::path &run, double &from) {
+    from = 0.0;
+    if (!fs::is_directory(run / "series"))
+        return false;
+    for (int k = 1;; ++k) {
+        const fs::path step = run / "series" / std::to_string(k);
+        std::ifstream in(step / "summary.json");
+        const json summary = in ? json::parse(in, nullptr, false) : json();
+        if (summary.is_object() && summary.contains("simulated_seconds") &&
+            summary["simulated_seconds"].is_number()) {
+            from += summary["simulated_seconds"].get<double>();
+            continue;
+        }
+        if (const std::optional<Checkpoint> c = last_checkpoint(step))
+            from += c->time;
+        return true;
+    }
+}
+
 std::string host_name() {
     char name[256] = {};
     ::gethostname(name, sizeof name - 1);
@@ -151,16 +175,19 @@ int run_case(const fs::path &case_dir, const std::string &armour_exe) {
     // goes on from its run's last checkpoint when its scene is the same or
     // differs only in keys a resume may change; a finished one only to run
     // longer (more waves without running the first again). A checkpoint at or
-    // past the new end: from the start.
+    // past the new end: from the start. A stopped series goes on from its
+    // steps (those done are kept, the settle with them).
     const double duration = plan.value("duration", 0.0);
     const bool same =
         r.scene_hash == plan.value("scene_hash", "") || r.scene_hash == plan.value("earlier_scene_hash", "-");
     const bool resumable = !r.resume_hash.empty() && r.resume_hash == plan.value("resume_hash", "") &&
                            (r.status != "done" || r.duration < duration);
-    std::optional<Checkpoint> checkpoint =
-        r.attempts > 0 && (same || resumable) ? last_checkpoint(case_dir / "run") : std::nullopt;
+    const bool goes_on = r.attempts > 0 && (same || resumable);
+    std::optional<Checkpoint> checkpoint = goes_on ? last_checkpoint(case_dir / "run") : std::nullopt;
     if (checkpoint && duration > 0.0 && checkpoint->time >= duration)
         checkpoint.reset();
+    double series_from = 0.0;
+    const bool series = goes_on && r.status != "done" && series_resume_point(case_dir / "run", series_from);
     r.scene_hash = plan.value("scene_hash", "");
     r.resume_hash = plan.value("resume_hash", "");
     r.duration = duration;
@@ -168,7 +195,7 @@ int run_case(const fs::path &case_dir, const std::string &armour_exe) {
     const double timeout = plan.value("timeout", 0.0);
     r.status = "running";
     r.attempts += 1;
-    r.resumed_from = checkpoint ? checkpoint->time : 0.0;
+    r.resumed_from = checkpoint ? checkpoint->time : series_from;
     r.reason.clear();
     r.slurm_state.clear();
     r.started = now_seconds();
@@ -182,11 +209,13 @@ int run_case(const fs::path &case_dir, const std::string &armour_exe) {
     const fs::path log = case_dir / "log.txt";
     {
         std::ofstream header(log, std::ios::app);
-        header << "=== armour sweep: attempt " << r.attempts << " on " << r.host
-               << (checkpoint
-                       ? ", resumed from its checkpoint at t = " + checkpoint_name(checkpoint->time) + " s"
-                       : std::string())
-               << " ===\n";
+        std::string resumed;
+        if (checkpoint)
+            resumed = ", resumed from its checkpoint at t = " + checkpoint_name(checkpoint->time) + " s";
+        else if (series)
+            resumed =
+                ", its series resumed at t = " + checkpoint_name(series_from) + " s (the steps done kept)";
+        header << "=== armour sweep: attempt " << r.attempts << " on " << r.host << resumed << " ===\n";
     }
     std::vector<std::string> args = {armour_exe, "run", (case_dir / "scene.toml").string(), "--out",
                                      (case_dir / "run").string()};
@@ -194,9 +223,9 @@ int run_case(const fs::path &case_dir, const std::string &armour_exe) {
         args.push_back("--np");
         args.push_back(std::to_string(np));
     }
-    // Without a checkpoint of the same scene the run starts again, replacing
+    // Without a checkpoint (or a series' steps) of the same scene the run starts again, replacing
     // whatever an earlier attempt left in run/.
-    args.emplace_back(checkpoint ? "--resume" : "--restart");
+    args.emplace_back(checkpoint || series ? "--resume" : "--restart");
     std::signal(SIGTERM, on_stop);
     std::signal(SIGINT, on_stop);
     std::signal(SIGHUP, on_stop);
