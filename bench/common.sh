@@ -152,3 +152,12 @@ bench_settled_layer_dry() {
   awk '/^\[/ { skip = ($0 ~ /^\[fluid\]|^\[waves\]|^\[\[porous\]\]|^\[\[series\]\]|^\[\[refine\]\]|^\[analysis\]/) } !skip' \
     "$layer/settle/scene.settled.toml" >"$out/hold.toml"
 }
+
+# After bench_settled_layer_dry: the LIGGGHTS set-up the adapter writes for a
+# dry hold of the settled layer (its bodies at rest), from a 0.05 s hold run
+# made once in $out/hold. Sets $held_input for the caller.
+bench_held_layer_input() {
+  held_input="$out/hold/liggghts/input.liggghts"
+  [ -f "$held_input" ] ||
+    "$build/apps/armour" run "$out/hold.toml" --set run.duration=0.05 --out "$out/hold" >"$out/hold.log" 2>&1
+}

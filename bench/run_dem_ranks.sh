@@ -26,14 +26,12 @@ bench_name=dem_ranks bench_targets=armour bench_options="steps"
 source "$root/bench/common.sh"
 bench_args "$@"
 steps="${opt_steps:-4000}"
-armour="$build/apps/armour"
 command -v liggghts >/dev/null || bench_fail "needs the liggghts executable (Debian package liggghts)"
 command -v mpirun >/dev/null || bench_fail "needs mpirun (Debian package openmpi-bin)"
 [ "$(nproc)" -ge 2 ] || bench_fail "needs 2 cores; this machine has $(nproc)"
 
 bench_settled_layer_dry
-[ -f "$out/hold/liggghts/input.liggghts" ] ||
-  "$armour" run "$out/hold.toml" --set run.duration=0.05 --out "$out/hold" >"$out/hold.log" 2>&1
+bench_held_layer_input
 
 # The adapter's box with the processor grid left to the command line.
 sed 's/^processors .*/processors      ${px} ${py} ${pz}/' "$root/liggghts_inputs/domain.in" >"$out/domain_ranks.in"
@@ -41,7 +39,7 @@ rows=()
 for phase in moving rest; do
   case $phase in
     moving) input="$layer/settle/liggghts/input.liggghts" ;;
-    rest) input="$out/hold/liggghts/input.liggghts" ;;
+    rest) input="$held_input" ;;
   esac
   sed "s#^include .*/domain.in\$#include $out/domain_ranks.in#" "$input" >"$out/$phase.in"
   grep -q "domain_ranks.in" "$out/$phase.in" || bench_fail "$input: no domain.in include to replace"

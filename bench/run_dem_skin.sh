@@ -24,11 +24,10 @@ source "$root/bench/common.sh"
 bench_args "$@"
 skins="${opt_skins:-0.0002 0.001 0.002 0.008}"
 steps="${opt_steps:-8000}"
-armour="$build/apps/armour"
 command -v liggghts >/dev/null || bench_fail "needs the liggghts executable (Debian package liggghts)"
 
 bench_settled_layer_dry
-"$armour" run "$out/hold.toml" --set run.duration=0.05 --out "$out/hold" >"$out/hold.log" 2>&1
+bench_held_layer_input
 
 # The adapter's own skin is always among those replayed.
 adapter_skin=$(sed -n 's/^variable skin string "\(.*\)"/\1/p' "$layer/settle/liggghts/input.liggghts")
@@ -37,7 +36,7 @@ rows=()
 for phase in moving rest; do
   case $phase in
     moving) input="$layer/settle/liggghts/input.liggghts" ;;
-    rest) input="$out/hold/liggghts/input.liggghts" ;;
+    rest) input="$held_input" ;;
   esac
   for skin in $skins; do
     name="$phase-$skin"
