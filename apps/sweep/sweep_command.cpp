@@ -177,17 +177,17 @@ void write_report(const fs::path &out) {
                      (out / "report.md").c_str());
 }
 
-// `selected`: the --cases given (case ids), whose completion decides the exit
-// status; empty: every case.
+// `selected`: the cases --cases names (plan indices), whose completion decides
+// the exit status; empty: every case.
 int finish(const SweepContext &ctx, const std::set<std::string> &skipped,
-           const std::set<std::string> &selected = {}) {
+           const std::set<std::size_t> &selected = {}) {
     const SweepTable table = refresh_tables(ctx, skipped);
     write_report(ctx.out);
     const int failed = table.count("failed");
     int selected_done = 0, others_left = 0;
     for (std::size_t i = 0; i < table.rows.size(); ++i) {
         const bool done = table.rows[i].status == "done";
-        if (selected.count(ctx.plan.cases[i].id))
+        if (selected.count(i))
             selected_done += done;
         else
             others_left += !done;
@@ -393,9 +393,6 @@ int run_sweep(const SweepRequest &r) {
     add_command_line_sets(spec, r.overrides);
     ctx.plan = plan_sweep(spec); // every case checked before anything runs
     const std::set<std::size_t> selected = selected_cases(ctx.plan, r.cases);
-    std::set<std::string> selected_ids;
-    for (const std::size_t i : selected)
-        selected_ids.insert(ctx.plan.cases[i].id);
     ctx.out = fs::absolute(r.out).lexically_normal();
     ctx.executor = r.executor;
     ctx.armour_exe = self_exe();
@@ -439,13 +436,13 @@ int run_sweep(const SweepRequest &r) {
                  to_run.size(), skipped.size(), ctx.out.c_str());
     refresh_tables(ctx, skipped);
     if (to_run.empty())
-        return finish(ctx, skipped, selected_ids);
+        return finish(ctx, skipped, selected);
 
     if (r.executor == "local") {
         const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
         const int jobs = r.jobs > 0 ? r.jobs : std::max(1, cores / std::max(1, ctx.plan.spec.np));
         run_local(ctx, to_run, jobs, skipped);
-        return finish(ctx, skipped, selected_ids);
+        return finish(ctx, skipped, selected);
     }
     submit_slurm(ctx, to_run);
     if (r.no_wait) {
@@ -455,7 +452,7 @@ int run_sweep(const SweepRequest &r) {
         return 0;
     }
     follow_slurm(ctx, skipped);
-    return finish(ctx, skipped, selected_ids);
+    return finish(ctx, skipped, selected);
 }
 
 } // namespace armour
