@@ -195,9 +195,10 @@ double settle_headroom(const Scene &scene, const SceneSetup &setup) {
     return scene.fluid && scene.fluid->settle_time > 0.0 ? kSettleHeadroom * largest_Dn(setup) : 0.0;
 }
 
-SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool progress) {
-    SceneSetup setup;
-    EngineSettings &s = setup.settings;
+namespace {
+
+EngineSettings engine_settings(const Scene &scene) {
+    EngineSettings s;
     s.contact = scene.contact_model == "hooke" ? ContactModel::hooke : ContactModel::hertz;
     s.characteristic_velocity = scene.characteristic_velocity;
     for (const auto &m : scene.materials)
@@ -209,8 +210,10 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
     s.gravity = scene.gravity;
     s.time_step = scene.time_step;
     s.force_time_step = scene.force_time_step;
+    return s;
+}
 
-    std::vector<std::string> unit_names;
+void add_units(const Scene &scene, const std::string &cache_dir, bool progress, SceneSetup &setup) {
     for (std::size_t k = 0; k < scene.units.size(); ++k) {
         const SceneUnit &u = scene.units[k];
         const Shape shape = unit_shape(u);
@@ -224,30 +227,11 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
         setup.unit_Dn.push_back(shape.Dn());
         setup.unit_spheres.push_back(static_cast<int>(t.clump.size()));
         setup.units.push_back(std::move(t));
-        unit_names.push_back(u.name);
     }
-    const ShapeModel model = engine_style(scene.engine).capabilities.shape;
-    std::vector<Collider> colliders;
-    std::vector<double> reach; // m: no part of a unit farther from its centre, clump or exact shape
-    for (std::size_t k = 0; k < setup.units.size(); ++k) {
-        colliders.push_back(make_collider(setup.units[k], model, setup.unit_Dn[k]));
-        reach.push_back(bounding_radius(setup.units[k].clump));
-        for (const Eigen::Vector3d &v : setup.units[k].mesh.vertices)
-            reach.back() = std::max(reach.back(), v.norm());
-    }
-    // The radius within which a unit's collided shape lies (drops keep units this far apart).
-    const auto collided_radius = [&](int unit) {
-        return colliders[unit].spheres ? colliders[unit].reach : reach[unit];
-    };
-    auto unit_index = [&](const std::string &name) {
-        return static_cast<int>(std::find(unit_names.begin(), unit_names.end(), name) - unit_names.begin());
-    };
-    const double largest = largest_Dn(setup);
-    // A loose pile (random placement) stands higher than the layer it
-    // settles into, and the settle is DEM alone.
-    const Eigen::Vector3d placement_max =
-        scene.domain_max + Eigen::Vector3d(0.0, 0.0, settle_headroom(scene, setup));
+}
 
+std::vector<Wall> make_walls(const Scene &scene, const Eigen::Vector3d &placement_max) {
+    std::vector<Wall> walls;
     for (std::size_t k = 0; k < scene.walls.size(); ++k) {
         const SceneWall &w = scene.walls[k];
         Wall wall;
@@ -264,191 +248,212 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
             wall.oriented = false;
             wall.wound = consistently_wound(wall.surface);
         }
-        setup.walls.push_back(std::move(wall));
+        walls.push_back(std::move(wall));
     }
+    return walls;
+}
 
-    for (const auto &b : scene.bodies) {
-        BodyInit init;
-        init.unit = unit_index(b.unit);
-        init.pose.position = b.position;
-        init.pose.orientation =
-            Eigen::Quaterniond(b.orientation[0], b.orientation[1], b.orientation[2], b.orientation[3])
-                .normalized();
-        init.velocity = b.velocity;
-        init.angular_velocity = b.angular_velocity;
-        init.fixed_translation = b.fixed_translation;
-        init.fixed_rotation = b.fixed_rotation;
-        init.pivot = b.pivot;
-        setup.bodies.push_back(init);
+BodyInit body_init(const SceneBody &b, int unit) {
+    BodyInit init;
+    init.unit = unit;
+    init.pose.position = b.position;
+    init.pose.orientation =
+        Eigen::Quaterniond(b.orientation[0], b.orientation[1], b.orientation[2], b.orientation[3])
+            .normalized();
+    init.velocity = b.velocity;
+    init.angular_velocity = b.angular_velocity;
+    init.fixed_translation = b.fixed_translation;
+    init.fixed_rotation = b.fixed_rotation;
+    init.pivot = b.pivot;
+    return init;
+}
+
+// What placing units and checking their poses needs beside the templates:
+// the shape each unit collides in the scene's engine and how far it reaches.
+struct Placement {
+    std::vector<Collider> colliders;
+    std::vector<double> reach;     // m: no part of a unit farther from its centre, clump or exact shape
+    Eigen::Vector3d domain_min;    // m
+    Eigen::Vector3d placement_max; // m: the domain's top raised by the settle's headroom
+
+    // m: the radius within which a unit's collided shape lies (drops keep units this far apart).
+    double collided_radius(int unit) const {
+        const auto k = static_cast<std::size_t>(unit);
+        return colliders[k].spheres ? colliders[k].reach : reach[k];
     }
+};
 
-    for (std::size_t k = 0; k < scene.drops.size(); ++k) {
-        const SceneDrop &d = scene.drops[k];
-        const int unit = unit_index(d.unit);
-        const double R = collided_radius(unit);
-        // Units clear of each other by their collided shapes, not by the
-        // spheres that enclose them: a cube turned at random is kept ~2 Dn
-        // apart by those (a 20-sphere clump's corner spheres stand 0.197 m
-        // from a 0.2 m cube's centre), and slope_cubes' region, which a pile
-        // at the Rock Manual's porosity 0.47 fills with ~60, took 22 of its
-        // 30. They all fall at g from rest: a gap of 2 % of Dn stays open
-        // until they land.
-        const double gap = 0.02 * setup.unit_Dn[static_cast<std::size_t>(unit)];
-        const auto touches = [&](const BodyInit &a, const BodyInit &b) {
-            return (a.pose.position - b.pose.position).norm() < R + collided_radius(b.unit) + gap &&
-                   closer_than(a, setup.units[unit], colliders[unit], b, setup.units[b.unit],
-                               colliders[b.unit], gap);
-        };
-        std::mt19937_64 rng(d.seed);
-        std::uniform_real_distribution<double> uniform(0.0, 1.0);
-        int placed = 0;
-        for (long tries = 0; placed < d.count && tries < 2000L * d.count; ++tries) {
-            BodyInit init;
-            init.unit = unit;
-            init.pose.position =
-                d.min +
-                (d.max - d.min).cwiseProduct(Eigen::Vector3d(uniform(rng), uniform(rng), uniform(rng)));
-            init.pose.orientation = random_orientation(rng);
-            bool free = ((init.pose.position.array() - R) > scene.domain_min.array()).all() &&
-                        ((init.pose.position.array() + R) < placement_max.array()).all();
-            for (const auto &other : setup.bodies)
-                free = free && !touches(init, other);
-            if (!free ||
-                body_wall_penetration(init, setup.units[unit], colliders[unit], setup.walls).first > 0.0)
-                continue;
-            setup.bodies.push_back(init);
-            ++placed;
-        }
-        if (placed < d.count)
-            throw InputError(scene.file + ": key 'drop." + std::to_string(k) + ".count': only " +
-                             std::to_string(placed) + " of " + std::to_string(d.count) +
-                             " units fit in the region clear of each other and of the walls; enlarge " +
-                             "drop.min/max");
+Placement make_placement(const Scene &scene, const SceneSetup &setup) {
+    Placement place;
+    const ShapeModel model = engine_style(scene.engine).capabilities.shape;
+    for (std::size_t k = 0; k < setup.units.size(); ++k) {
+        place.colliders.push_back(make_collider(setup.units[k], model, setup.unit_Dn[k]));
+        place.reach.push_back(bounding_radius(setup.units[k].clump));
+        for (const Eigen::Vector3d &v : setup.units[k].mesh.vertices)
+            place.reach.back() = std::max(place.reach.back(), v.norm());
     }
+    place.domain_min = scene.domain_min;
+    // A loose pile (random placement) stands higher than the layer it
+    // settles into, and the settle is DEM alone.
+    place.placement_max = scene.domain_max + Eigen::Vector3d(0.0, 0.0, settle_headroom(scene, setup));
+    return place;
+}
 
-    for (std::size_t k = 0; k < scene.patterns.size(); ++k) {
-        const ScenePattern &p = scene.patterns[k];
-        const int unit = unit_index(p.unit);
-        const SceneWall *slope = nullptr;
-        for (const auto &w : scene.walls)
-            if (w.name == p.wall && w.type == "slope")
-                slope = &w;
-        if (!slope)
-            throw InputError(scene.file + ": key 'pattern." + std::to_string(k) + ".wall': '" + p.wall +
-                             "' is not a slope wall");
-        const double alpha = std::atan2(1.0, slope->cot);
-        const Eigen::Vector3d along(std::cos(alpha), 0.0, std::sin(alpha)),
-            normal(-std::sin(alpha), 0.0, std::cos(alpha));
-        const Eigen::Quaterniond turn(Eigen::AngleAxisd(-alpha, Eigen::Vector3d::UnitY()));
-        // The unit frame turned onto the slope: x up it, y across, z out of
-        // it. Extents of the shape the engine collides, which for a clump may
-        // protrude beyond the exact shape.
-        double low = 0.0, high = 0.0, half = 0.0;
-        const auto extend = [&](const Eigen::Vector3d &c, double radius) {
-            low = std::max(low, radius - c.z());
-            high = std::max(high, radius + c.z());
-            half = std::max(half, std::max(std::abs(c.x()), std::abs(c.y())) + radius);
-        };
-        if (colliders[unit].spheres)
-            for (const auto &sph : setup.units[unit].clump)
-                extend(sph.center, sph.radius);
-        else
-            for (const auto &point : colliders[unit].points)
-                extend(point, 0.0);
-        const std::string key = "pattern." + std::to_string(k) + ".";
-        const double Dn = setup.unit_Dn[unit];
-        double spacing = p.spacing > 0.0 ? p.spacing : 1.05 * 2.0 * half;
-        if (p.packing_density > 0.0) {
-            spacing = Dn * std::sqrt(p.layers / p.packing_density);
-            if (spacing < 2.0 * half)
-                throw InputError(scene.file + ": key '" + key +
-                                 "packing_density': " + num(p.packing_density) + " units per Dn^2 in " +
-                                 std::to_string(p.layers) + " layer(s) needs centres " + num(spacing) +
-                                 " m apart, less than the unit's size " + num(2.0 * half) +
-                                 " m: a regular pattern would overlap (at most " +
-                                 num(p.layers * Dn * Dn / (4.0 * half * half)) + "); add layers");
-        }
-        const auto pose = [&](double up, double across, double out) {
-            BodyInit init;
-            init.unit = unit;
-            init.pose.position =
-                Eigen::Vector3d(slope->toe_x, across, slope->floor_z) + up * along + out * normal;
-            init.pose.orientation = turn;
-            return init;
-        };
-        // The first row half a spacing from the toe, moved up the slope
-        // until it clears a toe step (and any wall) by the shape the engine collides.
-        double first = 0.5 * spacing;
-        for (; first < 0.5 * spacing + 3.0 * Dn; first += 0.02 * Dn)
-            if (body_wall_penetration(pose(first, 0.0, low + p.gap), setup.units[unit], colliders[unit],
-                                      setup.walls)
-                    .first <= 0.0)
-                break;
-        if (p.placement == "random") {
-            PatternGrid grid;
-            grid.slope = slope;
-            grid.origin = Eigen::Vector3d(slope->toe_x, 0.0, slope->floor_z);
-            grid.along = along;
-            grid.normal = normal;
-            grid.turn = turn;
-            grid.first = first;
-            grid.spacing = spacing;
-            grid.size = 2.0 * half;
-            grid.domain_min = scene.domain_min;
-            grid.domain_max = placement_max;
-            for (const BodyInit &b :
-                 random_pattern(p, grid, unit, setup.units[unit], colliders[unit], reach[unit], Dn,
-                                setup.walls, scene.file + ": key '" + key))
-                setup.bodies.push_back(b);
-            continue;
-        }
-        // Every other layer sits half a spacing up the slope, its columns in
-        // the gaps of the one below (one column fewer: within the same width).
-        for (int layer = 0; layer < p.layers; ++layer) {
-            const bool shifted = layer % 2 == 1 && p.columns > 1;
-            const int columns = shifted ? p.columns - 1 : p.columns;
-            const double n = low + p.gap + layer * (low + high + p.gap);
-            for (int row = 0; row < p.rows; ++row)
-                for (int col = 0; col < columns; ++col)
-                    setup.bodies.push_back(pose(first + (row + (layer % 2) * 0.5) * spacing,
-                                                (col - 0.5 * (columns - 1)) * spacing, n));
-        }
-    }
+int unit_index(const SceneSetup &setup, const std::string &name) {
+    const auto named = [&](const UnitTemplate &u) { return u.name == name; };
+    return static_cast<int>(std::find_if(setup.units.begin(), setup.units.end(), named) -
+                            setup.units.begin());
+}
 
-    // A unit resting on a wall laid on the domain's face (a side wall at
-    // domain_min.y) reaches through that face: by its contact overlap, and
-    // under a layer's load a clump's smallest spheres pass the soft wall.
-    // Cubes placed at random in scenes/stability_cubes.toml put their exact
-    // corners 1.8-3.2 mm through its side walls (as deep as into the slope)
-    // and their clumps' 0.4 mm corner spheres, which stand 1.5 mm out of the
-    // cube on each axis, 4.5-4.7 mm (0.12 Dn). Units may start up to 0.25 Dn
-    // beyond the faces (poses from a settled run, fluid.settle_time); the
-    // engines' own domain reaches 0.5 Dn beyond them, as LIGGGHTS drops a
-    // sphere outside its box with its whole unit.
-    const Eigen::Vector3d start_min = scene.domain_min - Eigen::Vector3d::Constant(0.25 * largest),
-                          start_max = placement_max + Eigen::Vector3d::Constant(0.25 * largest);
-    s.domain_min = scene.domain_min - Eigen::Vector3d::Constant(0.5 * largest);
-    s.domain_max = placement_max + Eigen::Vector3d::Constant(0.5 * largest);
-
-    // A resting contact overlaps a little: a Hertz contact under a unit's own
-    // weight by ~0.2 % of the sphere radius (E = 5e7 Pa, 0.06 m concrete
-    // cube), under a settled pile of 0.1 m cubes up to 1.5 %. Poses taken from
-    // a settled run (fluid.settle_time) carry such overlaps; up to 5 % of the
-    // smaller radius is a contact, not a mistake (at 5 % the softened Hertz
-    // contact pushes back with ~10 unit weights: a start that is not wrong).
-    // Against the domain's faces the 0.25 Dn above counts.
-    // A clump's smallest spheres (a cube's corners: 0.01 a) sink deeper than
-    // 5 % of their radius under a settled layer's load (0.05-0.19 mm on
-    // 0.4 mm corners, scenes/stability_cubes.toml): there the contact is the
-    // Hertz overlap under those same ~10 unit weights.
-    const auto resting = [&](double radius, int unit) {
-        const UnitTemplate &u = setup.units[static_cast<std::size_t>(unit)];
-        return std::max(0.05 * radius,
-                        sphere_overlap(radius, s.materials[static_cast<std::size_t>(u.material)],
-                                       10.0 * u.props.mass * scene.gravity.norm()));
+void drop_units(const Scene &scene, std::size_t k, const Placement &place, SceneSetup &setup) {
+    const SceneDrop &d = scene.drops[k];
+    const int unit = unit_index(setup, d.unit);
+    const Collider &collider = place.colliders[static_cast<std::size_t>(unit)];
+    const double R = place.collided_radius(unit);
+    // Units clear of each other by their collided shapes, not by the
+    // spheres that enclose them: a cube turned at random is kept ~2 Dn
+    // apart by those (a 20-sphere clump's corner spheres stand 0.197 m
+    // from a 0.2 m cube's centre), and slope_cubes' region, which a pile
+    // at the Rock Manual's porosity 0.47 fills with ~60, took 22 of its
+    // 30. They all fall at g from rest: a gap of 2 % of Dn stays open
+    // until they land.
+    const double gap = 0.02 * setup.unit_Dn[static_cast<std::size_t>(unit)];
+    const auto touches = [&](const BodyInit &a, const BodyInit &b) {
+        return (a.pose.position - b.pose.position).norm() < R + place.collided_radius(b.unit) + gap &&
+               closer_than(a, setup.units[unit], collider, b, setup.units[b.unit], place.colliders[b.unit],
+                           gap);
     };
-    // Bodies inside the domain, and no two overlapping.
-    std::vector<std::string> problems;
+    std::mt19937_64 rng(d.seed);
+    std::uniform_real_distribution<double> uniform(0.0, 1.0);
+    int placed = 0;
+    for (long tries = 0; placed < d.count && tries < 2000L * d.count; ++tries) {
+        BodyInit init;
+        init.unit = unit;
+        init.pose.position =
+            d.min + (d.max - d.min).cwiseProduct(Eigen::Vector3d(uniform(rng), uniform(rng), uniform(rng)));
+        init.pose.orientation = random_orientation(rng);
+        bool free = ((init.pose.position.array() - R) > place.domain_min.array()).all() &&
+                    ((init.pose.position.array() + R) < place.placement_max.array()).all();
+        for (const auto &other : setup.bodies)
+            free = free && !touches(init, other);
+        if (!free || body_wall_penetration(init, setup.units[unit], collider, setup.walls).first > 0.0)
+            continue;
+        setup.bodies.push_back(init);
+        ++placed;
+    }
+    if (placed < d.count)
+        throw InputError(scene.file + ": key 'drop." + std::to_string(k) + ".count': only " +
+                         std::to_string(placed) + " of " + std::to_string(d.count) +
+                         " units fit in the region clear of each other and of the walls; enlarge " +
+                         "drop.min/max");
+}
+
+void pattern_units(const Scene &scene, std::size_t k, const Placement &place, SceneSetup &setup) {
+    const ScenePattern &p = scene.patterns[k];
+    const int unit = unit_index(setup, p.unit);
+    const Collider &collider = place.colliders[static_cast<std::size_t>(unit)];
+    const SceneWall *slope = nullptr;
+    for (const auto &w : scene.walls)
+        if (w.name == p.wall && w.type == "slope")
+            slope = &w;
+    if (!slope)
+        throw InputError(scene.file + ": key 'pattern." + std::to_string(k) + ".wall': '" + p.wall +
+                         "' is not a slope wall");
+    const double alpha = std::atan2(1.0, slope->cot);
+    const Eigen::Vector3d along(std::cos(alpha), 0.0, std::sin(alpha)),
+        normal(-std::sin(alpha), 0.0, std::cos(alpha));
+    const Eigen::Quaterniond turn(Eigen::AngleAxisd(-alpha, Eigen::Vector3d::UnitY()));
+    // The unit frame turned onto the slope: x up it, y across, z out of
+    // it. Extents of the shape the engine collides, which for a clump may
+    // protrude beyond the exact shape.
+    double low = 0.0, high = 0.0, half = 0.0;
+    const auto extend = [&](const Eigen::Vector3d &c, double radius) {
+        low = std::max(low, radius - c.z());
+        high = std::max(high, radius + c.z());
+        half = std::max(half, std::max(std::abs(c.x()), std::abs(c.y())) + radius);
+    };
+    if (collider.spheres)
+        for (const auto &sph : setup.units[unit].clump)
+            extend(sph.center, sph.radius);
+    else
+        for (const auto &point : collider.points)
+            extend(point, 0.0);
+    const std::string key = "pattern." + std::to_string(k) + ".";
+    const double Dn = setup.unit_Dn[unit];
+    double spacing = p.spacing > 0.0 ? p.spacing : 1.05 * 2.0 * half;
+    if (p.packing_density > 0.0) {
+        spacing = Dn * std::sqrt(p.layers / p.packing_density);
+        if (spacing < 2.0 * half)
+            throw InputError(scene.file + ": key '" + key + "packing_density': " + num(p.packing_density) +
+                             " units per Dn^2 in " + std::to_string(p.layers) + " layer(s) needs centres " +
+                             num(spacing) + " m apart, less than the unit's size " + num(2.0 * half) +
+                             " m: a regular pattern would overlap (at most " +
+                             num(p.layers * Dn * Dn / (4.0 * half * half)) + "); add layers");
+    }
+    const auto pose = [&](double up, double across, double out) {
+        BodyInit init;
+        init.unit = unit;
+        init.pose.position =
+            Eigen::Vector3d(slope->toe_x, across, slope->floor_z) + up * along + out * normal;
+        init.pose.orientation = turn;
+        return init;
+    };
+    // The first row half a spacing from the toe, moved up the slope
+    // until it clears a toe step (and any wall) by the shape the engine collides.
+    double first = 0.5 * spacing;
+    for (; first < 0.5 * spacing + 3.0 * Dn; first += 0.02 * Dn)
+        if (body_wall_penetration(pose(first, 0.0, low + p.gap), setup.units[unit], collider, setup.walls)
+                .first <= 0.0)
+            break;
+    if (p.placement == "random") {
+        PatternGrid grid;
+        grid.slope = slope;
+        grid.origin = Eigen::Vector3d(slope->toe_x, 0.0, slope->floor_z);
+        grid.along = along;
+        grid.normal = normal;
+        grid.turn = turn;
+        grid.first = first;
+        grid.spacing = spacing;
+        grid.size = 2.0 * half;
+        grid.domain_min = place.domain_min;
+        grid.domain_max = place.placement_max;
+        for (const BodyInit &b : random_pattern(p, grid, unit, setup.units[unit], collider, place.reach[unit],
+                                                Dn, setup.walls, scene.file + ": key '" + key))
+            setup.bodies.push_back(b);
+        return;
+    }
+    // Every other layer sits half a spacing up the slope, its columns in
+    // the gaps of the one below (one column fewer: within the same width).
+    for (int layer = 0; layer < p.layers; ++layer) {
+        const bool shifted = layer % 2 == 1 && p.columns > 1;
+        const int columns = shifted ? p.columns - 1 : p.columns;
+        const double n = low + p.gap + layer * (low + high + p.gap);
+        for (int row = 0; row < p.rows; ++row)
+            for (int col = 0; col < columns; ++col)
+                setup.bodies.push_back(pose(first + (row + (layer % 2) * 0.5) * spacing,
+                                            (col - 0.5 * (columns - 1)) * spacing, n));
+    }
+}
+
+// The engines' domain about the scene's. A unit resting on a wall laid on
+// the domain's face (a side wall at domain_min.y) reaches through that face:
+// by its contact overlap, and under a layer's load a clump's smallest spheres
+// pass the soft wall. Cubes placed at random in scenes/stability_cubes.toml
+// put their exact corners 1.8-3.2 mm through its side walls (as deep as into
+// the slope) and their clumps' 0.4 mm corner spheres, which stand 1.5 mm out
+// of the cube on each axis, 4.5-4.7 mm (0.12 Dn). Units may start up to
+// 0.25 Dn beyond the faces (poses from a settled run, fluid.settle_time,
+// checked in check_initial_poses); the engines' own domain reaches 0.5 Dn
+// beyond them, as LIGGGHTS drops a sphere outside its box with its whole unit.
+void set_engine_domain(const Placement &place, double largest, EngineSettings &s) {
+    s.domain_min = place.domain_min - Eigen::Vector3d::Constant(0.5 * largest);
+    s.domain_max = place.placement_max + Eigen::Vector3d::Constant(0.5 * largest);
+}
+
+void check_inside_domain(const Scene &scene, const Placement &place, const SceneSetup &setup) {
+    const double largest = largest_Dn(setup);
+    const Eigen::Vector3d start_min = place.domain_min - Eigen::Vector3d::Constant(0.25 * largest),
+                          start_max = place.placement_max + Eigen::Vector3d::Constant(0.25 * largest);
     for (std::size_t i = 0; i < setup.bodies.size(); ++i) {
         const BodyInit &b = setup.bodies[i];
         for (const auto &sph : setup.units[b.unit].clump) {
@@ -460,6 +465,31 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
             }
         }
     }
+}
+
+// How deep a unit may start in a wall or a neighbour: a resting contact, not a mistake.
+struct RestingDepth {
+    const Scene &scene;
+    const SceneSetup &setup;
+    std::vector<double> beyond_clump; // m: how far each exact collider stands out of its clump
+
+    // A resting contact overlaps a little: a Hertz contact under a unit's own
+    // weight by ~0.2 % of the sphere radius (E = 5e7 Pa, 0.06 m concrete
+    // cube), under a settled pile of 0.1 m cubes up to 1.5 %. Poses taken from
+    // a settled run (fluid.settle_time) carry such overlaps; up to 5 % of the
+    // smaller radius is a contact, not a mistake (at 5 % the softened Hertz
+    // contact pushes back with ~10 unit weights: a start that is not wrong).
+    // Against the domain's faces the 0.25 Dn of check_inside_domain counts.
+    // A clump's smallest spheres (a cube's corners: 0.01 a) sink deeper than
+    // 5 % of their radius under a settled layer's load (0.05-0.19 mm on
+    // 0.4 mm corners, scenes/stability_cubes.toml): there the contact is the
+    // Hertz overlap under those same ~10 unit weights.
+    double sphere(double radius, int unit) const {
+        const UnitTemplate &u = setup.units[static_cast<std::size_t>(unit)];
+        return std::max(0.05 * radius,
+                        sphere_overlap(radius, setup.settings.materials[static_cast<std::size_t>(u.material)],
+                                       10.0 * u.props.mass * scene.gravity.norm()));
+    }
     // An exact shape rests with next to no overlap (Bullet keeps its contact
     // within its collision margin): 1 % of Dn is a contact there. Poses a
     // clump engine settled (fluid.settle_engine, or a settled scene run with
@@ -468,33 +498,35 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
     // Dn into the slope): that depth is the clump's shape error, not a
     // placement mistake, and the exact-shape engine pushes it out in its
     // first steps.
-    std::vector<double> beyond_clump(setup.units.size(), 0.0); // m
-    for (std::size_t k = 0; k < setup.units.size(); ++k)
-        if (!colliders[k].spheres)
-            beyond_clump[k] = depth_outside_clump(setup.units[k].clump, colliders[k].points);
-    const auto resting_exact = [&](int unit) {
+    double exact(int unit) const {
         const auto k = static_cast<std::size_t>(unit);
         return std::max(0.01 * setup.unit_Dn[k], beyond_clump[k]);
-    };
-    // Exact shapes' settled poses handed to clumps as they are: the clumps'
-    // spheres stand out of the shapes, into the neighbours and the slope.
-    std::string remedy;
-    if (scene.fluid && !scene.fluid->settled_by.empty() &&
-        engine_style(scene.fluid->settled_by).capabilities.shape == ShapeModel::convex_hulls &&
-        engine_style(scene.engine).capabilities.shape == ShapeModel::sphere_clumps)
-        remedy =
-            " (fluid.settled_by " + scene.fluid->settled_by +
-            " settled exact shapes, which the clumps stand out of: settle for the clumps with run.engine " +
-            scene.engine + " and fluid.settle_engine " + scene.fluid->settled_by +
-            ", which grows the cubes to hold them)";
+    }
+};
+
+// Exact shapes' settled poses handed to clumps as they are: the clumps'
+// spheres stand out of the shapes, into the neighbours and the slope.
+std::string settled_hulls_remedy(const Scene &scene) {
+    if (!scene.fluid || scene.fluid->settled_by.empty() ||
+        engine_style(scene.fluid->settled_by).capabilities.shape != ShapeModel::convex_hulls ||
+        engine_style(scene.engine).capabilities.shape != ShapeModel::sphere_clumps)
+        return "";
+    return " (fluid.settled_by " + scene.fluid->settled_by +
+           " settled exact shapes, which the clumps stand out of: settle for the clumps with run.engine " +
+           scene.engine + " and fluid.settle_engine " + scene.fluid->settled_by +
+           ", which grows the cubes to hold them)";
+}
+
+void check_wall_contacts(const Scene &scene, const Placement &place, const SceneSetup &setup,
+                         const RestingDepth &resting, const std::string &remedy) {
     for (std::size_t i = 0; i < setup.bodies.size(); ++i) {
         const BodyInit &b = setup.bodies[i];
-        const Collider &c = colliders[static_cast<std::size_t>(b.unit)];
+        const Collider &c = place.colliders[static_cast<std::size_t>(b.unit)];
         const auto [depth, wall] = body_wall_penetration(b, setup.units[b.unit], c, setup.walls);
         double smallest = HUGE_VAL;
         for (const auto &sph : setup.units[b.unit].clump)
             smallest = std::min(smallest, sph.radius);
-        if (depth > (c.spheres ? resting(smallest, b.unit) : resting_exact(b.unit)))
+        if (depth > (c.spheres ? resting.sphere(smallest, b.unit) : resting.exact(b.unit)))
             throw InputError(scene.file + ": body " + std::to_string(i) + " (unit '" +
                              setup.units[b.unit].name + "') cuts into wall '" + setup.walls[wall].name +
                              "' by " + num(depth) + " m at its initial pose " +
@@ -502,43 +534,73 @@ SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool pr
                                         : "(its exact shape, which the engine collides)") +
                              "; move it away from the wall" + remedy);
     }
-    for (std::size_t i = 0; i < setup.bodies.size() && problems.size() < 5; ++i)
-        for (std::size_t j = i + 1; j < setup.bodies.size() && problems.size() < 5; ++j) {
-            const BodyInit &a = setup.bodies[i], &b = setup.bodies[j];
-            const Clump &ca = setup.units[a.unit].clump, &cb = setup.units[b.unit].clump;
-            if ((a.pose.position - b.pose.position).norm() >= reach[a.unit] + reach[b.unit])
-                continue;
-            bool overlap = false;
-            const Collider &xa = colliders[static_cast<std::size_t>(a.unit)],
-                           &xb = colliders[static_cast<std::size_t>(b.unit)];
-            if (xa.spheres) {
-                for (const auto &sa : ca)
-                    for (const auto &sb : cb)
-                        overlap = overlap ||
-                                  ((a.pose.position + a.pose.orientation * sa.center) -
-                                   (b.pose.position + b.pose.orientation * sb.center))
-                                          .norm() < sa.radius + sb.radius -
-                                                        (sa.radius < sb.radius ? resting(sa.radius, a.unit)
-                                                                               : resting(sb.radius, b.unit));
-            } else {
-                // Exact shapes: a surface point of either inside the other
-                // (by as much as both stand out of their clumps).
-                const double tolerance = std::max(std::min(resting_exact(a.unit), resting_exact(b.unit)),
-                                                  beyond_clump[static_cast<std::size_t>(a.unit)] +
-                                                      beyond_clump[static_cast<std::size_t>(b.unit)]);
-                overlap =
-                    !none_deeper_than(a, xa, b, xb, tolerance) || !none_deeper_than(b, xb, a, xa, tolerance);
-            }
-            if (overlap)
-                problems.push_back(std::to_string(i) + "-" + std::to_string(j));
+}
+
+bool bodies_overlap(const BodyInit &a, const BodyInit &b, const Placement &place, const SceneSetup &setup,
+                    const RestingDepth &resting) {
+    if ((a.pose.position - b.pose.position).norm() >= place.reach[a.unit] + place.reach[b.unit])
+        return false;
+    const Collider &xa = place.colliders[static_cast<std::size_t>(a.unit)],
+                   &xb = place.colliders[static_cast<std::size_t>(b.unit)];
+    if (!xa.spheres) {
+        // Exact shapes: a surface point of either inside the other
+        // (by as much as both stand out of their clumps).
+        const double tolerance = std::max(std::min(resting.exact(a.unit), resting.exact(b.unit)),
+                                          resting.beyond_clump[static_cast<std::size_t>(a.unit)] +
+                                              resting.beyond_clump[static_cast<std::size_t>(b.unit)]);
+        return !none_deeper_than(a, xa, b, xb, tolerance) || !none_deeper_than(b, xb, a, xa, tolerance);
+    }
+    for (const auto &sa : setup.units[a.unit].clump)
+        for (const auto &sb : setup.units[b.unit].clump) {
+            const double allowed =
+                sa.radius < sb.radius ? resting.sphere(sa.radius, a.unit) : resting.sphere(sb.radius, b.unit);
+            if (((a.pose.position + a.pose.orientation * sa.center) -
+                 (b.pose.position + b.pose.orientation * sb.center))
+                    .norm() < sa.radius + sb.radius - allowed)
+                return true;
         }
-    if (!problems.empty()) {
-        std::string pairs;
-        for (const auto &p : problems)
-            pairs += (pairs.empty() ? "" : ", ") + p;
+    return false;
+}
+
+// Bodies inside the domain, clear of the walls and no two overlapping, each
+// by more than a resting contact.
+void check_initial_poses(const Scene &scene, const Placement &place, const SceneSetup &setup) {
+    check_inside_domain(scene, place, setup);
+    RestingDepth resting{scene, setup, std::vector<double>(setup.units.size(), 0.0)};
+    for (std::size_t k = 0; k < setup.units.size(); ++k)
+        if (!place.colliders[k].spheres)
+            resting.beyond_clump[k] = depth_outside_clump(setup.units[k].clump, place.colliders[k].points);
+    const std::string remedy = settled_hulls_remedy(scene);
+    check_wall_contacts(scene, place, setup, resting, remedy);
+    std::string pairs;
+    int found = 0;
+    for (std::size_t i = 0; i < setup.bodies.size() && found < 5; ++i)
+        for (std::size_t j = i + 1; j < setup.bodies.size() && found < 5; ++j)
+            if (bodies_overlap(setup.bodies[i], setup.bodies[j], place, setup, resting)) {
+                pairs += (pairs.empty() ? "" : ", ") + std::to_string(i) + "-" + std::to_string(j);
+                ++found;
+            }
+    if (found > 0)
         throw InputError(scene.file + ": initial placement: bodies overlap (pairs " + pairs +
                          "); move them apart" + remedy);
-    }
+}
+
+} // namespace
+
+SceneSetup build_scene(const Scene &scene, const std::string &cache_dir, bool progress) {
+    SceneSetup setup;
+    setup.settings = engine_settings(scene);
+    add_units(scene, cache_dir, progress, setup);
+    const Placement place = make_placement(scene, setup);
+    setup.walls = make_walls(scene, place.placement_max);
+    for (const auto &b : scene.bodies)
+        setup.bodies.push_back(body_init(b, unit_index(setup, b.unit)));
+    for (std::size_t k = 0; k < scene.drops.size(); ++k)
+        drop_units(scene, k, place, setup);
+    for (std::size_t k = 0; k < scene.patterns.size(); ++k)
+        pattern_units(scene, k, place, setup);
+    set_engine_domain(place, largest_Dn(setup), setup.settings);
+    check_initial_poses(scene, place, setup);
     const bool wave_flume = scene.waves && scene.waves->type != "solitary"; // an empty flume is a scene
     if (setup.bodies.empty() && !wave_flume)
         throw InputError(scene.file + ": no bodies: add [[body]], [[drop]] or [[pattern]]");
