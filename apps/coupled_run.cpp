@@ -237,7 +237,8 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
         {"dt", std::atof(rec.attribute("dt").c_str())},
         {"simulated_seconds", simulated},
         {"wall_seconds", wall_seconds},
-        {"wall_seconds_per_simulated_second", wall_seconds / std::max(simulated, 1e-300)},
+        {"wall_seconds_per_simulated_second",
+         simulated > 0.0 ? json(wall_seconds / simulated) : json(nullptr)},
         {"records", rec.time.size()},
         {"warnings", warnings},
         // A resumed run's coupling steps go on from its checkpoint; its log starts there.

@@ -139,9 +139,13 @@ json dem_summary(const Scene &scene, const SceneSetup &setup, const RigidBodyEng
         {"steps", engine.steps()},
         {"simulated_seconds", engine.time()},
         {"wall_seconds", wall_seconds},
-        {"wall_seconds_per_simulated_second", wall_seconds / std::max(engine.time(), 1e-300)},
-        {"seconds_per_unit_step", wall_seconds / (static_cast<double>(std::max(1L, engine.steps())) *
-                                                  static_cast<double>(setup.bodies.size()))},
+        // A run shorter than one step simulates nothing: no cost per second or per step to report.
+        {"wall_seconds_per_simulated_second",
+         engine.steps() > 0 ? json(wall_seconds / engine.time()) : json(nullptr)},
+        {"seconds_per_unit_step", engine.steps() > 0 && !setup.bodies.empty()
+                                      ? json(wall_seconds / (static_cast<double>(engine.steps()) *
+                                                             static_cast<double>(setup.bodies.size())))
+                                      : json(nullptr)},
         {"files", {{"bodies", "bodies.h5"}, {"paraview", "bodies.xdmf"}, {"scene", "scene.resolved.toml"}}},
         {"si_units",
          {{"dt", "s"}, {"wall_seconds", "s"}, {"angles", "deg"}, {"lengths", "m"}, {"energy", "J"}}}};

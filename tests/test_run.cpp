@@ -106,6 +106,20 @@ TEST_F(Run, SetOverridesAScalar) {
     EXPECT_NEAR(nlohmann::json::parse(in)["simulated_seconds"].get<double>(), 0.02, 1e-3);
 }
 
+// A duration shorter than one step runs no step: the costs per simulated second
+// and per unit-step are null, not a wall time over 1e-300 s.
+TEST_F(Run, ARunOfNoStepReportsNoCostPerStep) {
+    ASSERT_EQ(
+        run(scene_text("[0, 0, 0.3]"), {"--set", "run.duration=1e-6", "--set", "run.output_interval=1e-6"}),
+        0)
+        << err_;
+    std::ifstream in(out() / "summary.json");
+    const auto s = nlohmann::json::parse(in);
+    ASSERT_EQ(s["steps"], 0);
+    EXPECT_TRUE(s["wall_seconds_per_simulated_second"].is_null());
+    EXPECT_TRUE(s["seconds_per_unit_step"].is_null());
+}
+
 TEST_F(Run, RefusesOverlappingBodiesNamingThePair) {
     EXPECT_EQ(run(scene_text("[0, 0, 0.3]", "[[body]]\nunit = \"cube\"\nposition = [0.05, 0, 0.3]\n")), 2);
     EXPECT_NE(error_line().find("bodies overlap (pairs 0-1)"), std::string::npos) << err_;
