@@ -94,10 +94,8 @@ int print_compare_plan(const CompareRequest &r, const Scene &scene, const std::v
     return 0;
 }
 
-} // namespace
-
-int run_compare(const CompareRequest &r) {
-    const Scene scene = load_scene(r.scene, r.overrides); // checks everything before any run
+// The options checked before any run; returns the --tolerance figures.
+std::map<std::string, double> checked_options(const CompareRequest &r, const Scene &scene) {
     if (r.spheres.empty())
         throw InputError("--spheres: give at least one sphere count, e.g. 5,10,20");
     for (int n : r.spheres)
@@ -123,10 +121,12 @@ int run_compare(const CompareRequest &r) {
         if (std::find(headline.begin(), headline.end(), key) == headline.end())
             throw InputError("--tolerance: " + key + ": not a headline figure of analysis '" +
                              scene.analysis + "' (" + (known.empty() ? "none" : known) + ")");
-    std::vector<std::uint64_t> seeds = r.seeds;
-    if (seeds.empty())
-        seeds = scene.drops.empty() ? std::vector<std::uint64_t>{1} : std::vector<std::uint64_t>{1, 2, 3};
-    // The two sides: sphere clumps, and exact hulls where this build has them.
+    return tolerances;
+}
+
+// The two sides: sphere clumps, and exact hulls where this build has them
+// (the clump engine first).
+std::vector<std::string> compared_engines() {
     const EngineStyle *clumps = find_engine_style([](const EngineCapabilities &c) {
         return c.contacts != ContactKind::none && c.shape == ShapeModel::sphere_clumps;
     });
@@ -135,126 +135,123 @@ int run_compare(const CompareRequest &r) {
     });
     if (!clumps)
         throw InputError("armour compare: this build has no sphere-clump contact engine");
-    const bool have_exact = hulls != nullptr;
-    const std::string clump_engine = clumps->name, exact_engine = have_exact ? hulls->name : "";
-    std::vector<std::string> engines = {clump_engine};
-    if (have_exact)
-        engines.push_back(exact_engine);
+    std::vector<std::string> engines = {clumps->name};
+    if (hulls)
+        engines.push_back(hulls->name);
+    return engines;
+}
 
-    if (r.dry_run)
-        return print_compare_plan(r, scene, seeds, engines);
+// The runs of one comparison and the scene keys each sets.
+struct Comparison {
+    const CompareRequest &request;
+    const Scene &scene;
+    std::vector<std::uint64_t> seeds;
+    std::vector<std::string> engines; // the clump engine, then the exact one if any
+    fs::path runs;                    // each run's folder is runs/<label>
 
-    OutputFolder out(r.out, "armour compare", OutputFolder::Mode::staged);
-    out.open();
-    const fs::path runs = out.claim("runs");
-    fs::create_directories(runs);
-    auto seed_overrides = [&](std::uint64_t seed) {
+    const std::string &clump_engine() const { return engines.front(); }
+    std::string exact_engine() const { return engines.size() > 1 ? engines[1] : ""; }
+
+    std::vector<std::string> overrides(std::uint64_t seed, int spheres, const std::string &engine) const {
         std::vector<std::string> o;
         for (std::size_t j = 0; j < scene.drops.size(); ++j)
             o.push_back("drop." + std::to_string(j) + ".seed=" + std::to_string(seed));
+        if (spheres > 0)
+            for (std::size_t k = 0; k < scene.units.size(); ++k)
+                o.push_back("unit." + std::to_string(k) + ".spheres=" + std::to_string(spheres));
+        o.push_back("run.engine=\"" + engine + "\"");
         return o;
-    };
-    auto spheres_overrides = [&](int n) {
-        std::vector<std::string> o;
-        for (std::size_t k = 0; k < scene.units.size(); ++k)
-            o.push_back("unit." + std::to_string(k) + ".spheres=" + std::to_string(n));
-        return o;
-    };
-
-    std::vector<Run> results;
-    for (std::uint64_t seed : seeds) {
-        if (have_exact) {
-            auto o = seed_overrides(seed);
-            o.push_back("run.engine=\"" + exact_engine + "\"");
-            results.push_back(
-                execute(r, runs, Run("exact_seed" + std::to_string(seed), exact_engine, 0, seed), o));
-        }
-        for (int n : r.spheres) {
-            auto o = seed_overrides(seed);
-            const auto s = spheres_overrides(n);
-            o.insert(o.end(), s.begin(), s.end());
-            o.push_back("run.engine=\"" + clump_engine + "\"");
-            results.push_back(execute(
-                r, runs,
-                Run("clump" + std::to_string(n) + "_seed" + std::to_string(seed), clump_engine, n, seed), o));
-        }
     }
+};
 
-    // Time step past the limit, for both engines (first seed, one clump size).
-    // Its measure is the energy gain, which needs fixed gravity: a tilt scene
-    // turns gravity, so it gets no sweep (the report says so). Each factor
-    // multiplies the limit of the very body the sweep runs (the clump of
-    // --dt-sweep-spheres, run at its default step first if --spheres lacks it).
+// Every seed: the exact hulls, then each clump size.
+std::vector<Run> run_models(const Comparison &c) {
+    std::vector<Run> results;
+    for (std::uint64_t seed : c.seeds) {
+        if (!c.exact_engine().empty())
+            results.push_back(execute(c.request, c.runs,
+                                      Run("exact_seed" + std::to_string(seed), c.exact_engine(), 0, seed),
+                                      c.overrides(seed, 0, c.exact_engine())));
+        for (int n : c.request.spheres)
+            results.push_back(execute(
+                c.request, c.runs,
+                Run("clump" + std::to_string(n) + "_seed" + std::to_string(seed), c.clump_engine(), n, seed),
+                c.overrides(seed, n, c.clump_engine())));
+    }
+    return results;
+}
+
+// Time step past the limit, for both engines (first seed, one clump size).
+// Its measure is the energy gain, which needs fixed gravity: a tilt scene
+// turns gravity, so it gets no sweep (the report says so). Each factor
+// multiplies the limit of the very body the sweep runs (the clump of
+// --dt-sweep-spheres, run at its default step first if --spheres lacks it).
+std::vector<Run> run_dt_sweep(const Comparison &c, const std::vector<Run> &results) {
     std::vector<Run> sweep;
-    const AnalysisStyle &analysis = analysis_style(scene.analysis);
-    const std::vector<std::string> sweep_engines =
-        analysis.turns_gravity ? std::vector<std::string>{} : engines;
+    if (analysis_style(c.scene.analysis).turns_gravity)
+        return sweep;
+    const CompareRequest &r = c.request;
+    const std::uint64_t seed = c.seeds.front();
     int sweep_spheres = r.dt_sweep_spheres;
     if (sweep_spheres <= 0)
         for (int n : r.spheres)
             if (sweep_spheres <= 0 || std::abs(n - 20) < std::abs(sweep_spheres - 20))
                 sweep_spheres = n;
-    for (const std::string &engine : sweep_engines) {
-        const int spheres = engine == clump_engine ? sweep_spheres : 0;
-        auto sweep_overrides = [&] {
-            auto o = seed_overrides(seeds.front());
-            if (spheres > 0) {
-                const auto s = spheres_overrides(spheres);
-                o.insert(o.end(), s.begin(), s.end());
-            }
-            o.push_back("run.engine=\"" + engine + "\"");
-            return o;
-        };
+    for (const std::string &engine : c.engines) {
+        const int spheres = engine == c.clump_engine() ? sweep_spheres : 0;
         double limit = 0.0;
         for (const Run &run : results)
-            if (run.engine == engine && run.spheres == spheres && run.seed == seeds.front() &&
-                run.summary.is_object())
+            if (run.engine == engine && run.spheres == spheres && run.seed == seed && run.summary.is_object())
                 limit = run.summary["dt_limit"].get<double>();
         if (limit <= 0.0 && !r.dt_factors.empty()) {
-            Run probe("dt_" + engine + "_default", engine, spheres, seeds.front());
-            sweep.push_back(execute(r, runs, probe, sweep_overrides()));
+            Run probe("dt_" + engine + "_default", engine, spheres, seed);
+            sweep.push_back(execute(r, c.runs, probe, c.overrides(seed, spheres, engine)));
             if (sweep.back().summary.is_object())
                 limit = sweep.back().summary["dt_limit"].get<double>();
         }
         if (limit <= 0.0)
             continue;
         for (double f : r.dt_factors) {
-            auto o = sweep_overrides();
+            auto o = c.overrides(seed, spheres, engine);
             char step[64];
             std::snprintf(step, sizeof step, "run.time_step=%.17g", f * limit);
             char interval[64];
             std::snprintf(interval, sizeof interval, "run.output_interval=%.17g",
-                          std::max(scene.output_interval, f * limit));
+                          std::max(c.scene.output_interval, f * limit));
             o.insert(o.end(), {step, interval, "run.force_time_step=true"});
             char label[64];
             std::snprintf(label, sizeof label, "dt_%s_x%g", engine.c_str(), f);
-            sweep.push_back(execute(r, runs, Run(label, engine, spheres, seeds.front(), f), o));
+            sweep.push_back(execute(r, c.runs, Run(label, engine, spheres, seed, f), o));
         }
     }
+    return sweep;
+}
 
-    // A run that gains energy beyond the threshold blew up: a failure, kept
-    // out of the statistics. Only where gravity is fixed (else the energy
-    // balance means nothing).
-    auto energy_gain = [](const json &s) {
-        const double scale = number_or_nan(s, "energy_scale");
-        return (number_or_nan(s, "energy_max") - number_or_nan(s, "energy_initial")) /
-               (scale > 0.0 ? scale : std::nan(""));
-    };
-    if (!analysis.turns_gravity)
-        for (std::vector<Run> *set : {&results, &sweep})
-            for (Run &run : *set)
-                if (run.summary.is_object() && energy_gain(run.summary) > r.blow_up_gain) {
-                    char why[160];
-                    std::snprintf(why, sizeof why,
-                                  "blow-up: energy gain %.3g x sum(m g Dn) > %.3g (--blow-up-gain)",
-                                  energy_gain(run.summary), r.blow_up_gain);
-                    run.failure = why;
-                    run.blew_up = true;
-                }
+// (E_max - E_0) / sum(m g Dn) of a run's summary; NaN where it has no energies.
+double energy_gain(const json &s) {
+    const double scale = number_or_nan(s, "energy_scale");
+    return (number_or_nan(s, "energy_max") - number_or_nan(s, "energy_initial")) /
+           (scale > 0.0 ? scale : std::nan(""));
+}
 
-    // Errors against the exact runs (mean over seeds) and against analytic values.
-    const std::vector<std::string> &keys = analysis.headline_keys;
-    json exact_mean = json::object();
+// A run that gains energy beyond the threshold blew up: a failure, kept out
+// of the statistics. Only where gravity is fixed (else the energy balance
+// means nothing).
+void mark_blow_ups(std::vector<Run> &runs, double blow_up_gain) {
+    for (Run &run : runs)
+        if (run.summary.is_object() && energy_gain(run.summary) > blow_up_gain) {
+            char why[160];
+            std::snprintf(why, sizeof why, "blow-up: energy gain %.3g x sum(m g Dn) > %.3g (--blow-up-gain)",
+                          energy_gain(run.summary), blow_up_gain);
+            run.failure = why;
+            run.blew_up = true;
+        }
+}
+
+// Each headline figure's mean over the exact runs that succeeded (null where none has it).
+json exact_means(const std::vector<Run> &results, const std::vector<std::string> &keys,
+                 const std::string &exact_engine) {
+    json mean = json::object();
     for (const auto &key : keys) {
         double sum = 0.0;
         int n = 0;
@@ -263,55 +260,89 @@ int run_compare(const CompareRequest &r) {
                 sum += number_or_nan(run.summary, key);
                 ++n;
             }
-        exact_mean[key] = n > 0 ? json(sum / n) : json(nullptr);
+        mean[key] = n > 0 ? json(sum / n) : json(nullptr);
     }
-    auto entry = [&](const Run &run) {
-        json e = {{"label", run.label},
-                  {"engine", run.engine},
-                  {"spheres", run.spheres},
-                  {"seed", run.seed},
-                  {"status", run.ok() ? "ok" : "failed"}};
-        if (!run.ok())
-            e["failure"] = run.failure;
-        if (run.blew_up)
-            e["blow_up"] = true;
-        if (run.dt_factor > 0.0)
-            e["dt_factor_requested"] = run.dt_factor;
-        if (!run.summary.is_object())
-            return e;
-        const json &s = run.summary;
-        for (const char *k :
-             {"wall_seconds", "wall_seconds_per_simulated_second", "seconds_per_unit_step", "dt", "dt_limit",
-              "steps", "energy_initial", "energy_max", "energy_final", "energy_scale"})
-            e[k] = s.value(k, json(nullptr));
-        const double gain = energy_gain(s);
-        e["energy_gain"] = std::isfinite(gain) ? json(gain) : json(nullptr);
-        // The step as a multiple of this run's own limit (what the charts show).
-        const double dt = number_or_nan(s, "dt"), dt_limit = number_or_nan(s, "dt_limit");
-        if (dt > 0.0 && dt_limit > 0.0)
-            e["dt_factor"] = dt / dt_limit;
-        json figures = json::object(), vs_exact = json::object(), vs_analytic = json::object();
-        for (const auto &key : keys) {
-            const double v = number_or_nan(s, key);
-            figures[key] = std::isfinite(v) ? json(v) : json(nullptr);
-            const double x = exact_mean[key].is_number() ? exact_mean[key].get<double>() : std::nan("");
-            vs_exact[key] = std::isfinite(v) && std::isfinite(x) ? json(v - x) : json(nullptr);
-        }
-        for (const auto &[key, analytic_key] : analysis.analytic_keys)
-            if (s.contains(analytic_key) && s[analytic_key].is_number()) { // null: no prediction
-                const double v = number_or_nan(s, key);
-                vs_analytic[key] = std::isfinite(v) ? json(v - s[analytic_key].get<double>()) : json(nullptr);
-            }
-        e["figures"] = figures;
-        e["error_vs_exact"] = vs_exact;
-        e["error_vs_analytic"] = vs_analytic;
+    return mean;
+}
+
+// One run's entry in summary.json: its cost, its figures and their errors
+// against the exact runs' mean and against the analysis' analytic values.
+json run_entry(const Run &run, const AnalysisStyle &analysis, const json &exact_mean) {
+    json e = {{"label", run.label},
+              {"engine", run.engine},
+              {"spheres", run.spheres},
+              {"seed", run.seed},
+              {"status", run.ok() ? "ok" : "failed"}};
+    if (!run.ok())
+        e["failure"] = run.failure;
+    if (run.blew_up)
+        e["blow_up"] = true;
+    if (run.dt_factor > 0.0)
+        e["dt_factor_requested"] = run.dt_factor;
+    if (!run.summary.is_object())
         return e;
-    };
+    const json &s = run.summary;
+    for (const char *k :
+         {"wall_seconds", "wall_seconds_per_simulated_second", "seconds_per_unit_step", "dt", "dt_limit",
+          "steps", "energy_initial", "energy_max", "energy_final", "energy_scale"})
+        e[k] = s.value(k, json(nullptr));
+    const double gain = energy_gain(s);
+    e["energy_gain"] = std::isfinite(gain) ? json(gain) : json(nullptr);
+    // The step as a multiple of this run's own limit (what the charts show).
+    const double dt = number_or_nan(s, "dt"), dt_limit = number_or_nan(s, "dt_limit");
+    if (dt > 0.0 && dt_limit > 0.0)
+        e["dt_factor"] = dt / dt_limit;
+    json figures = json::object(), vs_exact = json::object(), vs_analytic = json::object();
+    for (const auto &key : analysis.headline_keys) {
+        const double v = number_or_nan(s, key);
+        figures[key] = std::isfinite(v) ? json(v) : json(nullptr);
+        const double x = exact_mean[key].is_number() ? exact_mean[key].get<double>() : std::nan("");
+        vs_exact[key] = std::isfinite(v) && std::isfinite(x) ? json(v - x) : json(nullptr);
+    }
+    for (const auto &[key, analytic_key] : analysis.analytic_keys)
+        if (s.contains(analytic_key) && s[analytic_key].is_number()) { // null: no prediction
+            const double v = number_or_nan(s, key);
+            vs_analytic[key] = std::isfinite(v) ? json(v - s[analytic_key].get<double>()) : json(nullptr);
+        }
+    e["figures"] = figures;
+    e["error_vs_exact"] = vs_exact;
+    e["error_vs_analytic"] = vs_analytic;
+    return e;
+}
+
+} // namespace
+
+int run_compare(const CompareRequest &r) {
+    const Scene scene = load_scene(r.scene, r.overrides); // checks everything before any run
+    const std::map<std::string, double> tolerances = checked_options(r, scene);
+    std::vector<std::uint64_t> seeds = r.seeds;
+    if (seeds.empty())
+        seeds = scene.drops.empty() ? std::vector<std::uint64_t>{1} : std::vector<std::uint64_t>{1, 2, 3};
+    const std::vector<std::string> engines = compared_engines();
+    if (r.dry_run)
+        return print_compare_plan(r, scene, seeds, engines);
+
+    OutputFolder out(r.out, "armour compare", OutputFolder::Mode::staged);
+    out.open();
+    const Comparison c{r, scene, seeds, engines, out.claim("runs")};
+    fs::create_directories(c.runs);
+    std::vector<Run> results = run_models(c);
+    std::vector<Run> sweep = run_dt_sweep(c, results);
+    const AnalysisStyle &analysis = analysis_style(scene.analysis);
+    if (!analysis.turns_gravity) {
+        mark_blow_ups(results, r.blow_up_gain);
+        mark_blow_ups(sweep, r.blow_up_gain);
+    }
+
+    // Errors against the exact runs (mean over seeds) and against analytic values.
+    const std::vector<std::string> &keys = analysis.headline_keys;
+    const std::string exact_engine = c.exact_engine();
+    const json exact_mean = exact_means(results, keys, exact_engine);
     json entries = json::array(), sweep_entries = json::array();
     for (const Run &run : results)
-        entries.push_back(entry(run));
+        entries.push_back(run_entry(run, analysis, exact_mean));
     for (const Run &run : sweep)
-        sweep_entries.push_back(entry(run));
+        sweep_entries.push_back(run_entry(run, analysis, exact_mean));
     const json groups = compare_groups(entries, keys, exact_engine);
     const json advice = compare_advice(groups, keys, tolerances, exact_engine);
     const json summary = {
@@ -319,7 +350,7 @@ int run_compare(const CompareRequest &r) {
         {"scene", scene.name},
         {"analysis", scene.analysis},
         {"headline_keys", keys},
-        {"exact_engine", have_exact ? json(exact_engine) : json(nullptr)},
+        {"exact_engine", exact_engine.empty() ? json(nullptr) : json(exact_engine)},
         {"exact_mean", exact_mean},
         {"seeds", seeds},
         {"runs", entries},
