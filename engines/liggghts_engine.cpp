@@ -275,6 +275,43 @@ class LiggghtsEngine final : public RigidBodyEngine {
             throw InputError("scene: no bodies to simulate");
         report();
         check_placement();
+        open_liggghts();
+        const double largest = set_domain_and_contact();
+        if (restart.empty()) {
+            include("domain.in");
+        } else {
+            set("restart_file", restart);
+            include("restart.in");
+        }
+        include("contact.in");
+        add_walls();
+        add_unit_templates();
+        if (!restart.empty()) {
+            include("integrate.in");
+            write_external_loads(); // gravity too: the set-up's body forces feed the first half-step
+            command("run 0 post no");
+            read_states();
+            return;
+        }
+        insert_bodies(largest);
+        include("integrate.in");
+        // One step inserts the bodies; then each is put exactly where asked.
+        command("run 1");
+        for (std::size_t i = 0; i < bodies_.size(); ++i)
+            command("unfix place" + std::to_string(i));
+        place_exactly();
+        command("run 0 post no");
+        read_states();
+        // The set-up as a plain LIGGGHTS script, for users and for bench/.
+        std::ofstream(work_dir_ / "input.liggghts")
+            << "# LIGGGHTS commands of this run's set-up, in order. After `run 1` the adapter set each\n"
+            << "# body's exact pose, velocity and locked axes; gravity and external loads are applied\n"
+            << "# per body (dragforce_cm/hdtorque_cm) before every run.\n"
+            << transcript_.str();
+    }
+
+    // One serial LIGGGHTS instance of this process, in its work folder.
+    void open_liggghts() {
         int initialised = 0;
         MPI_Initialized(&initialised);
         if (!initialised)
@@ -326,7 +363,11 @@ class LiggghtsEngine final : public RigidBodyEngine {
             if (saved >= 0)
                 ::close(saved);
         }
+    }
 
+    // The box, the materials and the contact model as the input files' variables;
+    // returns the largest sphere radius (m).
+    double set_domain_and_contact() {
         const Eigen::Vector3d &lo = settings_.domain_min, &hi = settings_.domain_max;
         set("xlo", num(lo.x()));
         set("ylo", num(lo.y()));
@@ -366,14 +407,12 @@ class LiggghtsEngine final : public RigidBodyEngine {
         set("model", settings_.contact == ContactModel::hooke ? "hooke" : "hertz");
         set("rolling_model", rolling ? "rolling_friction cdt" : "");
         set("dt", num(report_.used));
-        if (restart.empty()) {
-            include("domain.in");
-        } else {
-            set("restart_file", restart);
-            include("restart.in");
-        }
-        include("contact.in");
+        return largest;
+    }
 
+    // Each wall as an STL mesh clipped to the box.
+    void add_walls() {
+        const Eigen::Vector3d &lo = settings_.domain_min, &hi = settings_.domain_max;
         std::string wall_ids;
         for (std::size_t w = 0; w < walls_.size(); ++w) {
             const fs::path file = work_dir_ / ("wall" + std::to_string(w) + ".stl");
@@ -398,7 +437,10 @@ class LiggghtsEngine final : public RigidBodyEngine {
             set("wall_ids", wall_ids);
             include("walls.in");
         }
+    }
 
+    // Each unit as a multisphere template: its spheres, mass and inertia.
+    void add_unit_templates() {
         for (std::size_t k = 0; k < units_.size(); ++k) {
             const UnitTemplate &u = units_[k];
             const fs::path file = work_dir_ / ("unit" + std::to_string(k + 1) + ".spheres");
@@ -424,14 +466,10 @@ class LiggghtsEngine final : public RigidBodyEngine {
                                num(entry(1, 1)) + " " + num(entry(1, 2)) + " " + num(entry(2, 2)));
             include("unit_template.in");
         }
+    }
 
-        if (!restart.empty()) {
-            include("integrate.in");
-            write_external_loads(); // gravity too: the set-up's body forces feed the first half-step
-            command("run 0 post no");
-            read_states();
-            return;
-        }
+    // `largest`: m, the largest sphere radius (sizes the insertion regions).
+    void insert_bodies(double largest) {
         // The insertion region only needs a finite volume: place_exactly() then
         // moves each body onto its requested position.
         const double half = 1e-6 * std::max(1.0, largest);
@@ -459,20 +497,6 @@ class LiggghtsEngine final : public RigidBodyEngine {
             set("wz", num(b.angular_velocity.z()));
             include("body.in");
         }
-        include("integrate.in");
-        // One step inserts the bodies; then each is put exactly where asked.
-        command("run 1");
-        for (std::size_t i = 0; i < bodies_.size(); ++i)
-            command("unfix place" + std::to_string(i));
-        place_exactly();
-        command("run 0 post no");
-        read_states();
-        // The set-up as a plain LIGGGHTS script, for users and for bench/.
-        std::ofstream(work_dir_ / "input.liggghts")
-            << "# LIGGGHTS commands of this run's set-up, in order. After `run 1` the adapter set each\n"
-            << "# body's exact pose, velocity and locked axes; gravity and external loads are applied\n"
-            << "# per body (dragforce_cm/hdtorque_cm) before every run.\n"
-            << transcript_.str();
     }
 
     Multisphere &multisphere() const {
