@@ -160,42 +160,45 @@ std::string log_tail_of(const fs::path &file, int lines) {
     return out;
 }
 
-int run_case(const fs::path &case_dir, const std::string &armour_exe) {
-    const int lock = take_lock(case_dir);
-    if (lock < 0)
-        return kCaseLocked;
-    CaseRecord r = read_case_record(case_dir);
-    std::ifstream plan_in(case_dir / "plan.json");
-    const json plan = json::parse(plan_in, nullptr, false);
-    if (plan.is_discarded()) {
-        ::close(lock);
-        throw InputError((case_dir / "plan.json").string() + ": cannot read the case's plan");
-    }
-    // A case stopped before it ended (killed, timed out, a Slurm time limit)
-    // goes on from its run's last checkpoint when its scene is the same or
-    // differs only in keys a resume may change; a finished one only to run
-    // longer (more waves without running the first again). A checkpoint at or
-    // past the new end: from the start. A stopped series goes on from its
-    // steps (those done are kept, the settle with them).
+namespace {
+
+// How an attempt starts: from its run's last checkpoint, from its series'
+// steps, or again from the start.
+struct Start {
+    std::optional<Checkpoint> checkpoint;
+    bool series = false;
+    double series_from = 0.0; // s: the series' simulated time its steps reached
+};
+
+// A case stopped before it ended (killed, timed out, a Slurm time limit)
+// goes on from its run's last checkpoint when its scene is the same or
+// differs only in keys a resume may change; a finished one only to run
+// longer (more waves without running the first again). A checkpoint at or
+// past the new end: from the start. A stopped series goes on from its
+// steps (those done are kept, the settle with them).
+Start how_to_start(const fs::path &case_dir, const CaseRecord &r, const json &plan) {
     const double duration = plan.value("duration", 0.0);
     const bool same =
         r.scene_hash == plan.value("scene_hash", "") || r.scene_hash == plan.value("earlier_scene_hash", "-");
     const bool resumable = !r.resume_hash.empty() && r.resume_hash == plan.value("resume_hash", "") &&
                            (r.status != "done" || r.duration < duration);
     const bool goes_on = r.attempts > 0 && (same || resumable);
-    std::optional<Checkpoint> checkpoint = goes_on ? last_checkpoint(case_dir / "run") : std::nullopt;
-    if (checkpoint && duration > 0.0 && checkpoint->time >= duration)
-        checkpoint.reset();
-    double series_from = 0.0;
-    const bool series = goes_on && r.status != "done" && series_resume_point(case_dir / "run", series_from);
+    Start start;
+    start.checkpoint = goes_on ? last_checkpoint(case_dir / "run") : std::nullopt;
+    if (start.checkpoint && duration > 0.0 && start.checkpoint->time >= duration)
+        start.checkpoint.reset();
+    start.series = goes_on && r.status != "done" && series_resume_point(case_dir / "run", start.series_from);
+    return start;
+}
+
+// The record of an attempt that starts now, written before the run starts.
+void record_attempt(const fs::path &case_dir, CaseRecord &r, const json &plan, const Start &start) {
     r.scene_hash = plan.value("scene_hash", "");
     r.resume_hash = plan.value("resume_hash", "");
-    r.duration = duration;
-    const int np = plan.value("np", 0);
-    const double timeout = plan.value("timeout", 0.0);
+    r.duration = plan.value("duration", 0.0);
     r.status = "running";
     r.attempts += 1;
-    r.resumed_from = checkpoint ? checkpoint->time : series_from;
+    r.resumed_from = start.checkpoint ? start.checkpoint->time : start.series_from;
     r.reason.clear();
     r.slurm_state.clear();
     r.started = now_seconds();
@@ -205,32 +208,20 @@ int run_case(const fs::path &case_dir, const std::string &armour_exe) {
         r.slurm_job = std::string(job) + "_" +
                       (std::getenv("SLURM_ARRAY_TASK_ID") ? std::getenv("SLURM_ARRAY_TASK_ID") : "");
     write_case_record(case_dir, r);
+    std::ofstream header(case_dir / "log.txt", std::ios::app);
+    std::string resumed;
+    if (start.checkpoint)
+        resumed = ", resumed from its checkpoint at t = " + checkpoint_name(start.checkpoint->time) + " s";
+    else if (start.series)
+        resumed =
+            ", its series resumed at t = " + checkpoint_name(start.series_from) + " s (the steps done kept)";
+    header << "=== armour sweep: attempt " << r.attempts << " on " << r.host << resumed << " ===\n";
+}
 
-    const fs::path log = case_dir / "log.txt";
-    {
-        std::ofstream header(log, std::ios::app);
-        std::string resumed;
-        if (checkpoint)
-            resumed = ", resumed from its checkpoint at t = " + checkpoint_name(checkpoint->time) + " s";
-        else if (series)
-            resumed =
-                ", its series resumed at t = " + checkpoint_name(series_from) + " s (the steps done kept)";
-        header << "=== armour sweep: attempt " << r.attempts << " on " << r.host << resumed << " ===\n";
-    }
-    std::vector<std::string> args = {armour_exe, "run", (case_dir / "scene.toml").string(), "--out",
-                                     (case_dir / "run").string()};
-    if (np > 0) {
-        args.push_back("--np");
-        args.push_back(std::to_string(np));
-    }
-    // Without a checkpoint (or a series' steps) of the same scene the run starts again, replacing
-    // whatever an earlier attempt left in run/.
-    args.emplace_back(checkpoint || series ? "--resume" : "--restart");
-    std::signal(SIGTERM, on_stop);
-    std::signal(SIGINT, on_stop);
-    std::signal(SIGHUP, on_stop);
+// `args` as a child in its own process group, its output appended to `log`;
+// it dies with this process. Returns its pid (< 0: fork failed).
+pid_t start_child(std::vector<std::string> args, const fs::path &log) {
     std::fflush(nullptr);
-    const auto start = std::chrono::steady_clock::now();
     const pid_t pid = ::fork();
     if (pid == 0) {
         ::setpgid(0, 0);
@@ -248,34 +239,45 @@ int run_case(const fs::path &case_dir, const std::string &armour_exe) {
             argv.push_back(a.data());
         argv.push_back(nullptr);
         inherit_output_locks(); // the folder stays locked while it may write into it
-        ::execv(armour_exe.c_str(), argv.data());
+        ::execv(argv[0], argv.data());
         ::_exit(127);
     }
-    int status = 0;
-    bool timed_out = false;
-    double killed_at = -1.0;
-    if (pid > 0) {
+    if (pid > 0)
         ::setpgid(pid, pid);
-        for (;;) {
-            const pid_t done = ::waitpid(pid, &status, WNOHANG);
-            if (done == pid || (done < 0 && errno != EINTR))
-                break;
-            const double elapsed =
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            if (killed_at < 0.0 && (stop_signal != 0 || (timeout > 0.0 && elapsed > timeout))) {
-                timed_out = stop_signal == 0;
-                ::kill(-pid, SIGTERM);
-                killed_at = elapsed;
-            } else if (killed_at >= 0.0 && elapsed > killed_at + 5.0) {
-                ::kill(-pid, SIGKILL);
-            }
-            std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    return pid;
+}
+
+// Waits for the child; a stop signal to this process, or `timeout` (s, 0:
+// none) passed, sends its process group SIGTERM, and SIGKILL 5 s later.
+// Returns its wait status; `timed_out` says whether the timeout stopped it.
+int wait_child(pid_t pid, double timeout, bool &timed_out) {
+    const auto start = std::chrono::steady_clock::now();
+    int status = 0;
+    double killed_at = -1.0;
+    timed_out = false;
+    for (;;) {
+        const pid_t done = ::waitpid(pid, &status, WNOHANG);
+        if (done == pid || (done < 0 && errno != EINTR))
+            break;
+        const double elapsed =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        if (killed_at < 0.0 && (stop_signal != 0 || (timeout > 0.0 && elapsed > timeout))) {
+            timed_out = stop_signal == 0;
+            ::kill(-pid, SIGTERM);
+            killed_at = elapsed;
+        } else if (killed_at >= 0.0 && elapsed > killed_at + 5.0) {
+            ::kill(-pid, SIGKILL);
         }
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
     }
-    r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    r.finished = now_seconds();
-    const bool ok = pid > 0 && WIFEXITED(status) && WEXITSTATUS(status) == 0 &&
-                    fs::is_regular_file(case_dir / "run" / "summary.json");
+    return status;
+}
+
+// The attempt's outcome and its reason, from how the run ended; returns
+// whether the run succeeded (a stopped case is put back to pending even then).
+bool record_outcome(CaseRecord &r, pid_t pid, int status, bool timed_out, double timeout, bool wrote_summary,
+                    const std::string &armour_exe) {
+    const bool ok = pid > 0 && WIFEXITED(status) && WEXITSTATUS(status) == 0 && wrote_summary;
     r.status = ok ? "done" : "failed";
     if (pid < 0)
         r.reason = "cannot start a process (fork failed)";
@@ -297,6 +299,45 @@ int run_case(const fs::path &case_dir, const std::string &armour_exe) {
         r.reason = "exit status " + std::to_string(WEXITSTATUS(status));
     else if (!ok)
         r.reason = "the run wrote no summary.json";
+    return ok;
+}
+
+} // namespace
+
+int run_case(const fs::path &case_dir, const std::string &armour_exe) {
+    const int lock = take_lock(case_dir);
+    if (lock < 0)
+        return kCaseLocked;
+    CaseRecord r = read_case_record(case_dir);
+    std::ifstream plan_in(case_dir / "plan.json");
+    const json plan = json::parse(plan_in, nullptr, false);
+    if (plan.is_discarded()) {
+        ::close(lock);
+        throw InputError((case_dir / "plan.json").string() + ": cannot read the case's plan");
+    }
+    const Start start = how_to_start(case_dir, r, plan);
+    record_attempt(case_dir, r, plan, start);
+    std::vector<std::string> args = {armour_exe, "run", (case_dir / "scene.toml").string(), "--out",
+                                     (case_dir / "run").string()};
+    if (const int np = plan.value("np", 0); np > 0) {
+        args.push_back("--np");
+        args.push_back(std::to_string(np));
+    }
+    // Without a checkpoint (or a series' steps) of the same scene the run starts again, replacing
+    // whatever an earlier attempt left in run/.
+    args.emplace_back(start.checkpoint || start.series ? "--resume" : "--restart");
+    std::signal(SIGTERM, on_stop);
+    std::signal(SIGINT, on_stop);
+    std::signal(SIGHUP, on_stop);
+    const auto began = std::chrono::steady_clock::now();
+    const pid_t pid = start_child(args, case_dir / "log.txt");
+    const double timeout = plan.value("timeout", 0.0);
+    bool timed_out = false;
+    const int status = pid > 0 ? wait_child(pid, timeout, timed_out) : 0;
+    r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+    r.finished = now_seconds();
+    const bool ok = record_outcome(r, pid, status, timed_out, timeout,
+                                   fs::is_regular_file(case_dir / "run" / "summary.json"), armour_exe);
     write_case_record(case_dir, r);
     ::close(lock);
     return ok ? 0 : 1;
