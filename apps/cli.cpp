@@ -39,14 +39,7 @@ std::vector<CLI::Option *> add_tolerance_options(CLI::App &cmd, const std::strin
                 ->capture_default_str()};
 }
 
-} // namespace
-
-int armour_main(int argc, const char *const *argv) {
-    CLI::App app{"armour-fsi: breakwater armour units as sphere clumps, DEM and coupled with waves.\n"
-                 "All quantities are SI: m, kg, s, N; densities in kg/m^3."};
-    app.require_subcommand(1);
-
-    ClumpRequest clump;
+CLI::App *add_clump_command(CLI::App &app, ClumpRequest &clump) {
     CLI::App *clump_cmd = app.add_subcommand(
         "clump",
         "Build a sphere clump of a cube, a dolos or a closed STL, measure its error against the exact "
@@ -79,16 +72,21 @@ int armour_main(int argc, const char *const *argv) {
     clump_cmd->add_option("--seed", clump.seed, "Random seed (results are deterministic per seed)")
         ->capture_default_str();
     clump_cmd->add_option("--out", clump.out, kOutHelp)->required();
+    return clump_cmd;
+}
 
-    DemoRequest demo;
+CLI::App *add_demo_command(CLI::App &app, DemoRequest &demo) {
     CLI::App *demo_cmd = app.add_subcommand(
         "demo",
         "Default job: clumps of a 1 m cube and a 2 m dolos (2400 kg/m^3) with the fewest spheres meeting "
         "the tolerances, both methods, and their error table.");
     demo_cmd->add_option("--out", demo.out, kOutHelp)->capture_default_str();
     add_tolerance_options(*demo_cmd, "", demo.tol_volume, demo.tol_surface, demo.tol_topple);
+    return demo_cmd;
+}
 
-    RunRequest run;
+// `run_engine`: --engine, the same as --set run.engine=NAME.
+CLI::App *add_run_command(CLI::App &app, RunRequest &run, std::string &run_engine) {
     CLI::App *run_cmd = app.add_subcommand(
         "run",
         "Run a scene file (TOML, SI units; see docs/scenes.md) with the DEM engine, or coupled with "
@@ -107,7 +105,6 @@ int armour_main(int argc, const char *const *argv) {
                      "Scenes with [fluid]: MPI ranks of interFoam (overrides fluid.np; every rank runs "
                      "the engine)")
         ->check(integer_at_least(1));
-    std::string run_engine;
     run_cmd->add_option("--engine", run_engine,
                         "Engine, same as --set run.engine=NAME (`armour engines` lists them)");
     run_cmd->add_flag("--resume", run.resume,
@@ -122,8 +119,10 @@ int armour_main(int argc, const char *const *argv) {
     run_cmd->add_flag("--dry-run", run.dry_run,
                       "Check everything the run checks before it starts (scene, --set, units, engine, fluid "
                       "case and tools, --out, --resume) and print its plan; write nothing to --out");
+    return run_cmd;
+}
 
-    ReportRequest report;
+CLI::App *add_report_command(CLI::App &app, ReportRequest &report) {
     CLI::App *report_cmd = app.add_subcommand(
         "report",
         "Analyse an `armour run` folder of a scene with [fluid] as it stands (ended, stopped, killed or "
@@ -136,11 +135,10 @@ int armour_main(int argc, const char *const *argv) {
     report_cmd->add_option("--until", report.until, "Use the record up to this simulated time [s]")
         ->check(number_above(0.0, "s"));
     report_cmd->add_option("--cache", report.cache, kCacheHelp);
+    return report_cmd;
+}
 
-    CLI::App *engines_cmd = app.add_subcommand(
-        "engines", "List the rigid-body engines of this build, one per line, with their capabilities.");
-
-    CompareRequest compare;
+CLI::App *add_compare_command(CLI::App &app, CompareRequest &compare) {
     CLI::App *compare_cmd = app.add_subcommand(
         "compare",
         "Run a scene with sphere clumps of several sizes and with exact convex hulls (Bullet), sweep "
@@ -180,7 +178,29 @@ int armour_main(int argc, const char *const *argv) {
     compare_cmd->add_flag(
         "--dry-run", compare.dry_run,
         "Check the scene, the options and --out, list the runs; run nothing, write nothing");
+    return compare_cmd;
+}
 
+} // namespace
+
+int armour_main(int argc, const char *const *argv) {
+    CLI::App app{"armour-fsi: breakwater armour units as sphere clumps, DEM and coupled with waves.\n"
+                 "All quantities are SI: m, kg, s, N; densities in kg/m^3."};
+    app.require_subcommand(1);
+
+    ClumpRequest clump;
+    CLI::App *clump_cmd = add_clump_command(app, clump);
+    DemoRequest demo;
+    CLI::App *demo_cmd = add_demo_command(app, demo);
+    RunRequest run;
+    std::string run_engine;
+    CLI::App *run_cmd = add_run_command(app, run, run_engine);
+    ReportRequest report;
+    CLI::App *report_cmd = add_report_command(app, report);
+    CLI::App *engines_cmd = app.add_subcommand(
+        "engines", "List the rigid-body engines of this build, one per line, with their capabilities.");
+    CompareRequest compare;
+    CLI::App *compare_cmd = add_compare_command(app, compare);
     SweepRequest sweep;
     CLI::App *sweep_cmd = add_sweep_command(app, sweep);
 
@@ -192,8 +212,8 @@ int armour_main(int argc, const char *const *argv) {
     }
     try {
         if (clump_cmd->parsed()) {
-            clump.fixed_count = spheres_opt->count() > 0;
-            clump.waist_given = waist_opt->count() > 0;
+            clump.fixed_count = clump_cmd->get_option("--spheres")->count() > 0;
+            clump.waist_given = clump_cmd->get_option("--waist")->count() > 0;
             return run_clump(clump);
         }
         if (demo_cmd->parsed())
