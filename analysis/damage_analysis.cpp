@@ -130,76 +130,34 @@ class DamageAnalysis : public Analysis {
 
     std::string write(json &summary) const override {
         const double Dn = this->Dn();
-        int displaced = 0, rocking = 0;
-        std::string rows = "# damage per unit from its settled pose (SI; displacements in Dn)\n"
-                           "body,unit,s_m,y_m,max_displacement_over_Dn,final_displacement_over_Dn,"
-                           "max_rotation_deg,rocking_events,displaced\n";
-        for (std::size_t i = 0; i < units_.size(); ++i) {
-            const UnitDamageTracker &u = units_[i];
-            const bool is_displaced = u.displacement() >= scene_.displaced_threshold;
-            displaced += is_displaced ? 1 : 0;
-            rocking += u.rocking_events() > 0 ? 1 : 0;
-            const Eigen::Vector3d at = frame_.local(u.reference().position);
-            rows += std::to_string(i) + "," + setup_.units[unit(i)].name + "," + num(at.x()) + "," +
-                    num(at.y()) + "," + num(u.max_displacement()) + "," + num(u.displacement()) + "," +
-                    num(u.max_rotation_deg()) + "," + std::to_string(u.rocking_events()) + "," +
-                    (is_displaced ? "1" : "0") + "\n";
-        }
-        const double N_od = n_od(displaced, layer_width_, Dn);
-        // S from the profiles at the reference and at the end, over the
-        // layer the reference covered.
-        std::vector<BodyState> reference(units_.size());
-        for (std::size_t i = 0; i < units_.size(); ++i)
-            reference[i].pose = units_[i].reference();
-        std::optional<double> S;
+        Counts counts;
+        const std::string rows = unit_rows(counts);
+        const double N_od = n_od(counts.displaced, layer_width_, Dn);
         json settled_layer = nullptr; // the layer the waves met, as a profiler measures it
-        if (!region_.bodies.empty()) {
-            const ArmourProfile before = armour_profile(frame_, setup_, reference, region_);
-            S = eroded_area(before, armour_profile(frame_, setup_, last_, region_)) / (Dn * Dn);
-            const LayerFigures f = layer_figures(setup_, region_, before, scene_.layers);
-            settled_layer = {{"units_on_slope", f.units},
-                             {"packing_density", f.packing_density},
-                             {"porosity", f.porosity},
-                             {"layer_thickness", f.thickness},
-                             {"layer_coefficient", f.layer_coefficient}};
-            add_rock_manual_verdict(rock_manual_verdict(scene_, setup_, f), settled_layer, summary);
-        }
-
+        const std::optional<double> S = eroded_area_over_Dn2(settled_layer, summary);
         // The waves the run measured at its gauges (a wave train), else its targets.
         const WaveConditions w =
             wave_conditions(measured_waves_, scene_, acting_seconds(scene_, frame_.origin.x(), start_, end_));
-        const double rho_s = unit_density();
-        const double rho_w = scene_.fluid ? scene_.fluid->fluid_density : kFreshWaterDensity;
-        std::optional<double> Ns, vdm, vdm_n_od, vdm_units;
-        if (w.Hs)
-            Ns = stability_number(*w.Hs, rho_s, rho_w, Dn);
-        if (w.s_om && w.waves && *w.waves > 0.0) {
-            vdm = van_der_meer_cubes_ns(N_od, *w.waves, *w.s_om);
-            if (Ns) {
-                vdm_n_od = van_der_meer_cubes_n_od(*Ns, *w.waves, *w.s_om);
-                vdm_units = *vdm_n_od * layer_width_ / Dn;
-            }
-        }
-
+        const Prediction p = predict(w, N_od);
         const std::vector<std::string> outside = van_der_meer_range(frame_.cot, w.waves, w.s_om);
         summary["units"] = units_.size();
-        summary["units_displaced"] = displaced;
+        summary["units_displaced"] = counts.displaced;
         summary["N_od"] = N_od;
-        summary["rocking_units"] = rocking;
-        summary["Ns"] = nullable(Ns);
+        summary["rocking_units"] = counts.rocking;
+        summary["Ns"] = nullable(p.Ns);
         summary["s_om"] = nullable(w.s_om);
         if (!summary.contains("waves") || !summary["waves"].is_object())
             summary["waves"] = nullable(w.waves); // else the incident-wave analysis's object
         summary["damage_S"] = nullable(S);
-        summary["Ns_van_der_meer"] = nullable(vdm);
-        summary["N_od_van_der_meer"] = nullable(vdm_n_od);
-        summary["units_displaced_van_der_meer"] = nullable(vdm_units);
+        summary["Ns_van_der_meer"] = nullable(p.vdm_ns);
+        summary["N_od_van_der_meer"] = nullable(p.vdm_n_od);
+        summary["units_displaced_van_der_meer"] = nullable(p.vdm_units);
         summary["Ns_hudson_breaking"] = hudson_ns(6.5, frame_.cot);
         summary["Ns_hudson_nonbreaking"] = hudson_ns(7.5, frame_.cot);
         summary["damage"] = {{"Hs", nullable(w.Hs)},
                              {"wave_source", w.source},
                              {"waves", nullable(w.waves)},
-                             {"delta", rho_s / rho_w - 1.0},
+                             {"delta", p.delta},
                              {"Dn", Dn},
                              {"slope_width", frame_.width},
                              {"layer_width", layer_width_},
@@ -221,33 +179,107 @@ class DamageAnalysis : public Analysis {
         write_file(path("damage_history.csv"), "# units displaced (>= displaced_threshold Dn) against time\n"
                                                "time_s,units_displaced,N_od,max_displacement_over_Dn\n" +
                                                    history_);
-        const std::string chart = path("damage.png");
-        const std::string command = std::string("/usr/bin/python3 '") + ARMOUR_SOURCE_DIR +
-                                    "/analysis/damage_chart.py' '" + path("damage.csv") + "' '" +
-                                    path("damage_history.csv") + "' '" + chart + "' > /dev/null 2>&1";
-        std::string line = std::to_string(displaced) + " of " + std::to_string(units_.size()) +
-                           " units displaced, N_od " + num(N_od) + ", " + std::to_string(rocking) +
+        std::string line = std::to_string(counts.displaced) + " of " + std::to_string(units_.size()) +
+                           " units displaced, N_od " + num(N_od) + ", " + std::to_string(counts.rocking) +
                            " rocking";
-        if (!outside.empty() && vdm) {
+        if (!outside.empty() && p.vdm_ns) {
             line += "; outside Van der Meer's tested range:";
             for (const std::string &o : outside)
                 line += " " + o + (&o == &outside.back() ? "" : ",");
         }
-        const double gap = units_.empty() ? 0.0 : units_.front().largest_record_gap(); // all alike
-        if (const double rest = rest_time(scene_); gap > rest / UnitDamageTracker::kRestSamples) {
-            const std::string coarse =
-                "records up to " + num(gap) + " s apart, over a quarter of the rest time " + num(rest) +
-                " s: no unit finds a new seat, rocking is counted from the settled pose "
-                "(a finer run.output_interval)";
-            summary["warnings"].push_back("damage: " + coarse);
-            line += "; " + coarse;
-        }
+        line += coarse_record_warning(summary);
+        const std::string command = std::string("/usr/bin/python3 '") + ARMOUR_SOURCE_DIR +
+                                    "/analysis/damage_chart.py' '" + path("damage.csv") + "' '" +
+                                    path("damage_history.csv") + "' '" + path("damage.png") +
+                                    "' > /dev/null 2>&1";
         if (std::system(command.c_str()) != 0)
             line += "; no damage.png: analysis/damage_chart.py failed (needs python3-matplotlib)";
         return line;
     }
 
   private:
+    struct Counts {
+        int displaced = 0, rocking = 0; // units
+    };
+
+    // damage.csv's rows: each unit from its settled pose; counts the displaced and the rocking.
+    std::string unit_rows(Counts &counts) const {
+        std::string rows = "# damage per unit from its settled pose (SI; displacements in Dn)\n"
+                           "body,unit,s_m,y_m,max_displacement_over_Dn,final_displacement_over_Dn,"
+                           "max_rotation_deg,rocking_events,displaced\n";
+        for (std::size_t i = 0; i < units_.size(); ++i) {
+            const UnitDamageTracker &u = units_[i];
+            const bool is_displaced = u.displacement() >= scene_.displaced_threshold;
+            counts.displaced += is_displaced ? 1 : 0;
+            counts.rocking += u.rocking_events() > 0 ? 1 : 0;
+            const Eigen::Vector3d at = frame_.local(u.reference().position);
+            rows += std::to_string(i) + "," + setup_.units[unit(i)].name + "," + num(at.x()) + "," +
+                    num(at.y()) + "," + num(u.max_displacement()) + "," + num(u.displacement()) + "," +
+                    num(u.max_rotation_deg()) + "," + std::to_string(u.rocking_events()) + "," +
+                    (is_displaced ? "1" : "0") + "\n";
+        }
+        return rows;
+    }
+
+    // S from the profiles at the reference and at the end, over the layer the
+    // reference covered; `settled_layer` gets that layer's figures (none
+    // without units on the face).
+    std::optional<double> eroded_area_over_Dn2(json &settled_layer, json &summary) const {
+        if (region_.bodies.empty())
+            return std::nullopt;
+        std::vector<BodyState> reference(units_.size());
+        for (std::size_t i = 0; i < units_.size(); ++i)
+            reference[i].pose = units_[i].reference();
+        const ArmourProfile before = armour_profile(frame_, setup_, reference, region_);
+        const double S = eroded_area(before, armour_profile(frame_, setup_, last_, region_)) / (Dn() * Dn());
+        const LayerFigures f = layer_figures(setup_, region_, before, scene_.layers);
+        settled_layer = {{"units_on_slope", f.units},
+                         {"packing_density", f.packing_density},
+                         {"porosity", f.porosity},
+                         {"layer_thickness", f.thickness},
+                         {"layer_coefficient", f.layer_coefficient}};
+        add_rock_manual_verdict(rock_manual_verdict(scene_, setup_, f), settled_layer, summary);
+        return S;
+    }
+
+    // Van der Meer's figures at the run's waves: the Ns his formula gives for
+    // the damage seen, and the damage it gives at the run's Ns.
+    struct Prediction {
+        double delta = 0.0; // -, rho_s / rho_w - 1
+        std::optional<double> Ns, vdm_ns, vdm_n_od, vdm_units;
+    };
+    Prediction predict(const WaveConditions &w, double N_od) const {
+        const double rho_s = unit_density();
+        const double rho_w = scene_.fluid ? scene_.fluid->fluid_density : kFreshWaterDensity;
+        Prediction p;
+        p.delta = rho_s / rho_w - 1.0;
+        if (w.Hs)
+            p.Ns = stability_number(*w.Hs, rho_s, rho_w, Dn());
+        if (w.s_om && w.waves && *w.waves > 0.0) {
+            p.vdm_ns = van_der_meer_cubes_ns(N_od, *w.waves, *w.s_om);
+            if (p.Ns) {
+                p.vdm_n_od = van_der_meer_cubes_n_od(*p.Ns, *w.waves, *w.s_om);
+                p.vdm_units = *p.vdm_n_od * layer_width_ / Dn();
+            }
+        }
+        return p;
+    }
+
+    // Records too far apart to tell a rest from a rocking unit caught at one
+    // phase: warned in the summary, and the summary line's part (else empty).
+    std::string coarse_record_warning(json &summary) const {
+        const double gap = units_.empty() ? 0.0 : units_.front().largest_record_gap(); // all alike
+        const double rest = rest_time(scene_);
+        if (gap <= rest / UnitDamageTracker::kRestSamples)
+            return "";
+        const std::string coarse = "records up to " + num(gap) +
+                                   " s apart, over a quarter of the rest time " + num(rest) +
+                                   " s: no unit finds a new seat, rocking is counted from the settled pose "
+                                   "(a finer run.output_interval)";
+        summary["warnings"].push_back("damage: " + coarse);
+        return "; " + coarse;
+    }
+
     static std::string num(double v) {
         char text[32];
         std::snprintf(text, sizeof text, "%.6g", v);
