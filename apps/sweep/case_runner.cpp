@@ -50,6 +50,23 @@ int take_lock(const fs::path &case_dir) {
     return fd;
 }
 
+// A case's lock for one attempt: released on every way out of run_case, a
+// throw included (an unreadable record or plan), not only at the process' end.
+class CaseLock {
+  public:
+    explicit CaseLock(const fs::path &case_dir) : fd_(take_lock(case_dir)) {}
+    ~CaseLock() {
+        if (fd_ >= 0)
+            ::close(fd_);
+    }
+    CaseLock(const CaseLock &) = delete;
+    CaseLock &operator=(const CaseLock &) = delete;
+    bool held() const { return fd_ >= 0; }
+
+  private:
+    int fd_;
+};
+
 // Whether a series stopped in `run` goes on from its steps, and from where
 // (`from`, s of the series' simulated time): its steps done (their own
 // simulated time) and the last checkpoint of the first step not done. Not
@@ -305,16 +322,14 @@ bool record_outcome(CaseRecord &r, pid_t pid, int status, bool timed_out, double
 } // namespace
 
 int run_case(const fs::path &case_dir, const std::string &armour_exe) {
-    const int lock = take_lock(case_dir);
-    if (lock < 0)
+    const CaseLock lock(case_dir);
+    if (!lock.held())
         return kCaseLocked;
     CaseRecord r = read_case_record(case_dir);
     std::ifstream plan_in(case_dir / "plan.json");
     const json plan = json::parse(plan_in, nullptr, false);
-    if (plan.is_discarded()) {
-        ::close(lock);
+    if (plan.is_discarded())
         throw InputError((case_dir / "plan.json").string() + ": cannot read the case's plan");
-    }
     const Start start = how_to_start(case_dir, r, plan);
     record_attempt(case_dir, r, plan, start);
     std::vector<std::string> args = {armour_exe, "run", (case_dir / "scene.toml").string(), "--out",
@@ -339,7 +354,6 @@ int run_case(const fs::path &case_dir, const std::string &armour_exe) {
     const bool ok = record_outcome(r, pid, status, timed_out, timeout,
                                    fs::is_regular_file(case_dir / "run" / "summary.json"), armour_exe);
     write_case_record(case_dir, r);
-    ::close(lock);
     return ok ? 0 : 1;
 }
 
