@@ -24,39 +24,35 @@ Eigen::Quaterniond uniform_rotation(std::mt19937_64 &rng) {
     return Eigen::Quaterniond(t * std::cos(b), r * std::sin(a), r * std::cos(a), t * std::sin(b));
 }
 
-} // namespace
+// One sphere of the collided shape, in the unit frame: a clump's, or a point
+// of the exact shape's surface as a sphere of radius 0.
+using Part = std::pair<Eigen::Vector3d, double>;
 
-std::vector<BodyInit> random_pattern(const ScenePattern &p, const PatternGrid &grid, int unit,
-                                     const UnitTemplate &unit_template, const Collider &collider,
-                                     double reach, double Dn, const std::vector<Wall> &walls,
-                                     const std::string &key) {
-    const SceneWall &slope = *grid.slope;
-    // The collided shape as spheres (unit frame): a clump's, or the exact
-    // shape's surface points as spheres of radius 0.
-    std::vector<std::pair<Eigen::Vector3d, double>> parts;
-    if (collider.spheres)
-        for (const auto &s : unit_template.clump)
-            parts.emplace_back(s.center, s.radius);
-    else
-        for (const auto &point : collider.points)
-            parts.emplace_back(point, 0.0);
-    const auto pose = [&](const Eigen::Quaterniond &q, double up, double across, double out) {
-        BodyInit b;
-        b.unit = unit;
-        b.pose.position =
-            grid.origin + up * grid.along + across * Eigen::Vector3d::UnitY() + out * grid.normal;
-        b.pose.orientation = grid.turn * q;
-        return b;
-    };
+// m, of a shape turned by q from its centre: below and above it (out of the
+// face), and across the slope to either side.
+struct Extents {
+    double below = 0.0, above = 0.0, left = 0.0, right = 0.0;
+};
 
-    std::mt19937_64 rng(p.seed);
-    const double play = 0.5 * std::max(0.0, grid.spacing - grid.size);
-    const double step_top = slope.floor_z + slope.toe_height; // m, z
-    // Layer by layer, each layer's slots in a random order (in the grid's
-    // order, each unit would lean the same way on the one placed before it).
-    struct Slot {
-        int layer, row, col, columns;
-    };
+Extents turned_extents(const std::vector<Part> &parts, const Eigen::Quaterniond &q) {
+    Extents e;
+    for (const auto &[c, radius] : parts) {
+        const Eigen::Vector3d t = q * c;
+        e.below = std::max(e.below, radius - t.z());
+        e.above = std::max(e.above, radius + t.z());
+        e.left = std::max(e.left, radius - t.y());
+        e.right = std::max(e.right, radius + t.y());
+    }
+    return e;
+}
+
+struct Slot {
+    int layer, row, col, columns;
+};
+
+// The pattern's slots in the grid's order (layer, row, column); a layer of
+// odd index has a column fewer, staggered.
+std::vector<Slot> grid_slots(const ScenePattern &p) {
     std::vector<Slot> slots;
     for (int layer = 0; layer < p.layers; ++layer) {
         const int columns = layer % 2 == 1 && p.columns > 1 ? p.columns - 1 : p.columns;
@@ -64,10 +60,16 @@ std::vector<BodyInit> random_pattern(const ScenePattern &p, const PatternGrid &g
             for (int col = 0; col < columns; ++col)
                 slots.push_back({layer, row, col, columns});
     }
+    return slots;
+}
+
+// Layer by layer, each layer's slots in a random order (in the grid's order,
+// each unit would lean the same way on the one placed before it):
+// Fisher-Yates within each layer's slots [from, to).
+std::vector<std::size_t> shuffled_within_layers(const std::vector<Slot> &slots, std::mt19937_64 &rng) {
     std::vector<std::size_t> order(slots.size());
     for (std::size_t i = 0; i < order.size(); ++i)
         order[i] = i;
-    // Fisher-Yates within each layer (slots [from, to))
     for (std::size_t from = 0; from < order.size();) {
         std::size_t to = from;
         while (to < order.size() && slots[to].layer == slots[from].layer)
@@ -78,17 +80,52 @@ std::vector<BodyInit> random_pattern(const ScenePattern &p, const PatternGrid &g
                                                                             static_cast<double>(i)))]);
         from = to;
     }
+    return order;
+}
 
-    std::vector<BodyInit> bodies(slots.size()); // in the grid's order (layer, row, column)
-    std::vector<const BodyInit *> placed;
-    std::vector<double> top; // m: each placed unit's highest point above the face
-    const auto clear = [&](const BodyInit &b) {
-        for (const BodyInit *other : placed)
-            if ((b.pose.position - other->pose.position).norm() < 2.0 * reach + p.gap &&
-                closer_than(b, *other, unit_template, collider, p.gap))
-                return false;
-        return true;
-    };
+// Sets the units of one pattern slot by slot, each where it clears the face
+// and the units placed before it. The random draws come in a fixed order (the
+// slots' shuffle, then per draw a rotation and the two offsets): a seed gives
+// the same layer on every machine and in every version that keeps the order.
+class RandomPlacer {
+  public:
+    RandomPlacer(const ScenePattern &p, const PatternGrid &grid, int unit, const UnitTemplate &unit_template,
+                 const Collider &collider, double reach, double Dn, const std::vector<Wall> &walls)
+        : p_(p), grid_(grid), slope_(*grid.slope), unit_(unit), template_(unit_template), collider_(collider),
+          reach_(reach), Dn_(Dn), walls_(walls), rng_(p.seed),
+          play_(0.5 * std::max(0.0, grid.spacing - grid.size)),
+          step_top_(slope_.floor_z + slope_.toe_height) {
+        if (collider.spheres)
+            for (const auto &sphere : unit_template.clump)
+                parts_.emplace_back(sphere.center, sphere.radius);
+        else
+            for (const auto &point : collider.points)
+                parts_.emplace_back(point, 0.0);
+    }
+
+    std::vector<BodyInit> place_all(const std::string &key) {
+        const std::vector<Slot> slots = grid_slots(p_);
+        const std::vector<std::size_t> order = shuffled_within_layers(slots, rng_);
+        std::vector<BodyInit> bodies(slots.size()); // in the grid's order (layer, row, column)
+        for (const std::size_t k : order) {
+            const Slot &slot = slots[k];
+            double top = 0.0;
+            if (!place(slot, bodies[k], top)) {
+                const std::string where =
+                    key + "placement': \"random\": the unit of layer " + std::to_string(slot.layer + 1) +
+                    ", row " + std::to_string(slot.row + 1) + ", column " + std::to_string(slot.col + 1);
+                throw InputError(
+                    where + ": each of " + std::to_string(kDraws) +
+                    " random poses cuts a wall or leaves run.domain_min/domain_max; raise spacing, "
+                    "or use fewer rows, columns or layers");
+            }
+            placed_.push_back(&bodies[k]);
+            top_.push_back(top);
+        }
+        return bodies;
+    }
+
+  private:
     // Each slot takes, of kChoices poses that cut no wall and stay in the
     // domain, the first that rests on the face or else the least lifted
     // one: a placer sets a unit where it fits. The grid's slots are too
@@ -98,107 +135,147 @@ std::vector<BodyInit> random_pattern(const ScenePattern &p, const PatternGrid &g
     // until the settle (stability_cubes, 5 rows: lifts up to ~5 Dn). The
     // choice tilts the units a little more than uniform draws
     // (test_placement: mean tilt from the slope 37 deg against 32).
-    constexpr int kDraws = 1000, kChoices = 8;
-    for (const std::size_t k : order) {
-        const Slot &slot = slots[k];
+    static constexpr int kDraws = 1000, kChoices = 8;
+
+    // The slot's pose (`best`) and its highest point above the face (`top`,
+    // m); false when no draw gave a pose.
+    bool place(const Slot &slot, BodyInit &best, double &top) {
         int choices = 0;
-        double least = HUGE_VAL, best_top = 0.0; // m: the least lift of a draw, and its top
+        double least = HUGE_VAL; // m: the least lift of a draw
         for (int draw = 0; draw < kDraws && choices < kChoices && least > 0.0; ++draw) {
-            const Eigen::Quaterniond q = uniform_rotation(rng); // in the slope's frame
-            const double ds = play * (2.0 * uniform01(rng) - 1.0), dy = play * (2.0 * uniform01(rng) - 1.0);
-            // m, of the turned shape from its centre: below and above it, and
-            // across the slope to either side
-            double below = 0.0, above = 0.0, left = 0.0, right = 0.0;
-            for (const auto &[c, radius] : parts) {
-                const Eigen::Vector3d t = q * c;
-                below = std::max(below, radius - t.z());
-                above = std::max(above, radius + t.z());
-                left = std::max(left, radius - t.y());
-                right = std::max(right, radius + t.y());
-            }
-            if (left + right + 2.0 * p.gap > slope.width)
+            const Eigen::Quaterniond q = uniform_rotation(rng_); // in the slope's frame
+            const double ds = play_ * (2.0 * uniform01(rng_) - 1.0),
+                         dy = play_ * (2.0 * uniform01(rng_) - 1.0);
+            const Extents e = turned_extents(parts_, q);
+            if (e.left + e.right + 2.0 * p_.gap > slope_.width)
                 continue;
             // Within the side walls, by gap: an outer slot leaves a turned
             // unit less room than its neighbours do, so it moves inwards.
-            const double y = std::clamp((slot.col - 0.5 * (slot.columns - 1)) * grid.spacing + dy,
-                                        -0.5 * slope.width + left + p.gap, 0.5 * slope.width - right - p.gap);
-            double s = grid.first + (slot.row + (slot.layer % 2) * 0.5) * grid.spacing + ds;
+            const double y =
+                std::clamp((slot.col - 0.5 * (slot.columns - 1)) * grid_.spacing + dy,
+                           -0.5 * slope_.width + e.left + p_.gap, 0.5 * slope_.width - e.right - p_.gap);
+            const double s = grid_.first + (slot.row + (slot.layer % 2) * 0.5) * grid_.spacing + ds;
             BodyInit b;
-            double n = 0.0;
-            const auto at = [&](double height) {
-                b = pose(q, s, y, height);
-                return clear(b);
-            };
-            // The lowest height at which it clears the face and every unit
-            // placed so far by gap (to 0.005 Dn): at `ceiling` it lies above
-            // them all. Not lowered from above: a unit resting on two
-            // others would shield the slots beside it, and the next units
-            // would stack on it.
-            const auto lift = [&] {
-                double ceiling = below + p.gap;
-                for (const double t : top)
-                    ceiling = std::max(ceiling, t + p.gap + below);
-                n = below + p.gap;
-                if (at(n))
-                    return;
-                double blocked = n;
-                while (n < ceiling && !at(n)) {
-                    blocked = n;
-                    n += 0.05 * Dn;
-                }
-                n = std::min(n, ceiling);
-                while (n - blocked > 0.005 * Dn) {
-                    const double mid = 0.5 * (blocked + n);
-                    (at(mid) ? n : blocked) = mid;
-                }
-                at(n);
-            };
-            // The toe step: what of the unit lies below the step's top moves
-            // landward of its face by gap, up the slope.
-            for (int shift = 0; shift < 4; ++shift) {
-                lift();
-                double short_of = 0.0; // m in x
-                for (const auto &[c, radius] : parts) {
-                    const Eigen::Vector3d w = b.pose.position + b.pose.orientation * c;
-                    if (slope.toe_height > 0.0 && w.z() - radius < step_top + p.gap)
-                        short_of = std::max(short_of, slope.toe_x + radius + p.gap - w.x());
-                }
-                if (short_of <= 0.0)
-                    break;
-                s += short_of / grid.along.x() + 0.001 * Dn;
-            }
-            // Inside the domain as the engine collides it, and as build_scene
-            // checks it: by the clump, which may protrude beyond the exact shape.
-            bool inside = true;
-            const auto in_domain = [&](const Eigen::Vector3d &c, double radius) {
-                const Eigen::Vector3d w = b.pose.position + b.pose.orientation * c;
-                inside = inside && ((w.array() - radius) >= grid.domain_min.array()).all() &&
-                         ((w.array() + radius) <= grid.domain_max.array()).all();
-            };
-            for (const auto &[c, radius] : parts)
-                in_domain(c, radius);
-            for (const auto &sphere : unit_template.clump)
-                in_domain(sphere.center, sphere.radius);
-            if (!inside || body_wall_penetration(b, unit_template, collider, walls).first > 0.0)
+            const double n = set_on_face(q, s, y, e.below, b);
+            if (!inside_domain(b) || body_wall_penetration(b, template_, collider_, walls_).first > 0.0)
                 continue;
             ++choices;
-            if (n - below - p.gap < least) {
-                least = n - below - p.gap;
-                bodies[k] = b;
-                best_top = n + above;
+            if (n - e.below - p_.gap < least) {
+                least = n - e.below - p_.gap;
+                best = b;
+                top = n + e.above;
             }
         }
-        const std::string where = key + "placement': \"random\": the unit of layer " +
-                                  std::to_string(slot.layer + 1) + ", row " + std::to_string(slot.row + 1) +
-                                  ", column " + std::to_string(slot.col + 1);
-        if (choices == 0)
-            throw InputError(where + ": each of " + std::to_string(kDraws) +
-                             " random poses cuts a wall or leaves run.domain_min/domain_max; raise spacing, "
-                             "or use fewer rows, columns or layers");
-        placed.push_back(&bodies[k]);
-        top.push_back(best_top);
+        return choices > 0;
     }
-    return bodies;
+
+    BodyInit pose(const Eigen::Quaterniond &q, double up, double across, double out) const {
+        BodyInit b;
+        b.unit = unit_;
+        b.pose.position =
+            grid_.origin + up * grid_.along + across * Eigen::Vector3d::UnitY() + out * grid_.normal;
+        b.pose.orientation = grid_.turn * q;
+        return b;
+    }
+
+    bool clear(const BodyInit &b) const {
+        for (const BodyInit *other : placed_)
+            if ((b.pose.position - other->pose.position).norm() < 2.0 * reach_ + p_.gap &&
+                closer_than(b, *other, template_, collider_, p_.gap))
+                return false;
+        return true;
+    }
+
+    // The pose `b` turned by q at s up the face and y across, lifted clear
+    // (lift) and moved up the slope off the toe step's face; returns its
+    // height out of the face (m). What of the unit lies below the step's top
+    // moves landward of its face by gap, at most 4 times.
+    double set_on_face(const Eigen::Quaterniond &q, double s, double y, double below, BodyInit &b) const {
+        double n = 0.0;
+        for (int shift = 0; shift < 4; ++shift) {
+            n = lift(q, s, y, below, b);
+            double short_of = 0.0; // m in x
+            for (const auto &[c, radius] : parts_) {
+                const Eigen::Vector3d w = b.pose.position + b.pose.orientation * c;
+                if (slope_.toe_height > 0.0 && w.z() - radius < step_top_ + p_.gap)
+                    short_of = std::max(short_of, slope_.toe_x + radius + p_.gap - w.x());
+            }
+            if (short_of <= 0.0)
+                break;
+            s += short_of / grid_.along.x() + 0.001 * Dn_;
+        }
+        return n;
+    }
+
+    // The lowest height at which the pose clears the face and every unit
+    // placed so far by gap (to 0.005 Dn): at `ceiling` it lies above them
+    // all. Not lowered from above: a unit resting on two others would shield
+    // the slots beside it, and the next units would stack on it. Returns the
+    // height (m) and leaves `b` at it.
+    double lift(const Eigen::Quaterniond &q, double s, double y, double below, BodyInit &b) const {
+        const auto at = [&](double height) {
+            b = pose(q, s, y, height);
+            return clear(b);
+        };
+        double ceiling = below + p_.gap;
+        for (const double t : top_)
+            ceiling = std::max(ceiling, t + p_.gap + below);
+        double n = below + p_.gap;
+        if (at(n))
+            return n;
+        double blocked = n;
+        while (n < ceiling && !at(n)) {
+            blocked = n;
+            n += 0.05 * Dn_;
+        }
+        n = std::min(n, ceiling);
+        while (n - blocked > 0.005 * Dn_) {
+            const double mid = 0.5 * (blocked + n);
+            (at(mid) ? n : blocked) = mid;
+        }
+        at(n);
+        return n;
+    }
+
+    // Inside the domain as the engine collides it, and as build_scene checks
+    // it: by the clump, which may protrude beyond the exact shape.
+    bool inside_domain(const BodyInit &b) const {
+        const auto in = [&](const Eigen::Vector3d &c, double radius) {
+            const Eigen::Vector3d w = b.pose.position + b.pose.orientation * c;
+            return ((w.array() - radius) >= grid_.domain_min.array()).all() &&
+                   ((w.array() + radius) <= grid_.domain_max.array()).all();
+        };
+        bool inside = true;
+        for (const auto &[c, radius] : parts_)
+            inside = inside && in(c, radius);
+        for (const auto &sphere : template_.clump)
+            inside = inside && in(sphere.center, sphere.radius);
+        return inside;
+    }
+
+    const ScenePattern &p_;
+    const PatternGrid &grid_;
+    const SceneWall &slope_;
+    const int unit_;
+    const UnitTemplate &template_;
+    const Collider &collider_;
+    const double reach_, Dn_;
+    const std::vector<Wall> &walls_;
+    std::mt19937_64 rng_;
+    const double play_;     // m: how far a unit may move off its slot's centre, along and across
+    const double step_top_; // m, z: the toe step's top
+    std::vector<Part> parts_;
+    std::vector<const BodyInit *> placed_;
+    std::vector<double> top_; // m: each placed unit's highest point above the face
+};
+
+} // namespace
+
+std::vector<BodyInit> random_pattern(const ScenePattern &p, const PatternGrid &grid, int unit,
+                                     const UnitTemplate &unit_template, const Collider &collider,
+                                     double reach, double Dn, const std::vector<Wall> &walls,
+                                     const std::string &key) {
+    return RandomPlacer(p, grid, unit, unit_template, collider, reach, Dn, walls).place_all(key);
 }
 
 } // namespace armour
