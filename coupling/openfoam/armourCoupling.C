@@ -130,21 +130,7 @@ Foam::fv::armourCoupling::armourCoupling
     fieldNames_ = wordList(1, "U");
     applied_.setSize(fieldNames_.size(), false);
 
-    if (!coeffs_.found("scene"))
-    {
-        FatalIOErrorInFunction(coeffs_)
-            << "armourCouplingCoeffs needs 'scene' (an armour scene file with"
-            << " a [fluid] table; `armour run` writes it)" << exit(FatalIOError);
-    }
-    const Time& runTime = mesh.time();
-    // A relative scene path is taken from the case folder.
-    fileName scenePath(coeffs_.get<fileName>("scene"));
-    scenePath.expand();
-    if (!scenePath.isAbsolute())
-    {
-        scenePath = runTime.globalPath()/scenePath;
-    }
-
+    const fileName scenePath(sceneFile());
     std::string engineName;
     try
     {
@@ -157,99 +143,8 @@ Foam::fv::armourCoupling::armourCoupling
                 << "scene " << scenePath << " has no [fluid] table"
                 << exit(FatalIOError);
         }
-        penalty_ = scene.fluid->penalty;
-        armour_->mirrorInterior = scene.fluid->mirror_interior;
         engineName = scene.engine;
-        armour_->times.frozen = scene.fluid->frozen;
-
-        // The fluid and the engine must feel the same gravity.
-        const Eigen::Vector3d gravity = armourFoam::toEigen
-        (
-            runTime.lookupObject<uniformDimensionedVectorField>("g").value()
-        );
-        if ((gravity - scene.gravity).norm() > 1e-9*scene.gravity.norm())
-        {
-            FatalIOErrorInFunction(coeffs_)
-                << "constant/g " << armourFoam::toFoam(gravity)
-                << " differs from the scene's run.gravity "
-                << armourFoam::toFoam(scene.gravity) << exit(FatalIOError);
-        }
-
-        const fileName cache =
-            coeffs_.lookupOrDefault<fileName>
-            (
-                "cache",
-                fileName(armour::default_cache_dir())
-            );
-        armour_->bodies.reset
-        (
-            new armourFoam::bodyExchange(scene, cache, mesh, gravity)
-        );
-        updateFields();
-
-        armour_->recording.reset
-        (
-            new armourFoam::recording(runTime, scene.output_interval)
-        );
-        // The record sits beside the scene it ran (the run's output
-        // folder), unless the dictionary names another folder.
-        const fileName outDir =
-            coeffs_.lookupOrDefault<fileName>("output", scenePath.path());
-        armour_->checkpoints.reset
-        (
-            new armourFoam::checkpointing
-            (
-                outDir,
-                scene.checkpoint_interval,
-                runTime.value()
-            )
-        );
-        const bool resumed = armour_->checkpoints->resumed();
-        if (resumed)
-        {
-            armour_->checkpoints->loadInto
-            (
-                *armour_->bodies,
-                *armour_->recording,
-                armour_->times
-            );
-            updateFields();
-            Info<< "    armourCoupling: resumed at t = " << runTime.value()
-                << " s from " << armour_->checkpoints->resumedFrom().dir.string()
-                << endl;
-        }
-        if (Pstream::master())
-        {
-            if (resumed)
-            {
-                armour_->recording->resume
-                (
-                    outDir,
-                    *armour_->bodies,
-                    armour_->checkpoints->resumedFrom().records,
-                    runTime.value()
-                );
-            }
-            else
-            {
-                armour_->recording->open
-                (
-                    outDir,
-                    scene.name,
-                    *armour_->bodies,
-                    runTime.value(),
-                    scene.checkpoint_interval <= 0
-                );
-            }
-            if (coeffs_.found("csv"))
-            {
-                armour_->recording->openCsv
-                (
-                    runTime.globalPath()/coeffs_.get<fileName>("csv"),
-                    resumed ? runTime.value() : -1
-                );
-            }
-        }
+        start(scene, scenePath);
     }
     catch (const std::exception& err)
     {
@@ -266,6 +161,138 @@ Foam::fv::armourCoupling::armourCoupling
         Info<< "    armourCoupling: more than " << maxLoggedBodies
             << " bodies: no per-step load lines in this log (bodies.h5 holds"
             << " every body's loads)" << endl;
+    }
+}
+
+
+Foam::fileName Foam::fv::armourCoupling::sceneFile() const
+{
+    if (!coeffs_.found("scene"))
+    {
+        FatalIOErrorInFunction(coeffs_)
+            << "armourCouplingCoeffs needs 'scene' (an armour scene file with"
+            << " a [fluid] table; `armour run` writes it)" << exit(FatalIOError);
+    }
+    fileName scenePath(coeffs_.get<fileName>("scene"));
+    scenePath.expand();
+    if (!scenePath.isAbsolute())
+    {
+        scenePath = mesh_.time().globalPath()/scenePath;
+    }
+    return scenePath;
+}
+
+
+void Foam::fv::armourCoupling::start
+(
+    const armour::Scene& scene,
+    const fileName& scenePath
+)
+{
+    const Time& runTime = mesh_.time();
+    penalty_ = scene.fluid->penalty;
+    armour_->mirrorInterior = scene.fluid->mirror_interior;
+    armour_->times.frozen = scene.fluid->frozen;
+
+    // The fluid and the engine must feel the same gravity.
+    const Eigen::Vector3d gravity = armourFoam::toEigen
+    (
+        runTime.lookupObject<uniformDimensionedVectorField>("g").value()
+    );
+    if ((gravity - scene.gravity).norm() > 1e-9*scene.gravity.norm())
+    {
+        FatalIOErrorInFunction(coeffs_)
+            << "constant/g " << armourFoam::toFoam(gravity)
+            << " differs from the scene's run.gravity "
+            << armourFoam::toFoam(scene.gravity) << exit(FatalIOError);
+    }
+
+    const fileName cache =
+        coeffs_.lookupOrDefault<fileName>
+        (
+            "cache",
+            fileName(armour::default_cache_dir())
+        );
+    armour_->bodies.reset
+    (
+        new armourFoam::bodyExchange(scene, cache, mesh_, gravity)
+    );
+    updateFields();
+
+    armour_->recording.reset
+    (
+        new armourFoam::recording(runTime, scene.output_interval)
+    );
+    // The record sits beside the scene it ran (the run's output folder),
+    // unless the dictionary names another folder.
+    const fileName outDir =
+        coeffs_.lookupOrDefault<fileName>("output", scenePath.path());
+    armour_->checkpoints.reset
+    (
+        new armourFoam::checkpointing
+        (
+            outDir,
+            scene.checkpoint_interval,
+            runTime.value()
+        )
+    );
+    const bool resumed = armour_->checkpoints->resumed();
+    if (resumed)
+    {
+        armour_->checkpoints->loadInto
+        (
+            *armour_->bodies,
+            *armour_->recording,
+            armour_->times
+        );
+        updateFields();
+        Info<< "    armourCoupling: resumed at t = " << runTime.value()
+            << " s from " << armour_->checkpoints->resumedFrom().dir.string()
+            << endl;
+    }
+    if (Pstream::master())
+    {
+        openRecords(scene, outDir, resumed);
+    }
+}
+
+
+void Foam::fv::armourCoupling::openRecords
+(
+    const armour::Scene& scene,
+    const fileName& outDir,
+    bool resumed
+)
+{
+    const Time& runTime = mesh_.time();
+    if (resumed)
+    {
+        armour_->recording->resume
+        (
+            outDir,
+            *armour_->bodies,
+            armour_->checkpoints->resumedFrom().records,
+            runTime.value()
+        );
+    }
+    else
+    {
+        armour_->recording->open
+        (
+            outDir,
+            scene.name,
+            *armour_->bodies,
+            runTime.value(),
+            scene.checkpoint_interval <= 0
+        );
+    }
+    if (coeffs_.found("csv"))
+    {
+        armour_->recording->openCsv
+        (
+            runTime.globalPath()/coeffs_.get<fileName>("csv"),
+            resumed ? runTime.value() : -1
+        );
     }
 }
 
