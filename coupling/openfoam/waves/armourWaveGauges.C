@@ -50,21 +50,37 @@ void Foam::functionObjects::armourWaveGauges::findColumns()
     reduce(bMax, maxOp<scalar>());
     tol_ = 1e-9*mag(mesh_.bounds().span());  // bounds(): global
 
-    const labelListList& cellPts = mesh_.cellPoints();
-
-    // Per gauge and rank: (z0, z1, cell) of the cells whose horizontal
-    // extent contains the shifted point.
-    List<List<List<vector>>> found(gauges_.size());
     scalarList ga(gauges_.size()), gb(gauges_.size());
     forAll(gauges_, gi)
     {
-        found[gi].setSize(Pstream::nProcs());
         const scalar a = gauges_[gi] & e1;
         const scalar b = gauges_[gi] & e2;
         ga[gi] = (a + tol_ < aMax) ? a + tol_ : a - tol_;
         gb[gi] = (b + tol_ < bMax) ? b + tol_ : b - tol_;
     }
 
+    List<DynamicList<vector>> local(localColumns(e1, e2, ga, gb));
+    columnZ_.setSize(gauges_.size());
+    localCells_.setSize(gauges_.size());
+    localSlots_.setSize(gauges_.size());
+    forAll(gauges_, gi)
+    {
+        keepLayers(gi, local[gi]);
+    }
+}
+
+
+Foam::List<Foam::DynamicList<Foam::vector>>
+Foam::functionObjects::armourWaveGauges::localColumns
+(
+    const vector& e1,
+    const vector& e2,
+    const scalarList& ga,
+    const scalarList& gb
+) const
+{
+    const pointField& pts = mesh_.points();
+    const labelListList& cellPts = mesh_.cellPoints();
     List<DynamicList<vector>> local(gauges_.size());
     forAll(cellPts, celli)
     {
@@ -88,60 +104,63 @@ void Foam::functionObjects::armourWaveGauges::findColumns()
             }
         }
     }
+    return local;
+}
 
-    columnZ_.setSize(gauges_.size());
-    localCells_.setSize(gauges_.size());
-    localSlots_.setSize(gauges_.size());
-    forAll(gauges_, gi)
+
+void Foam::functionObjects::armourWaveGauges::keepLayers
+(
+    const label gi,
+    DynamicList<vector>& local
+)
+{
+    // Every rank's (z0, z1, cell), the whole column bottom up, identical on
+    // every rank.
+    List<List<vector>> all(Pstream::nProcs());
+    all[Pstream::myProcNo()].transfer(local);
+    Pstream::gatherList(all);
+    Pstream::scatterList(all);
+    DynamicList<FixedList<scalar, 4>> column;
+    forAll(all, proci)
     {
-        List<List<vector>>& all = found[gi];
-        all[Pstream::myProcNo()].transfer(local[gi]);
-        Pstream::gatherList(all);
-        Pstream::scatterList(all);
-
-        // The whole column, bottom up, identical on every rank.
-        DynamicList<FixedList<scalar, 4>> column;
-        forAll(all, proci)
+        for (const vector& c : all[proci])
         {
-            for (const vector& c : all[proci])
-            {
-                column.append
-                (
-                    FixedList<scalar, 4>({c.x(), c.y(), scalar(proci), c.z()})
-                );
-            }
+            column.append
+            (
+                FixedList<scalar, 4>({c.x(), c.y(), scalar(proci), c.z()})
+            );
         }
-        Foam::sort(column);
-
-        // One cell per layer: a cell overlapping the one below it (a
-        // non-layered mesh) would count its height twice, so it is left out.
-        DynamicList<vector2D> kept;
-        DynamicList<label> cells, slots;
-        scalar top = -GREAT;
-        for (const FixedList<scalar, 4>& c : column)
-        {
-            if (c[0] < top - tol_)
-            {
-                continue;
-            }
-            if (label(c[2]) == Pstream::myProcNo())
-            {
-                cells.append(label(c[3]));
-                slots.append(kept.size());
-            }
-            kept.append(vector2D(c[0], c[1]));
-            top = c[1];
-        }
-        if (kept.empty())
-        {
-            FatalErrorInFunction
-                << "gauge " << gauges_[gi] << " of " << name()
-                << " lies outside the mesh" << exit(FatalError);
-        }
-        columnZ_[gi].transfer(kept);
-        localCells_[gi].transfer(cells);
-        localSlots_[gi].transfer(slots);
     }
+    Foam::sort(column);
+
+    // One cell per layer: a cell overlapping the one below it (a
+    // non-layered mesh) would count its height twice, so it is left out.
+    DynamicList<vector2D> kept;
+    DynamicList<label> cells, slots;
+    scalar top = -GREAT;
+    for (const FixedList<scalar, 4>& c : column)
+    {
+        if (c[0] < top - tol_)
+        {
+            continue;
+        }
+        if (label(c[2]) == Pstream::myProcNo())
+        {
+            cells.append(label(c[3]));
+            slots.append(kept.size());
+        }
+        kept.append(vector2D(c[0], c[1]));
+        top = c[1];
+    }
+    if (kept.empty())
+    {
+        FatalErrorInFunction
+            << "gauge " << gauges_[gi] << " of " << name()
+            << " lies outside the mesh" << exit(FatalError);
+    }
+    columnZ_[gi].transfer(kept);
+    localCells_[gi].transfer(cells);
+    localSlots_[gi].transfer(slots);
 }
 
 
