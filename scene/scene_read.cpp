@@ -208,34 +208,10 @@ void read_walls(const Table &root, Scene &s) {
     }
 }
 
-void read_fluid(const Table &root, Scene &s) {
-    if (!root.has("fluid"))
-        return;
-    const Table t = root.section("fluid");
-    const auto &keys = fluid_keys();
-    t.only(names_of(keys));
-    SceneFluid f;
-    // Defaults that follow [run].
-    f.max_time_step = std::min(f.max_time_step, s.output_interval);
-    f.write_interval = s.duration;
-    f.write_interval_given = t.has("write_interval");
-    f.max_interface_courant_given = t.has("max_interface_courant");
-    f.min_time_step_given = t.has("min_time_step");
-    read_keys(t, keys, f);
-    if (!f.max_interface_courant_given)
-        f.max_interface_courant = f.max_courant;
-    // Both take their scale from gravity (without it, NaN in the case): the
-    // height at which the interior mirrors the outside, and k's start from
-    // the celerity sqrt(g depth).
-    if (s.gravity.norm() == 0 && f.mirror_interior)
-        t.fail("mirror_interior", "needs gravity: the interior takes the outside's phase at its height "
-                                  "along gravity, and gravity is [0, 0, 0]");
-    if (s.gravity.norm() == 0 && f.turbulence != "laminar")
-        t.fail("turbulence",
-               "needs gravity: k starts from the celerity sqrt(g depth), and gravity is [0, 0, 0]");
-    if (f.case_name.find('/') != std::string::npos || f.case_name[0] == '.')
-        t.fail("case", "must name a template folder in foam_cases/, e.g. \"tank\" (got " +
-                           toml_string(f.case_name) + ")");
+// The still water: its level, or a water column (dam break), and a solitary
+// wave's height below the depth.
+void read_fluid_water(const Table &t, const std::vector<Key<SceneFluid>> &keys, const Scene &s,
+                      SceneFluid &f) {
     // A water column (water_box_min/max) may replace the level: the level
     // then defaults to the mesh's bottom (no water outside the column).
     if (t.has("water_box_min") != t.has("water_box_max"))
@@ -261,11 +237,16 @@ void read_fluid(const Table &root, Scene &s) {
             f.water_level);
     t.check(f.wave_height == 0 || f.wave_height < f.water_level - s.domain_min.z(), "wave_height",
             "must be in [0, the still-water depth water_level - run.domain_min.z) m", f.wave_height);
+}
+
+// The mesh: cells or cell_size, and a graded mesh's refined box and coarse size.
+void read_fluid_cells(const Table &t, const std::vector<Key<SceneFluid>> &keys, const Scene &s,
+                      SceneFluid &f) {
+    const Eigen::Vector3d extent = s.domain_max - s.domain_min;
     if (t.has("cells") == t.has("cell_size"))
         t.fail(t.has("cells") ? "cell_size" : "cells",
                t.has("cells") ? "give either cells or cell_size, not both"
                               : "missing required key: give cells = [nx, ny, nz] or cell_size (m)");
-    const Eigen::Vector3d extent = s.domain_max - s.domain_min;
     if (t.has("cells")) {
         read_value(t, key_named(keys, "cells"), f);
     } else {
@@ -310,6 +291,11 @@ void read_fluid(const Table &root, Scene &s) {
                                            vector_text(fine) + " m along one (got " + vector_text(coarse) +
                                            ")");
     }
+}
+
+// The fluid step's limits, the air, and the writes, against each other and [run].
+void check_fluid_steps(const Table &t, const Scene &s, SceneFluid &f) {
+    const Eigen::Vector3d extent = s.domain_max - s.domain_min;
     // 1 km/s, three times the speed of sound in air, is no flow a flume
     // holds: an incompressible solver that steps for it has diverged.
     if (!f.min_time_step_given)
@@ -328,6 +314,39 @@ void read_fluid(const Table &root, Scene &s) {
             "must be in (0, max_courant = " + number_text(f.max_courant) + "]", f.max_interface_courant);
     t.check(f.write_interval <= s.duration, "write_interval",
             "must be in (0, run.duration = " + number_text(s.duration) + "] s", f.write_interval);
+}
+
+void read_fluid(const Table &root, Scene &s) {
+    if (!root.has("fluid"))
+        return;
+    const Table t = root.section("fluid");
+    const auto &keys = fluid_keys();
+    t.only(names_of(keys));
+    SceneFluid f;
+    // Defaults that follow [run].
+    f.max_time_step = std::min(f.max_time_step, s.output_interval);
+    f.write_interval = s.duration;
+    f.write_interval_given = t.has("write_interval");
+    f.max_interface_courant_given = t.has("max_interface_courant");
+    f.min_time_step_given = t.has("min_time_step");
+    read_keys(t, keys, f);
+    if (!f.max_interface_courant_given)
+        f.max_interface_courant = f.max_courant;
+    // Both take their scale from gravity (without it, NaN in the case): the
+    // height at which the interior mirrors the outside, and k's start from
+    // the celerity sqrt(g depth).
+    if (s.gravity.norm() == 0 && f.mirror_interior)
+        t.fail("mirror_interior", "needs gravity: the interior takes the outside's phase at its height "
+                                  "along gravity, and gravity is [0, 0, 0]");
+    if (s.gravity.norm() == 0 && f.turbulence != "laminar")
+        t.fail("turbulence",
+               "needs gravity: k starts from the celerity sqrt(g depth), and gravity is [0, 0, 0]");
+    if (f.case_name.find('/') != std::string::npos || f.case_name[0] == '.')
+        t.fail("case", "must name a template folder in foam_cases/, e.g. \"tank\" (got " +
+                           toml_string(f.case_name) + ")");
+    read_fluid_water(t, keys, s, f);
+    read_fluid_cells(t, keys, s, f);
+    check_fluid_steps(t, s, f);
     s.fluid = f;
 }
 
