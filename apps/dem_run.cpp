@@ -183,6 +183,55 @@ std::unique_ptr<RigidBodyEngine> scene_engine(const Scene &scene, const SceneSet
     return engine;
 }
 
+namespace {
+
+// The trajectory file of a DEM run: new, or (resume) reopened after the
+// checkpoint's records, whose states land in `earlier`.
+std::unique_ptr<BodyRecorder> open_recorder(OutputFolder &folder, const Scene &scene, const SceneSetup &setup,
+                                            const RigidBodyEngine &engine, double dt,
+                                            const Checkpoint *resume, BodiesFile &earlier) {
+    std::vector<RecorderUnit> recorder_units;
+    for (const auto &u : setup.units)
+        recorder_units.push_back({u.name, u.mesh});
+    std::vector<int> body_unit;
+    for (const auto &b : setup.bodies)
+        body_unit.push_back(b.unit);
+    const fs::path h5 = folder.claim("bodies.h5"), xdmf = folder.claim("bodies.xdmf");
+    if (!resume)
+        return std::make_unique<BodyRecorder>(
+            h5.string(), xdmf.string(), recorder_units, body_unit,
+            std::vector<std::pair<std::string, std::string>>{
+                {"scene", scene.name}, {"engine", engine.name()}, {"dt", std::to_string(dt)}},
+            scene.checkpoint_interval <= 0.0);
+    earlier = read_bodies_file(h5.string());
+    if (static_cast<long>(earlier.steps()) < resume->records || earlier.bodies() != setup.bodies.size())
+        throw InputError(h5.string() + ": holds " + std::to_string(earlier.steps()) + " steps of " +
+                         std::to_string(earlier.bodies()) + " bodies, not the " +
+                         std::to_string(resume->records) + " steps of " +
+                         std::to_string(setup.bodies.size()) + " bodies its checkpoint " +
+                         resume->dir.string() + " recorded");
+    return BodyRecorder::reopen(h5.string(), xdmf.string(), recorder_units, body_unit, resume->records);
+}
+
+// Advances the engine to `target` (s) in spans no longer than the
+// analysis' (tilt turns gravity) and the still water's buoyancy update's:
+// both act between engine advances.
+void advance_to_record(RigidBodyEngine &engine, Analysis &analysis, const SceneSetup &setup,
+                       const Scene &scene, const StillWater *water, double dt, double target) {
+    do {
+        double span = analysis.before_advance(engine.time(), engine);
+        if (water) {
+            for (int i = 0; i < engine.body_count(); ++i)
+                set_buoyancy(engine, i, setup.units[setup.bodies[i].unit], engine.state(i), *water,
+                             scene.gravity);
+            span = std::min(span, water->update_interval);
+        }
+        engine.advance_to(std::min(engine.time() + std::max(span, dt), target));
+    } while (engine.time() < target - 0.5 * dt);
+}
+
+} // namespace
+
 // The DEM run of a scene without [fluid], dry or (`water`, a settle run)
 // under still water's buoyancy, into `folder`; `final_states` (optional)
 // receives every body's state at the end. `resume`: continue the run in
@@ -201,35 +250,14 @@ int run_dem(OutputFolder &folder, const Scene &scene, SceneSetup &setup, std::ve
     folder.open();              // an earlier result of this command is replaced (resumed: nothing)
     folder.claim(scene.engine); // the engine's own files (work_dir), if it writes any
     write_scene_and_units(folder, scene, setup);
-    std::vector<RecorderUnit> recorder_units;
-    for (const auto &u : setup.units)
-        recorder_units.push_back({u.name, u.mesh});
-    std::vector<int> body_unit;
-    for (const auto &b : setup.bodies)
-        body_unit.push_back(b.unit);
     // Start the engine before opening the trajectory file: MPI's start-up may
     // fork a helper that would inherit (and keep locked) any file open then.
     engine->state(0);
-    const fs::path h5 = folder.claim("bodies.h5"), xdmf = folder.claim("bodies.xdmf");
     // A resumed run replays the records up to its checkpoint into the
     // energy balance and the analysis, then appends after them.
     BodiesFile earlier;
-    if (resume) {
-        earlier = read_bodies_file(h5.string());
-        if (static_cast<long>(earlier.steps()) < resume->records || earlier.bodies() != setup.bodies.size())
-            throw InputError(h5.string() + ": holds " + std::to_string(earlier.steps()) + " steps of " +
-                             std::to_string(earlier.bodies()) + " bodies, not the " +
-                             std::to_string(resume->records) + " steps of " +
-                             std::to_string(setup.bodies.size()) + " bodies its checkpoint " +
-                             resume->dir.string() + " recorded");
-    }
     const std::unique_ptr<BodyRecorder> recorder =
-        resume ? BodyRecorder::reopen(h5.string(), xdmf.string(), recorder_units, body_unit, resume->records)
-               : std::make_unique<BodyRecorder>(
-                     h5.string(), xdmf.string(), recorder_units, body_unit,
-                     std::vector<std::pair<std::string, std::string>>{
-                         {"scene", scene.name}, {"engine", engine->name()}, {"dt", std::to_string(dt.used)}},
-                     scene.checkpoint_interval <= 0.0);
+        open_recorder(folder, scene, setup, *engine, dt.used, resume, earlier);
     Checkpoints checkpoints(out, scene.checkpoint_interval, resume ? resume->time : 0.0);
     if (scene.checkpoint_interval > 0.0)
         folder.claim("checkpoints");
@@ -264,18 +292,7 @@ int run_dem(OutputFolder &folder, const Scene &scene, SceneSetup &setup, std::ve
     const long outputs = std::lround(std::ceil(scene.duration / scene.output_interval - 1e-9));
     for (long k = first; k <= outputs; ++k) {
         const double target = std::min(scene.duration, static_cast<double>(k) * scene.output_interval);
-        do {
-            // The analysis (tilt turns gravity) and the still water's buoyancy
-            // both act between engine advances of at most their own span.
-            double span = analysis->before_advance(engine->time(), *engine);
-            if (water) {
-                for (int i = 0; i < engine->body_count(); ++i)
-                    set_buoyancy(*engine, i, setup.units[setup.bodies[i].unit], engine->state(i), *water,
-                                 scene.gravity);
-                span = std::min(span, water->update_interval);
-            }
-            engine->advance_to(std::min(engine->time() + std::max(span, dt.used), target));
-        } while (engine->time() < target - 0.5 * dt.used);
+        advance_to_record(*engine, *analysis, setup, scene, water, dt.used, target);
         record();
         analysis->sample(engine->time(), states);
         if (analysis->finished()) {
