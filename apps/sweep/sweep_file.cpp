@@ -99,32 +99,8 @@ class Reader {
     std::string file_;
 };
 
-} // namespace
-
-SweepSpec read_sweep_file(const std::string &path) {
-    std::error_code ec;
-    if (!fs::is_regular_file(path, ec))
-        throw InputError(path + ": cannot read the sweep file (no such file)");
-    toml::table root;
-    try {
-        root = toml::parse_file(path);
-    } catch (const toml::parse_error &e) {
-        throw InputError(path + ":" + std::to_string(e.source().begin.line) + ": " +
-                         one_line(std::string(e.description())));
-    }
-    const Reader r(path);
-    r.only_keys(root, "", {"scene", "seeds", "seed_key", "vary", "case", "set", "run", "slurm"});
-
-    SweepSpec spec;
-    spec.file = path;
-    const std::string scene = r.text(root, "", "scene");
-    if (scene.empty())
-        r.fail("scene", "required: the base scene file, relative to the sweep file's folder");
-    fs::path scene_path(scene);
-    if (scene_path.is_relative())
-        scene_path = fs::absolute(path).parent_path() / scene_path;
-    spec.scene = scene_path.lexically_normal().string();
-
+// What a sweep varies: [vary], [[case]] tables, [set] (what every case shares) and the seeds.
+void read_varied(const Reader &r, const toml::table &root, SweepSpec &spec) {
     if (const toml::node *vary = root.get("vary")) {
         if (!vary->is_table())
             r.fail("vary", "must be a table of \"KEY\" = [values]");
@@ -181,7 +157,10 @@ SweepSpec read_sweep_file(const std::string &path) {
     }
     if (spec.vary.empty() && spec.cases.empty() && spec.seeds.empty())
         r.fail("vary", "nothing varies: give [vary], [[case]] tables or seeds");
+}
 
+// How each case runs: [run] (ranks, time limit) and [slurm] (the job array's options).
+void read_run_and_slurm(const Reader &r, const toml::table &root, SweepSpec &spec) {
     if (const toml::node *run = root.get("run")) {
         if (!run->is_table())
             r.fail("run", "must be a table");
@@ -210,6 +189,36 @@ SweepSpec read_sweep_file(const std::string &path) {
             }
         }
     }
+}
+
+} // namespace
+
+SweepSpec read_sweep_file(const std::string &path) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec))
+        throw InputError(path + ": cannot read the sweep file (no such file)");
+    toml::table root;
+    try {
+        root = toml::parse_file(path);
+    } catch (const toml::parse_error &e) {
+        throw InputError(path + ":" + std::to_string(e.source().begin.line) + ": " +
+                         one_line(std::string(e.description())));
+    }
+    const Reader r(path);
+    r.only_keys(root, "", {"scene", "seeds", "seed_key", "vary", "case", "set", "run", "slurm"});
+
+    SweepSpec spec;
+    spec.file = path;
+    const std::string scene = r.text(root, "", "scene");
+    if (scene.empty())
+        r.fail("scene", "required: the base scene file, relative to the sweep file's folder");
+    fs::path scene_path(scene);
+    if (scene_path.is_relative())
+        scene_path = fs::absolute(path).parent_path() / scene_path;
+    spec.scene = scene_path.lexically_normal().string();
+
+    read_varied(r, root, spec);
+    read_run_and_slurm(r, root, spec);
     // Checked last, so that every other key is checked too when the sweep
     // file is read away from its scene (the fuzzer reads a copy in /tmp).
     if (!fs::is_regular_file(spec.scene, ec))
