@@ -38,11 +38,12 @@ void stop_tool(pid_t pid) {
     ::waitpid(pid, nullptr, 0);
 }
 
-} // namespace
-
-void run_tool(const std::string &name, const std::vector<std::string> &args, const fs::path &case_dir,
-              double end_time, bool show_progress, double start_time, const StepFloor &floor) {
-    const fs::path log = case_dir / ("log." + name);
+// Starts `args` in case_dir, its output into `log`, tied to this process:
+// interFoam is the run (the engine lives in its plugin), so killed alone,
+// `armour run` must not leave it going on to the end in the background
+// (mpirun passes the signal to its ranks).
+pid_t start_tool(const std::string &name, const std::vector<std::string> &args, const fs::path &case_dir,
+                 const fs::path &log) {
     std::vector<char *> argv;
     for (const auto &a : args)
         argv.push_back(const_cast<char *>(a.c_str()));
@@ -53,9 +54,6 @@ void run_tool(const std::string &name, const std::vector<std::string> &args, con
     if (pid < 0)
         throw InputError(name + ": cannot start: " + std::strerror(errno));
     if (pid == 0) {
-        // interFoam is the run (the engine lives in its plugin): killed alone,
-        // `armour run` must not leave it going on to the end in the background
-        // (mpirun passes the signal to its ranks).
         if (::prctl(PR_SET_PDEATHSIG, SIGTERM) != 0 || ::getppid() != armour)
             ::_exit(127);
         const int fd = ::open(log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
@@ -67,6 +65,40 @@ void run_tool(const std::string &name, const std::vector<std::string> &args, con
         ::execvp(argv[0], argv.data());
         ::_exit(127);
     }
+    return pid;
+}
+
+// Why a tool that ended with `status` and wrote `text` failed: its FOAM FATAL
+// line, or else its last three lines (and the signal that ended it); empty
+// when it did not fail. mpirun may exit 0 although a rank reported FOAM FATAL.
+std::string tool_failure(int status, const std::string &text, const std::string &program) {
+    const std::string fatal = fatal_line(text);
+    const bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+    if (ok || !fatal.empty())
+        return fatal;
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 127)
+        return "could not run " + program;
+    std::istringstream in(text);
+    std::vector<std::string> lines;
+    for (std::string l; std::getline(in, l);)
+        if (!l.empty())
+            lines.push_back(l);
+    std::string why;
+    for (std::size_t i = lines.size() > 3 ? lines.size() - 3 : 0; i < lines.size(); ++i)
+        why += (why.empty() ? "" : " | ") + lines[i];
+    if (WIFSIGNALED(status))
+        why = "killed by signal " + std::to_string(WTERMSIG(status)) + (why.empty() ? "" : ": " + why);
+    if (why.empty() && WIFEXITED(status))
+        why = "exit status " + std::to_string(WEXITSTATUS(status)) + ", nothing in its log";
+    return why;
+}
+
+} // namespace
+
+void run_tool(const std::string &name, const std::vector<std::string> &args, const fs::path &case_dir,
+              double end_time, bool show_progress, double start_time, const StepFloor &floor) {
+    const fs::path log = case_dir / ("log." + name);
+    const pid_t pid = start_tool(name, args, case_dir, log);
     const bool terminal = ::isatty(STDERR_FILENO) != 0;
     // The log is read as it grows, each line once (a long run's log reaches
     // 100 MB): every step is checked against the floor, so a dip between two
@@ -123,30 +155,8 @@ void run_tool(const std::string &name, const std::vector<std::string> &args, con
     check_floor(read_new_lines(log, log_read), solver_time, false);
     if (show_progress && terminal)
         std::fputc('\n', stderr);
-    const std::string text = read_text_file(log);
-    const std::string fatal = fatal_line(text);
-    const bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
-    // mpirun may exit 0 although a rank reported FOAM FATAL.
-    if (!ok || !fatal.empty()) {
-        std::string why = fatal;
-        if (why.empty()) {
-            if (WIFEXITED(status) && WEXITSTATUS(status) == 127)
-                why = "could not run " + args[0];
-            else {
-                std::istringstream in(text);
-                std::vector<std::string> lines;
-                for (std::string l; std::getline(in, l);)
-                    if (!l.empty())
-                        lines.push_back(l);
-                for (std::size_t i = lines.size() > 3 ? lines.size() - 3 : 0; i < lines.size(); ++i)
-                    why += (why.empty() ? "" : " | ") + lines[i];
-                if (WIFSIGNALED(status))
-                    why = "killed by signal " + std::to_string(WTERMSIG(status)) +
-                          (why.empty() ? "" : ": " + why);
-            }
-        }
+    if (const std::string why = tool_failure(status, read_text_file(log), args[0]); !why.empty())
         throw InputError(name + " failed (see " + log.string() + "): " + why);
-    }
 }
 
 } // namespace armour
