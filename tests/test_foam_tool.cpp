@@ -1,0 +1,79 @@
+// How `armour run` runs an OpenFOAM tool (fluid_case/foam_tool.h) and says
+// why one failed, in one line naming the tool and its log: its FOAM FATAL
+// line (even when it exited 0, as mpirun may), a program that cannot start,
+// or its exit status when its log is empty. Stand-in tools are shell lines.
+#include "foam_tool.h"
+#include "input_error.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+class FoamTool : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        dir_ =
+            fs::temp_directory_path() /
+            ("armour_tool_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
+             "_" + std::to_string(::getpid()));
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+    // The message run_tool throws for `script` run by sh as tool "tool"
+    // (empty: it did not throw).
+    std::string error_of(const std::string &script) const {
+        try {
+            armour::run_tool("tool", {"sh", "-c", script}, dir_, 1.0, false);
+        } catch (const armour::InputError &e) {
+            return e.what();
+        }
+        return "";
+    }
+    fs::path dir_;
+};
+
+TEST_F(FoamTool, AToolThatEndsWellThrowsNothingAndKeepsItsLog) {
+    EXPECT_EQ(error_of("echo 'Time = 0.5'; exit 0"), "");
+    EXPECT_TRUE(fs::is_regular_file(dir_ / "log.tool"));
+}
+
+TEST_F(FoamTool, AFatalLineFailsTheToolEvenWhenItExitsZero) {
+    const std::string error = error_of("echo '--> FOAM FATAL ERROR: no such patch'; exit 0");
+    EXPECT_NE(
+        error.find("tool failed (see " + (dir_ / "log.tool").string() + "): FOAM FATAL ERROR: no such patch"),
+        std::string::npos)
+        << error;
+}
+
+TEST_F(FoamTool, AnEmptyLogGivesTheExitStatus) {
+    const std::string error = error_of("exit 3");
+    EXPECT_NE(error.find("tool failed (see " + (dir_ / "log.tool").string() +
+                         "): exit status 3, nothing in its log"),
+              std::string::npos)
+        << error;
+}
+
+TEST_F(FoamTool, ALogGivesItsLastThreeLines) {
+    const std::string error = error_of("echo one; echo two; echo three; echo four; exit 1");
+    EXPECT_NE(error.find("): two | three | four"), std::string::npos) << error;
+}
+
+TEST_F(FoamTool, AProgramThatCannotStartIsNamed) {
+    std::string error;
+    try {
+        armour::run_tool("tool", {"armour-no-such-program"}, dir_, 1.0, false);
+    } catch (const armour::InputError &e) {
+        error = e.what();
+    }
+    EXPECT_NE(error.find("could not run armour-no-such-program"), std::string::npos) << error;
+}
+
+} // namespace
