@@ -4,13 +4,13 @@
 // check, does not take a case that nothing runs for a running one.
 #include "case_runner.h"
 #include "input_error.h"
+#include "scratch_folder.h"
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <unistd.h>
 
 namespace fs = std::filesystem;
 
@@ -18,14 +18,7 @@ namespace {
 
 class CaseRunnerLock : public ::testing::Test {
   protected:
-    void SetUp() override {
-        dir_ =
-            fs::temp_directory_path() /
-            ("armour_case_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
-             "_" + std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
+    void SetUp() override { dir_ = armour_test::fresh_test_folder("case"); }
     void TearDown() override { fs::remove_all(dir_); }
     void write(const std::string &name, const std::string &text) const { std::ofstream(dir_ / name) << text; }
     fs::path dir_;

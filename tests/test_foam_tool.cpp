@@ -4,12 +4,12 @@
 // or its exit status when its log is empty. Stand-in tools are shell lines.
 #include "foam_tool.h"
 #include "input_error.h"
+#include "scratch_folder.h"
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 namespace fs = std::filesystem;
@@ -18,14 +18,7 @@ namespace {
 
 class FoamTool : public ::testing::Test {
   protected:
-    void SetUp() override {
-        dir_ =
-            fs::temp_directory_path() /
-            ("armour_tool_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
-             "_" + std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
+    void SetUp() override { dir_ = armour_test::fresh_test_folder("tool"); }
     void TearDown() override { fs::remove_all(dir_); }
     // The message run_tool throws for `script` run by sh as tool "tool"
     // (empty: it did not throw).
