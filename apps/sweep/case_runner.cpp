@@ -51,7 +51,8 @@ int take_lock(const fs::path &case_dir) {
 }
 
 // A case's lock for one attempt: released on every way out of run_case, a
-// throw included (an unreadable record or plan), not only at the process' end.
+// throw included (an unreadable plan, a record it cannot write), not only at
+// the process' end.
 class CaseLock {
   public:
     explicit CaseLock(const fs::path &case_dir) : fd_(take_lock(case_dir)) {}
