@@ -1,0 +1,48 @@
+// The scene reader's parts (scene_read.cpp, scene_read_flume.cpp): the
+// readers of the wave-flume sections and the checks both files use. Internal
+// to the scene library: the scene's interface is scene.h.
+#pragma once
+
+#include "scene.h"
+#include "scene_keys.h"
+#include "toml_table.h"
+
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+namespace armour::scene_read {
+
+// The key table and its reader (Table, Key, names_of, toml_string, join).
+using namespace scene_detail;
+
+bool inside(const Eigen::Vector3d &p, const Eigen::Vector3d &lo, const Eigen::Vector3d &hi);
+
+// The [[unit]] a table's key `unit` names (u), or the table's error naming the known ones.
+std::string unit_of(const Table &t, const Scene &s, const std::string &u);
+
+// The keys min and max of table t: a box inside the run's domain.
+void check_box(const Table &t, const Eigen::Vector3d &min, const Eigen::Vector3d &max, const Scene &s);
+
+// Keys that belong to another shape or wall type are mistakes, not noise.
+template <class S>
+void forbid_other_variants(const Table &t, const std::vector<Key<S>> &keys, const std::string &variant,
+                           const std::string &what) {
+    std::vector<std::string> own;
+    for (const auto &k : keys)
+        if (variant == k.when)
+            own.push_back(k.name);
+    t.forbid_others(names_of(keys, variant.c_str()),
+                    what + " " + toml_string(variant) + " (its keys: " + join(own, ", ") + ")");
+}
+
+// The wave-flume sections, each after what it depends on (load_scene's order).
+void read_fluid(const Table &root, Scene &s);
+void read_waves(const Table &root, Scene &s);
+void read_porous(const Table &root, Scene &s);
+void read_refine(const Table &root, Scene &s);
+void read_series(const Table &root, Scene &s);
+void check_surface_band(const Table &root, const Scene &s);
+
+} // namespace armour::scene_read
