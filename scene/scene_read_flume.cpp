@@ -168,6 +168,29 @@ double front_travel(const Scene &s, double tp) {
                    group_velocity(tp, s.still_water_depth(), s.gravity.norm());
     return 0.0;
 }
+// A region's name (key `name` of t) becomes an OpenFOAM cellZone or cell
+// set: a word, unique among the regions of its kind (`kind`, as the file
+// names it).
+template <class Region>
+void check_region_name(const Table &t, const std::string &name, const std::vector<Region> &others,
+                       const char *kind) {
+    if (name.empty() || name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                               "0123456789_") != std::string::npos)
+        t.fail("name", "letters, digits and _ only (got " + toml_string(name) + ")");
+    for (const Region &other : others)
+        if (other.name == name)
+            t.fail("name", std::string("a second ") + kind + " named " + toml_string(name));
+}
+
+// The slope wall that key `wall` of t names.
+const SceneWall &slope_wall_named(const Table &t, const Scene &s, const std::string &name) {
+    const auto wall =
+        std::find_if(s.walls.begin(), s.walls.end(), [&](const SceneWall &w) { return w.name == name; });
+    if (wall == s.walls.end() || wall->type != "slope")
+        t.fail("wall", "no [[wall]] of type \"slope\" named " + toml_string(name));
+    return *wall;
+}
+
 } // namespace
 
 namespace scene_read {
@@ -360,21 +383,13 @@ void read_porous(const Table &root, Scene &s) {
         read_keys(t, keys, p, p.type);
         if (!s.fluid)
             t.fail("name", "a porous region is in the fluid: the scene needs a [fluid] table");
-        if (p.name.empty() || p.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
-                                                       "0123456789_") != std::string::npos)
-            t.fail("name", "letters, digits and _ only (got " + toml_string(p.name) + ")");
-        for (const ScenePorous &other : s.porous)
-            if (other.name == p.name)
-                t.fail("name", "a second [[porous]] named " + toml_string(p.name));
+        check_region_name(t, p.name, s.porous, "[[porous]]");
         if (p.type == "slope_layer") {
-            const auto wall = std::find_if(s.walls.begin(), s.walls.end(),
-                                           [&](const SceneWall &w) { return w.name == p.wall; });
-            if (wall == s.walls.end() || wall->type != "slope")
-                t.fail("wall", "no [[wall]] of type \"slope\" named " + toml_string(p.wall));
+            const SceneWall &wall = slope_wall_named(t, s, p.wall);
             // Deeper than the slope is high, the layer holds no cell.
-            if (wall->height <= p.depth)
+            if (wall.height <= p.depth)
                 t.fail("depth", "must be less than wall " + toml_string(p.wall) + "'s height " +
-                                    number_text(wall->height) + " m (got " + number_text(p.depth) + ")");
+                                    number_text(wall.height) + " m (got " + number_text(p.depth) + ")");
         } else {
             check_box(t, p.min, p.max, s);
         }
@@ -425,17 +440,9 @@ void read_refine(const Table &root, Scene &s) {
         t.check(r.level <= 3, "level", "must be in [1, 3]", r.level);
         if (!s.fluid)
             t.fail("name", "a refined region is in the fluid mesh: the scene needs a [fluid] table");
-        if (r.name.empty() || r.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
-                                                       "0123456789_") != std::string::npos)
-            t.fail("name", "letters, digits and _ only (got " + toml_string(r.name) + ")");
-        for (const SceneRefine &other : s.refine)
-            if (other.name == r.name)
-                t.fail("name", "a second [[refine]] named " + toml_string(r.name));
+        check_region_name(t, r.name, s.refine, "[[refine]]");
         if (r.type == "slope_band") {
-            const auto wall = std::find_if(s.walls.begin(), s.walls.end(),
-                                           [&](const SceneWall &w) { return w.name == r.wall; });
-            if (wall == s.walls.end() || wall->type != "slope")
-                t.fail("wall", "no [[wall]] of type \"slope\" named " + toml_string(r.wall));
+            slope_wall_named(t, s, r.wall);
         } else {
             check_box(t, r.min, r.max, s);
         }

@@ -4,6 +4,7 @@
 #include "input_error.h"
 #include "output_folder.h"
 #include "output_folder_rule.h"
+#include "scratch_folder.h"
 
 #include <gtest/gtest.h>
 
@@ -29,14 +30,7 @@ namespace {
 
 class OutputLock : public ::testing::Test {
   protected:
-    void SetUp() override {
-        dir_ =
-            fs::temp_directory_path() /
-            ("armour_lock_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
-             "_" + std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
+    void SetUp() override { dir_ = armour_test::fresh_test_folder("lock"); }
     void TearDown() override { fs::remove_all(dir_); }
     fs::path dir_;
 };

@@ -5,6 +5,7 @@
 #include "input_error.h"
 #include "scene.h"
 #include "scene_keys.h"
+#include "scratch_folder.h"
 
 #include <gtest/gtest.h>
 
@@ -17,7 +18,6 @@
 #include <sstream>
 #include <string>
 #include <tuple>
-#include <unistd.h>
 #include <vector>
 
 namespace fs = std::filesystem;
@@ -177,11 +177,7 @@ std::string replaced(std::string text, const std::string &from, const std::strin
 class SceneFile : public ::testing::Test {
   protected:
     void SetUp() override {
-        dir_ =
-            fs::temp_directory_path() /
-            ("armour_scene_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
-             "_" + std::to_string(::getpid()));
-        fs::remove_all(dir_);
+        dir_ = armour_test::fresh_test_folder("scene");
         fs::create_directories(dir_ / "meshes");
         std::ofstream(dir_ / "meshes" / "unit.stl") << "solid x\nendsolid x\n";
     }

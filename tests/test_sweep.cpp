@@ -5,6 +5,7 @@
 // synthetic damage summaries. The armour binary runs as a separate process,
 // as users run it.
 #include "scene_smoke.h"
+#include "scratch_folder.h"
 
 #include <gtest/gtest.h>
 
@@ -94,14 +95,7 @@ std::vector<Row> read_csv(const fs::path &path) {
 
 class SweepTest : public ::testing::Test {
   protected:
-    void SetUp() override {
-        dir_ =
-            fs::temp_directory_path() /
-            ("armour-sweep-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
-             "-" + std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
+    void SetUp() override { dir_ = armour_test::fresh_test_folder("sweep"); }
     void TearDown() override { fs::remove_all(dir_); }
 
     // The tilt scene over friction 0.3/0.5 x 20/50 spheres per clump (the
