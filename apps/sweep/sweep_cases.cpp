@@ -120,53 +120,124 @@ std::string toml_value_at(const std::string &document, const std::string &key) {
     return sweep_detail::toml_text(*node);
 }
 
+namespace {
+
+// The results table's columns: the [vary] keys in order, then the keys the
+// [[case]] tables add.
+std::vector<std::string> plan_columns(const SweepSpec &spec) {
+    std::vector<std::string> columns;
+    for (const auto &[key, values] : spec.vary)
+        columns.push_back(key);
+    for (const auto &c : spec.cases)
+        for (const auto &kv : c)
+            if (std::find(columns.begin(), columns.end(), kv.first) == columns.end())
+                columns.push_back(kv.first);
+    return columns;
+}
+
+// Each column's name in case ids: the key's last name unless two columns
+// share it, then the whole key with '-' for '.'.
+std::map<std::string, std::string> id_labels(const std::vector<std::string> &columns) {
+    std::map<std::string, int> count;
+    for (const auto &key : columns)
+        ++count[short_label(key)];
+    std::map<std::string, std::string> labels;
+    for (const auto &key : columns) {
+        std::string label = short_label(key);
+        if (count[label] > 1) {
+            label = key;
+            std::replace(label.begin(), label.end(), '.', '-');
+        }
+        labels[key] = label;
+    }
+    return labels;
+}
+
+// The sweep's scene as its file stands: it must load without the sweep's
+// overrides too.
+Scene base_scene(const SweepSpec &spec) {
+    try {
+        return load_scene(spec.scene, {});
+    } catch (const InputError &e) {
+        throw InputError(spec.file + ": key 'scene': " + e.what());
+    }
+}
+
+// The keys a realisation's seed sets: seed_key, or each [[drop]]'s seed.
+std::vector<std::string> seed_keys_of(const SweepSpec &spec, const Scene &base) {
+    if (spec.seeds.empty() || !spec.seed_keys.empty())
+        return spec.seed_keys;
+    std::vector<std::string> keys;
+    for (std::size_t k = 0; k < base.drops.size(); ++k)
+        keys.push_back("drop." + std::to_string(k) + ".seed");
+    if (keys.empty())
+        throw InputError(spec.file + ": key 'seeds': the scene " + spec.scene +
+                         " places nothing at random (no [[drop]]); name the key a seed sets with seed_key");
+    return keys;
+}
+
+// One case of the plan: its overrides (the file's [set], then its point's
+// keys, then its seed) and id.
+SweepCase case_overrides(const SweepSpec &spec, const std::vector<KeyValue> &point,
+                         const std::optional<std::int64_t> &seed, const std::vector<std::string> &seed_keys,
+                         const std::map<std::string, std::string> &labels) {
+    SweepCase c;
+    c.seed = seed;
+    for (const auto &[key, value] : spec.fixed)
+        c.overrides.push_back(key + "=" + value);
+    for (const auto &[key, value] : point) {
+        c.overrides.push_back(key + "=" + value);
+        c.id += (c.id.empty() ? "" : "_") + labels.at(key) + "-" + file_safe(unquoted(value));
+    }
+    if (seed) {
+        for (const auto &key : seed_keys)
+            c.overrides.push_back(key + "=" + std::to_string(*seed));
+        c.id += (c.id.empty() ? "" : "_") + std::string("seed-") + std::to_string(*seed);
+    }
+    if (c.id.empty())
+        c.id = "base";
+    return c;
+}
+
+// The case's scene, resolved and checked, with what the sweep compares
+// across runs (hashes) and reports (the columns' values).
+void resolve_case(const SweepSpec &spec, const std::vector<std::string> &columns, SweepCase &c,
+                  std::string &analysis) {
+    Scene scene;
+    try {
+        scene = load_scene(spec.scene, c.overrides);
+    } catch (const InputError &e) {
+        throw InputError(spec.file + ": case " + c.id + ": " + e.what());
+    }
+    if (spec.np > 0 && !scene.fluid)
+        throw InputError(spec.file + ": key 'run.np': case " + c.id +
+                         ": only for scenes with [fluid] (MPI ranks of interFoam)");
+    if (analysis.empty())
+        analysis = scene.analysis;
+    c.scene_text = resolved_scene_toml(scene);
+    c.scene_hash = scene_hash(c.scene_text);
+    c.earlier_scene_hash = fnv1a_hex(c.scene_text);
+    c.resume_hash = fnv1a_hex(resume_key_text(scene));
+    c.duration = scene.duration;
+    for (const auto &key : columns)
+        c.column_values.push_back(toml_value_at(c.scene_text, key));
+}
+
+} // namespace
+
 SweepPlan plan_sweep(const SweepSpec &spec) {
     SweepPlan plan;
     plan.spec = spec;
-    std::vector<std::vector<KeyValue>> combos = product(spec);
+    plan.columns = plan_columns(spec);
+    const std::map<std::string, std::string> labels = id_labels(plan.columns);
+    const Scene base = base_scene(spec); // refused here if the scene file alone does not load
+    const std::vector<std::string> seed_keys = seed_keys_of(spec, base);
+    std::vector<std::vector<KeyValue>> points = product(spec);
     for (const auto &c : spec.cases)
-        combos.push_back(c);
-    for (const auto &[key, values] : spec.vary)
-        plan.columns.push_back(key);
-    for (const auto &c : spec.cases)
-        for (const auto &kv : c)
-            if (std::find(plan.columns.begin(), plan.columns.end(), kv.first) == plan.columns.end())
-                plan.columns.push_back(kv.first);
-
-    // Ids use a key's last name unless two varied keys share it.
-    std::map<std::string, int> label_count;
-    for (const auto &key : plan.columns)
-        ++label_count[short_label(key)];
-    auto label = [&](const std::string &key) {
-        const std::string s = short_label(key);
-        if (label_count[s] == 1)
-            return s;
-        std::string full = key;
-        std::replace(full.begin(), full.end(), '.', '-');
-        return full;
-    };
-
-    const Scene base = [&] {
-        try {
-            return load_scene(spec.scene, {});
-        } catch (const InputError &e) {
-            throw InputError(spec.file + ": key 'scene': " + e.what());
-        }
-    }();
-    std::vector<std::string> seed_keys = spec.seed_keys;
-    if (!spec.seeds.empty() && seed_keys.empty()) {
-        for (std::size_t k = 0; k < base.drops.size(); ++k)
-            seed_keys.push_back("drop." + std::to_string(k) + ".seed");
-        if (seed_keys.empty())
-            throw InputError(
-                spec.file + ": key 'seeds': the scene " + spec.scene +
-                " places nothing at random (no [[drop]]); name the key a seed sets with seed_key");
-    }
-    if (combos.empty())
-        combos.emplace_back(); // seeds alone
-    std::vector<std::optional<std::int64_t>> seeds;
-    for (const auto s : spec.seeds)
-        seeds.emplace_back(s);
+        points.push_back(c);
+    if (points.empty())
+        points.emplace_back(); // seeds alone
+    std::vector<std::optional<std::int64_t>> seeds(spec.seeds.begin(), spec.seeds.end());
     if (seeds.empty())
         seeds.emplace_back();
 
@@ -175,42 +246,11 @@ SweepPlan plan_sweep(const SweepSpec &spec) {
     // already spans the whole curve.
     std::set<std::string> ids;
     for (const auto &seed : seeds)
-        for (const auto &combo : combos) {
-            SweepCase c;
-            c.seed = seed;
-            for (const auto &[key, value] : spec.fixed)
-                c.overrides.push_back(key + "=" + value);
-            for (const auto &[key, value] : combo) {
-                c.overrides.push_back(key + "=" + value);
-                c.id += (c.id.empty() ? "" : "_") + label(key) + "-" + file_safe(unquoted(value));
-            }
-            if (seed) {
-                for (const auto &key : seed_keys)
-                    c.overrides.push_back(key + "=" + std::to_string(*seed));
-                c.id += (c.id.empty() ? "" : "_") + std::string("seed-") + std::to_string(*seed);
-            }
-            if (c.id.empty())
-                c.id = "base";
+        for (const auto &point : points) {
+            SweepCase c = case_overrides(spec, point, seed, seed_keys, labels);
             if (!ids.insert(c.id).second)
                 throw InputError(spec.file + ": case " + c.id + ": two cases have the same values");
-            Scene scene;
-            try {
-                scene = load_scene(spec.scene, c.overrides);
-            } catch (const InputError &e) {
-                throw InputError(spec.file + ": case " + c.id + ": " + e.what());
-            }
-            if (spec.np > 0 && !scene.fluid)
-                throw InputError(spec.file + ": key 'run.np': case " + c.id +
-                                 ": only for scenes with [fluid] (MPI ranks of interFoam)");
-            if (plan.analysis.empty())
-                plan.analysis = scene.analysis;
-            c.scene_text = resolved_scene_toml(scene);
-            c.scene_hash = scene_hash(c.scene_text);
-            c.earlier_scene_hash = fnv1a_hex(c.scene_text);
-            c.resume_hash = fnv1a_hex(resume_key_text(scene));
-            c.duration = scene.duration;
-            for (const auto &key : plan.columns)
-                c.column_values.push_back(toml_value_at(c.scene_text, key));
+            resolve_case(spec, plan.columns, c, plan.analysis);
             plan.cases.push_back(std::move(c));
         }
     return plan;

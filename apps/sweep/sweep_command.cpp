@@ -359,20 +359,10 @@ CLI::App *add_sweep_command(CLI::App &app, SweepRequest &r) {
     return cmd;
 }
 
-int run_sweep(const SweepRequest &r) {
-    if (!r.run_case.empty()) {
-        const int status = run_case(fs::absolute(r.run_case).lexically_normal(), self_exe());
-        if (status == kCaseLocked)
-            std::fprintf(stderr, "armour: %s: the case is running in another process\n", r.run_case.c_str());
-        return status;
-    }
-    if (!r.collect.empty()) {
-        if (!r.sweep_file.empty() || !r.out.empty() || !r.overrides.empty() || !r.kept.empty() ||
-            !r.cases.empty())
-            throw InputError("--collect: takes the sweep's folder alone (no SWEEP.toml, no --out, no --set, "
-                             "no --kept, no --cases)");
-        return collect(r);
-    }
+namespace {
+
+// The options of a sweep (not --collect, not --run-case) against each other.
+void check_sweep_options(const SweepRequest &r) {
     if (r.sweep_file.empty())
         throw InputError("sweep: a sweep file is required (or --collect DIR)");
     if (r.out.empty())
@@ -387,6 +377,38 @@ int run_sweep(const SweepRequest &r) {
         throw InputError(
             "--jobs: only with --executor local (a Slurm array runs [slurm] max_concurrent cases "
             "at once)");
+}
+
+// A Slurm sweep needs Slurm, and an --out whose array is not still queued
+// or running (a second array would run the same cases).
+void check_slurm_out(const fs::path &out, bool dry_run) {
+    check_slurm_reachable();
+    if (dry_run || !fs::exists(out / "sweep.json"))
+        return;
+    const std::string job = slurm_job_in_queue(out);
+    if (!job.empty())
+        throw InputError("--out " + out.string() + ": its Slurm job " + job +
+                         " is still queued or running; wait for it or `armour sweep --collect " +
+                         out.string() + "`");
+}
+
+} // namespace
+
+int run_sweep(const SweepRequest &r) {
+    if (!r.run_case.empty()) {
+        const int status = run_case(fs::absolute(r.run_case).lexically_normal(), self_exe());
+        if (status == kCaseLocked)
+            std::fprintf(stderr, "armour: %s: the case is running in another process\n", r.run_case.c_str());
+        return status;
+    }
+    if (!r.collect.empty()) {
+        if (!r.sweep_file.empty() || !r.out.empty() || !r.overrides.empty() || !r.kept.empty() ||
+            !r.cases.empty())
+            throw InputError("--collect: takes the sweep's folder alone (no SWEEP.toml, no --out, no --set, "
+                             "no --kept, no --cases)");
+        return collect(r);
+    }
+    check_sweep_options(r);
 
     SweepContext ctx;
     SweepSpec spec = read_sweep_file(r.sweep_file);
@@ -398,16 +420,8 @@ int run_sweep(const SweepRequest &r) {
     ctx.armour_exe = self_exe();
     const OutputFolder folder(ctx.out, "armour sweep",
                               OutputFolder::Mode::streaming); // refuses foreign folders
-    if (r.executor == "slurm") {
-        check_slurm_reachable();
-        if (!r.dry_run && fs::exists(ctx.out / "sweep.json")) {
-            const std::string job = slurm_job_in_queue(ctx.out);
-            if (!job.empty())
-                throw InputError("--out " + ctx.out.string() + ": its Slurm job " + job +
-                                 " is still queued or running; wait for it or `armour sweep --collect " +
-                                 ctx.out.string() + "`");
-        }
-    }
+    if (r.executor == "slurm")
+        check_slurm_out(ctx.out, r.dry_run);
 
     const SweepTable before = read_sweep_table(ctx.out, ctx.plan);
     const std::set<std::size_t> from_kept =
