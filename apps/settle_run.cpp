@@ -164,6 +164,74 @@ Scene settled_scene(const Scene &scene, std::vector<SceneBody> bodies) {
     return settled;
 }
 
+namespace {
+
+// Says on stderr what the settle does (and how the settle's cubes differ
+// from the run's), before the settle's own log lines.
+void announce_settle(const Scene &scene, const Scene &dry, std::size_t units, const fs::path &dir) {
+    const SceneFluid &fluid = *scene.fluid;
+    std::fprintf(stderr,
+                 "run: settling %zu units in the DEM under still water (level %g m) for %g s "
+                 "(fluid.settle_time)%s -> %s\n",
+                 units, fluid.water_level, fluid.settle_time,
+                 fluid.settle_friction
+                     ? (", friction " + number_text(*fluid.settle_friction) + " between units").c_str()
+                     : "",
+                 dir.c_str());
+    for (std::size_t k = 0; k < dry.units.size(); ++k)
+        if (dry.units[k].size != scene.units[k].size)
+            std::fprintf(
+                stderr,
+                "run: the settle's %s cubes '%s' are grown %.4g x (edge %.4g m) so that the run's clumps "
+                "start inside them\n",
+                dry.engine.c_str(), dry.units[k].name.c_str(), dry.units[k].size / scene.units[k].size,
+                dry.units[k].size);
+    std::fflush(nullptr);
+}
+
+// The settle itself (in the forked child): the DEM run of `dry` under the
+// still water into `dir`, then the settled scene (file `settled_name`) and
+// settled.json.
+void run_settle(const RunRequest &r, const Scene &scene, const Scene &dry, const SceneSetup &setup,
+                const fs::path &dir, const std::string &settled_name) {
+    const SceneFluid &fluid = *scene.fluid;
+    OutputFolder settle_folder(dir, "armour run", OutputFolder::Mode::streaming);
+    std::vector<BodyState> states;
+    StillWater water;
+    water.level = fluid.water_level;
+    water.density = fluid.fluid_density;
+    water.update_interval = std::min(fluid.max_time_step, dry.output_interval);
+    SceneSetup dry_setup = build_scene(dry, r.cache.empty() ? default_cache_dir() : r.cache, false);
+    if (dry_setup.bodies.size() != setup.bodies.size())
+        throw InputError("fluid.settle_time: the settle placed " + std::to_string(dry_setup.bodies.size()) +
+                         " units, the scene " + std::to_string(setup.bodies.size()));
+    run_dem(settle_folder, dry, dry_setup, &states, &water);
+
+    std::vector<SceneBody> bodies = bodies_at_rest(scene, setup, states);
+    double speed = 0.0, displacement = 0.0;
+    for (std::size_t i = 0; i < states.size(); ++i) {
+        speed = std::max(speed, states[i].velocity.norm());
+        displacement =
+            std::max(displacement, (states[i].pose.position - setup.bodies[i].pose.position).norm());
+    }
+    write_text_file(settle_folder.claim(settled_name),
+                    resolved_scene_toml(settled_scene(scene, std::move(bodies))));
+    write_text_file(
+        settle_folder.claim("settled.json"),
+        json{{"settle_time", fluid.settle_time},
+             {"settle_friction", fluid.settle_friction ? json(*fluid.settle_friction) : json(nullptr)},
+             {"water_level", water.level},
+             {"water_density", water.density},
+             {"max_speed_at_end", speed},
+             {"max_displacement", displacement},
+             {"units", states.size()},
+             {"si_units", {{"speed", "m/s"}, {"lengths", "m"}, {"water_density", "kg/m^3"}}}}
+                .dump(2) +
+            "\n");
+}
+
+} // namespace
+
 // Settles a coupled scene's units in the DEM for fluid.settle_time, under
 // the buoyancy of the scene's still water (without it the contacts, loaded
 // by the dry weight, would relax in the first coupled steps as if the water
@@ -179,64 +247,14 @@ Scene settle_before_coupling(const RunRequest &r, OutputFolder &folder, const Sc
     const Scene dry = settle_scene(scene, setup); // refused here, before anything is written
     const fs::path dir = folder.claim("settle");
     const fs::path settled_file = dir / "scene.settled.toml";
-    std::fprintf(stderr,
-                 "run: settling %zu units in the DEM under still water (level %g m) for %g s "
-                 "(fluid.settle_time)%s -> %s\n",
-                 setup.bodies.size(), fluid.water_level, fluid.settle_time,
-                 fluid.settle_friction
-                     ? (", friction " + number_text(*fluid.settle_friction) + " between units").c_str()
-                     : "",
-                 dir.c_str());
-    for (std::size_t k = 0; k < dry.units.size(); ++k)
-        if (dry.units[k].size != scene.units[k].size)
-            std::fprintf(
-                stderr,
-                "run: the settle's %s cubes '%s' are grown %.4g x (edge %.4g m) so that the run's clumps "
-                "start inside them\n",
-                dry.engine.c_str(), dry.units[k].name.c_str(), dry.units[k].size / scene.units[k].size,
-                dry.units[k].size);
-    std::fflush(nullptr);
+    announce_settle(scene, dry, setup.bodies.size(), dir);
     const pid_t pid = ::fork();
     if (pid < 0)
         throw InputError("fluid.settle_time: cannot start the settle run (fork failed)");
     if (pid == 0) {
         int status = 1;
         try {
-            OutputFolder settle_folder(dir, "armour run", OutputFolder::Mode::streaming);
-            std::vector<BodyState> states;
-            StillWater water;
-            water.level = fluid.water_level;
-            water.density = fluid.fluid_density;
-            water.update_interval = std::min(fluid.max_time_step, dry.output_interval);
-            SceneSetup dry_setup = build_scene(dry, r.cache.empty() ? default_cache_dir() : r.cache, false);
-            if (dry_setup.bodies.size() != setup.bodies.size())
-                throw InputError("fluid.settle_time: the settle placed " +
-                                 std::to_string(dry_setup.bodies.size()) + " units, the scene " +
-                                 std::to_string(setup.bodies.size()));
-            run_dem(settle_folder, dry, dry_setup, &states, &water);
-
-            std::vector<SceneBody> bodies = bodies_at_rest(scene, setup, states);
-            double speed = 0.0, displacement = 0.0;
-            for (std::size_t i = 0; i < states.size(); ++i) {
-                speed = std::max(speed, states[i].velocity.norm());
-                displacement =
-                    std::max(displacement, (states[i].pose.position - setup.bodies[i].pose.position).norm());
-            }
-            write_text_file(settle_folder.claim(settled_file.filename().string()),
-                            resolved_scene_toml(settled_scene(scene, std::move(bodies))));
-            write_text_file(
-                settle_folder.claim("settled.json"),
-                json{
-                    {"settle_time", fluid.settle_time},
-                    {"settle_friction", fluid.settle_friction ? json(*fluid.settle_friction) : json(nullptr)},
-                    {"water_level", water.level},
-                    {"water_density", water.density},
-                    {"max_speed_at_end", speed},
-                    {"max_displacement", displacement},
-                    {"units", states.size()},
-                    {"si_units", {{"speed", "m/s"}, {"lengths", "m"}, {"water_density", "kg/m^3"}}}}
-                        .dump(2) +
-                    "\n");
+            run_settle(r, scene, dry, setup, dir, settled_file.filename().string());
             status = 0;
         } catch (const std::exception &e) {
             std::fprintf(stderr, "armour: settle run: %s\n", e.what());
