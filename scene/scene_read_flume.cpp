@@ -124,6 +124,7 @@ void check_fluid_steps(const Table &t, const Scene &s, SceneFluid &f) {
     t.check(f.write_interval <= s.duration, "write_interval",
             "must be in (0, run.duration = " + number_text(s.duration) + "] s", f.write_interval);
 }
+
 // Why an irregular train of `hs` (m) and `tp` (s) cannot run at `depth`:
 // the key ("Tp" or "Hs") and the reason; an empty key when it can.
 struct KeyRefusal {
@@ -168,6 +169,7 @@ double front_travel(const Scene &s, double tp) {
                    group_velocity(tp, s.still_water_depth(), s.gravity.norm());
     return 0.0;
 }
+
 // A region's name (key `name` of t) becomes an OpenFOAM cellZone or cell
 // set: a word, unique among the regions of its kind (`kind`, as the file
 // names it).
@@ -228,6 +230,7 @@ void read_fluid(const Table &root, Scene &s) {
     check_fluid_steps(t, s, f);
     s.fluid = f;
 }
+
 // [waves] after [fluid] (the depth is fluid.water_level - run.domain_min.z):
 // the wave must be one the chosen theory describes and must not break at
 // the inlet, and the gauge array must lie in the flume.
@@ -335,6 +338,7 @@ void read_series(const Table &root, Scene &s) {
         s.series.push_back(step);
     }
 }
+
 // A graded z axis holds all along the flume: the refined box's z range is the
 // free surface's band everywhere, so it must hold the largest wave's crest
 // and trough (+- its height: a bound, not a profile), except where it reaches
@@ -371,6 +375,7 @@ void check_surface_band(const Table &root, const Scene &s) {
                      : "") +
                 ": the z grading holds all along the flume, and coarse cells there damp the waves");
 }
+
 // [[porous]] after [fluid] and the walls: boxes inside the fluid mesh, or
 // layers under a slope wall; unique names (each is the cellZone porous_NAME).
 void read_porous(const Table &root, Scene &s) {
@@ -473,6 +478,7 @@ void read_refine(const Table &root, Scene &s) {
                        std::to_string(f.cells[1]) + ", " + std::to_string(f.cells[2]) +
                        "]); or fluid.mesh = \"graded\"");
 }
+
 } // namespace scene_read
 
 } // namespace armour
