@@ -49,7 +49,7 @@ struct Range {
 enum class Need {
     Optional, // absent: the struct's default
     Required, // absent: "missing required key"
-    Custom,   // read by scene_read.cpp itself (defaults or presence depend on other keys)
+    Custom,   // read by the reader itself, scene_read*.cpp (defaults or presence depend on other keys)
 };
 
 template <class S>

@@ -28,40 +28,13 @@ namespace armour {
 using namespace scene_detail;
 using namespace scene_read;
 
-namespace scene_read {
+namespace {
+
+namespace fs = std::filesystem;
 
 bool inside(const Eigen::Vector3d &p, const Eigen::Vector3d &lo, const Eigen::Vector3d &hi) {
     return (p.array() >= lo.array()).all() && (p.array() <= hi.array()).all();
 }
-
-std::string unit_of(const Table &t, const Scene &s, const std::string &u) {
-    std::vector<std::string> names;
-    for (const auto &unit : s.units)
-        names.push_back(unit.name);
-    if (std::find(names.begin(), names.end(), u) == names.end())
-        t.fail("unit",
-               "no [[unit]] named " + toml_string(u) +
-                   (names.empty() ? " (the scene has no [[unit]])" : " (known: " + choices(names) + ")"));
-    return u;
-}
-
-void check_box(const Table &t, const Eigen::Vector3d &min, const Eigen::Vector3d &max, const Scene &s) {
-    const std::string domain = "run.domain_min " + vector_text(s.domain_min) + " .. run.domain_max " +
-                               vector_text(s.domain_max) + " m";
-    if (!(max.array() > min.array()).all())
-        t.fail("max", "must exceed min " + vector_text(min) + " m in every component (got " +
-                          vector_text(max) + ")");
-    if (!inside(min, s.domain_min, s.domain_max))
-        t.fail("min", "must lie inside " + domain + " (got " + vector_text(min) + ")");
-    if (!inside(max, s.domain_min, s.domain_max))
-        t.fail("max", "must lie inside " + domain + " (got " + vector_text(max) + ")");
-}
-
-} // namespace scene_read
-
-namespace {
-
-namespace fs = std::filesystem;
 
 // Analyses that measure the fluid's load or its effect: they need a [fluid].
 bool measures_fluid(const std::string &kind) {
@@ -224,6 +197,17 @@ void read_walls(const Table &root, Scene &s) {
     }
 }
 
+std::string unit_of(const Table &t, const Scene &s, const std::string &u) {
+    std::vector<std::string> names;
+    for (const auto &unit : s.units)
+        names.push_back(unit.name);
+    if (std::find(names.begin(), names.end(), u) == names.end())
+        t.fail("unit",
+               "no [[unit]] named " + toml_string(u) +
+                   (names.empty() ? " (the scene has no [[unit]])" : " (known: " + choices(names) + ")"));
+    return u;
+}
+
 void read_placements(const Table &root, Scene &s) {
     const std::string domain = "run.domain_min " + vector_text(s.domain_min) + " .. run.domain_max " +
                                vector_text(s.domain_max) + " m";
@@ -298,6 +282,22 @@ std::string read_text(const std::string &path) {
 }
 
 } // namespace
+
+namespace scene_read {
+
+void check_box(const Table &t, const Eigen::Vector3d &min, const Eigen::Vector3d &max, const Scene &s) {
+    const std::string domain = "run.domain_min " + vector_text(s.domain_min) + " .. run.domain_max " +
+                               vector_text(s.domain_max) + " m";
+    if (!(max.array() > min.array()).all())
+        t.fail("max", "must exceed min " + vector_text(min) + " m in every component (got " +
+                          vector_text(max) + ")");
+    if (!inside(min, s.domain_min, s.domain_max))
+        t.fail("min", "must lie inside " + domain + " (got " + vector_text(min) + ")");
+    if (!inside(max, s.domain_min, s.domain_max))
+        t.fail("max", "must lie inside " + domain + " (got " + vector_text(max) + ")");
+}
+
+} // namespace scene_read
 
 Scene load_scene(const std::string &path, const std::vector<std::string> &overrides) {
     const std::string text = read_text(path);

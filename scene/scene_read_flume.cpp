@@ -3,7 +3,6 @@
 // the scene, and the order the sections are read in: scene_read.cpp).
 #include "scene_read_parts.h"
 
-#include "input_error.h"
 #include "jonswap.h"
 #include "wave_theory.h"
 
@@ -447,7 +446,7 @@ void read_refine(const Table &root, Scene &s) {
             t.fail("name", "a refined region is in the fluid mesh: the scene needs a [fluid] table");
         check_region_name(t, r.name, s.refine, "[[refine]]");
         if (r.type == "slope_band") {
-            slope_wall_named(t, s, r.wall);
+            slope_wall_named(t, s, r.wall); // refuses any other wall
         } else {
             check_box(t, r.min, r.max, s);
         }

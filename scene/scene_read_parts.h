@@ -14,13 +14,7 @@
 
 namespace armour::scene_read {
 
-// The key table and its reader (Table, Key, names_of, toml_string, join).
-using namespace scene_detail;
-
-bool inside(const Eigen::Vector3d &p, const Eigen::Vector3d &lo, const Eigen::Vector3d &hi);
-
-// The [[unit]] a table's key `unit` names (u), or the table's error naming the known ones.
-std::string unit_of(const Table &t, const Scene &s, const std::string &u);
+using scene_detail::Table;
 
 // The keys min and max of table t: a box inside the run's domain.
 void check_box(const Table &t, const Eigen::Vector3d &min, const Eigen::Vector3d &max, const Scene &s);
@@ -33,8 +27,8 @@ void forbid_other_variants(const Table &t, const std::vector<Key<S>> &keys, cons
     for (const auto &k : keys)
         if (variant == k.when)
             own.push_back(k.name);
-    t.forbid_others(names_of(keys, variant.c_str()),
-                    what + " " + toml_string(variant) + " (its keys: " + join(own, ", ") + ")");
+    t.forbid_others(scene_detail::names_of(keys, variant.c_str()),
+                    what + " " + toml_string(variant) + " (its keys: " + scene_detail::join(own, ", ") + ")");
 }
 
 // The wave-flume sections, each after what it depends on (load_scene's order).

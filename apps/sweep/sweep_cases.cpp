@@ -176,11 +176,11 @@ std::vector<std::string> seed_keys_of(const SweepSpec &spec, const Scene &base) 
     return keys;
 }
 
-// One case of the plan: its overrides (the file's [set], then its point's
+// One case of the plan, not yet resolved: its seed, overrides (the file's [set], then its point's
 // keys, then its seed) and id.
-SweepCase case_overrides(const SweepSpec &spec, const std::vector<KeyValue> &point,
-                         const std::optional<std::int64_t> &seed, const std::vector<std::string> &seed_keys,
-                         const std::map<std::string, std::string> &labels) {
+SweepCase make_case(const SweepSpec &spec, const std::vector<KeyValue> &point,
+                    const std::optional<std::int64_t> &seed, const std::vector<std::string> &seed_keys,
+                    const std::map<std::string, std::string> &labels) {
     SweepCase c;
     c.seed = seed;
     for (const auto &[key, value] : spec.fixed)
@@ -247,7 +247,7 @@ SweepPlan plan_sweep(const SweepSpec &spec) {
     std::set<std::string> ids;
     for (const auto &seed : seeds)
         for (const auto &point : points) {
-            SweepCase c = case_overrides(spec, point, seed, seed_keys, labels);
+            SweepCase c = make_case(spec, point, seed, seed_keys, labels);
             if (!ids.insert(c.id).second)
                 throw InputError(spec.file + ": case " + c.id + ": two cases have the same values");
             resolve_case(spec, plan.columns, c, plan.analysis);
