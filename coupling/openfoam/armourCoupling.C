@@ -349,54 +349,73 @@ void Foam::fv::armourCoupling::couple
     const volVectorField& U
 )
 {
+    ++armour_->times.steps;
+    const armourFoam::stepLoads loads = exchange(rho, U);
+    record(loads);
+    checkpoint();
+    logLoads(loads);
+}
+
+
+armourFoam::stepLoads Foam::fv::armourCoupling::exchange
+(
+    const volScalarField& rho,
+    const volVectorField& U
+)
+{
+    armourFoam::bodyExchange& bodies = *armour_->bodies;
+    // Frozen (the fluid.frozen benchmark reference): units held, the mask
+    // imposed once, no loads and no engine step.
+    if (armour_->times.frozen)
+    {
+        return armourFoam::stepLoads::zero(bodies.names().size());
+    }
+
     using clock = std::chrono::steady_clock;
     const auto seconds = [](clock::time_point a, clock::time_point b)
     {
         return std::chrono::duration<double>(b - a).count();
     };
-    armourFoam::bodyExchange& bodies = *armour_->bodies;
     armourFoam::couplingTimes& times = armour_->times;
-    const Time& runTime = mesh_.time();
-    const clock::time_point t0 = clock::now();
-    ++times.steps;
-
-    // Frozen (the fluid.frozen benchmark reference): units held, the mask
-    // imposed once, no loads and no engine step.
-    armourFoam::stepLoads loads =
-        armourFoam::stepLoads::zero(bodies.names().size());
-    if (!times.frozen)
+    try
     {
-        try
+        const clock::time_point t0 = clock::now();
+        // Loads from the fields at the start of the step, with the mask they
+        // were computed with.
+        armourFoam::stepLoads loads = bodies.sumLoads
+        (
+            armour_->density.compute(mesh_, rho, U, bodies.body()),
+            rho,
+            U,
+            chi_,
+            UBody_,
+            penalty_
+        );
+        const clock::time_point t1 = clock::now();
+        bodies.advance(loads.loads, mesh_.time().deltaTValue());
+        const clock::time_point t2 = clock::now();
+        updateFields();
+        if (armour_->mirrorInterior)
         {
-            // Loads from the fields at the start of the step, with the
-            // mask they were computed with.
-            loads = bodies.sumLoads
-            (
-                armour_->density.compute(mesh_, rho, U, bodies.body()),
-                rho,
-                U,
-                chi_,
-                UBody_,
-                penalty_
-            );
-            const clock::time_point t1 = clock::now();
-            bodies.advance(loads.loads, runTime.deltaTValue());
-            const clock::time_point t2 = clock::now();
-            updateFields();
-            if (armour_->mirrorInterior)
-            {
-                mirrorInterior();
-            }
-            times.loadSeconds += seconds(t0, t1);
-            times.demSeconds += seconds(t1, t2);
-            times.maskSeconds += seconds(t2, clock::now());
+            mirrorInterior();
         }
-        catch (const std::exception& err)
-        {
-            FatalErrorInFunction << "armour: " << err.what() << exit(FatalError);
-        }
+        times.loadSeconds += seconds(t0, t1);
+        times.demSeconds += seconds(t1, t2);
+        times.maskSeconds += seconds(t2, clock::now());
+        return loads;
     }
+    catch (const std::exception& err)
+    {
+        FatalErrorInFunction << "armour: " << err.what() << exit(FatalError);
+    }
+    return armourFoam::stepLoads::zero(bodies.names().size());
+}
 
+
+void Foam::fv::armourCoupling::record(const armourFoam::stepLoads& loads)
+{
+    armourFoam::bodyExchange& bodies = *armour_->bodies;
+    const Time& runTime = mesh_.time();
     const double t = runTime.value();
     if (armour_->recording->due(runTime))
     {
@@ -408,7 +427,7 @@ void Foam::fv::armourCoupling::couple
         }
         try
         {
-            armour_->recording->record(t, bodies, loads, water, times);
+            armour_->recording->record(t, bodies, loads, water, armour_->times);
         }
         catch (const std::exception& err)
         {
@@ -416,17 +435,21 @@ void Foam::fv::armourCoupling::couple
         }
     }
     armour_->recording->csvRow(t, bodies, loads);
+}
 
+
+void Foam::fv::armourCoupling::checkpoint()
+{
     try
     {
         // The checkpoint asks OpenFOAM for a one-shot write of the fields
         // (Time::writeOnce), which the option's const view of Time hides.
         const bool saved = armour_->checkpoints->step
         (
-            const_cast<Time&>(runTime),
-            bodies,
+            const_cast<Time&>(mesh_.time()),
+            *armour_->bodies,
             *armour_->recording,
-            times
+            armour_->times
         );
         if (saved)
         {
@@ -437,10 +460,18 @@ void Foam::fv::armourCoupling::couple
     {
         FatalErrorInFunction << "armour: " << err.what() << exit(FatalError);
     }
+}
 
+
+void Foam::fv::armourCoupling::logLoads
+(
+    const armourFoam::stepLoads& loads
+) const
+{
     // A layer of 100 units would write ~18 kB of log a step: 16 GB in a
     // 1000-wave run at the stability scene's 1.5 ms step. bodies.h5 holds
     // every body's loads.
+    const armourFoam::bodyExchange& bodies = *armour_->bodies;
     if (log && std::size_t(bodies.names().size()) <= maxLoggedBodies)
     {
         forAll(bodies.names(), k)
