@@ -12,7 +12,9 @@ Description
     (the sum of units_displaced_van_der_meer), with the Poisson probability of
     a total this low or lower if the formula's count were the mean. What it
     answers: does a model choice (the clump, the mesh, the engine) move the
-    damage, and toward the formula or away.
+    damage, and toward the formula or away. And how widely the realisations
+    scatter about the formula's counts: Pearson's chi-square over them against
+    the scatter of independent units (Poisson), with the chance of one as wide.
 
     Then the gap as one number: the factor f such that the curve's counts are
     Van der Meer's at Ns / f (each run's expected count from the formula at its
@@ -72,6 +74,37 @@ def poisson_cdf(k, mean):
         term *= mean / i
         total += term
     return total
+
+
+def chi2_tail(chi2, dof):
+    """P(X >= chi2) for X chi-square with dof degrees of freedom (the series of the lower gamma)."""
+    a, x = dof / 2.0, chi2 / 2.0
+    if x <= 0:
+        return 1.0
+    term = total = 1.0 / a
+    i = 0
+    while term > 1e-16 * total:
+        i += 1
+        term *= x / (a + i)
+        total += term
+    return max(0.0, 1.0 - math.exp(-x + a * math.log(x) - math.lgamma(a)) * total)
+
+
+def print_spread(rows):
+    """How widely the counts scatter about the formula's, against independent units (Poisson).
+
+    Pearson's chi-square, sum of (count - expected)^2 / expected over the
+    realisations, has as many degrees of freedom as realisations when the
+    formula's counts are the means: chi2 / n near 1 is a Poisson scatter, well
+    above 1 counts that come in groups (or a formula wrong case by case).
+    """
+    terms = [(float(r["units_displaced"]) - float(r["units_displaced_van_der_meer"])) ** 2
+             / float(r["units_displaced_van_der_meer"])
+             for r in rows if float(r["units_displaced_van_der_meer"]) > 0]
+    if terms:
+        chi2 = sum(terms)
+        print(f"  spread about the formula: chi2 {chi2:.2f} over {len(terms)} realisations, "
+              f"{chi2 / len(terms):.2f} x independent units' (P {chi2_tail(chi2, len(terms)):.2g} of one this wide)")
 
 
 def ns_factor(rows):
@@ -155,6 +188,7 @@ def main():
             print(f"  {varied or 'all'} {value}: Ns {ns[0]:.2f}  {shown} / {vdm:.1f} "
                   f"(P {poisson_cdf(shown, vdm):.2g})  over {len(g)} realisations")
         print(f"  all: {int(total)} / {expected:.1f} (P {poisson_cdf(int(total), expected):.2g})")
+        print_spread(rows)
         print_ns_factor("all", rows)
     if args.pool:
         print(f"{' + '.join(labels)}, pooled:")

@@ -800,7 +800,8 @@ TEST_F(SweepTest, ReportDrawsDamageAgainstVanDerMeerAndHudson) {
 
 // Two kept curves side by side (studies/compare_curves.py): each curve's
 // units displaced per point and in all against Van der Meer's expected count,
-// with the Poisson chance of so few; a chart; bad input is one error line.
+// with the Poisson chance of so few, and their spread about it; a chart; bad
+// input is one error line.
 TEST_F(SweepTest, ComparedCurvesCountEachCurvesUnitsAgainstVanDerMeer) {
     const std::string header = "case,unit.0.density,seed,status,Ns,N_od,units_displaced,"
                                "units_displaced_van_der_meer,waves.waves,s_om\n";
@@ -825,6 +826,17 @@ TEST_F(SweepTest, ComparedCurvesCountEachCurvesUnitsAgainstVanDerMeer) {
         << r.output;
     EXPECT_NE(r.output.find("all: 2 / 5.0 (P 0.12)"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("all: 4 / 4.5 (P 0.53)"), std::string::npos) << r.output;
+    // The spread about the formula, Pearson's chi-square: A (0 - 0.5)^2 / 0.5 + (1 - 0.5)^2 / 0.5 +
+    // (1 - 4)^2 / 4 = 3.25 over 3 realisations, P(chi2_3 >= 3.25) = erfc(sqrt(1.625)) +
+    // sqrt(6.5 / pi) e^-1.625 = 0.355; B 0.5 over 2, P(chi2_2 >= 0.5) = e^-0.25 = 0.78.
+    EXPECT_NE(r.output.find("spread about the formula: chi2 3.25 over 3 realisations, 1.08 x independent "
+                            "units' (P 0.35 of one this wide)"),
+              std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("spread about the formula: chi2 0.50 over 2 realisations, 0.25 x independent "
+                            "units' (P 0.78 of one this wide)"),
+              std::string::npos)
+        << r.output;
 
     const Result bad = run(script + (dir_ / "missing").string() + " --out " + (dir_ / "d.png").string());
     EXPECT_EQ(bad.status, 2) << bad.output;
