@@ -77,17 +77,22 @@ def poisson_cdf(k, mean):
 
 
 def chi2_tail(chi2, dof):
-    """P(X >= chi2) for X chi-square with dof degrees of freedom (the series of the lower gamma)."""
+    """P(X >= chi2) for X chi-square with dof degrees of freedom.
+
+    1 - P(a, x), a = dof / 2, x = chi2 / 2, with the lower gamma's series
+    P(a, x) = sum over n >= 0 of e^-x x^(a+n) / Gamma(a+n+1): each term is at
+    most 1 (taken through its logarithm), so no sum overflows however wide.
+    """
     a, x = dof / 2.0, chi2 / 2.0
     if x <= 0:
         return 1.0
-    term = total = 1.0 / a
-    i = 0
-    while term > 1e-16 * total:
-        i += 1
-        term *= x / (a + i)
-        total += term
-    return max(0.0, 1.0 - math.exp(-x + a * math.log(x) - math.lgamma(a)) * total)
+    lower, n = 0.0, 0
+    while True:
+        term = math.exp(-x + (a + n) * math.log(x) - math.lgamma(a + n + 1))
+        lower += term
+        n += 1
+        if a + n > x and term < 1e-17:
+            return max(0.0, 1.0 - lower)
 
 
 def print_spread(rows):

@@ -408,7 +408,7 @@ armourFoam::stepLoads Foam::fv::armourCoupling::exchange
     {
         FatalErrorInFunction << "armour: " << err.what() << exit(FatalError);
     }
-    return armourFoam::stepLoads::zero(bodies.names().size());
+    return armourFoam::stepLoads::zero(bodies.names().size()); // not reached
 }
 
 
