@@ -14,7 +14,10 @@ Description
     answers: does a model choice (the clump, the mesh, the engine) move the
     damage, and toward the formula or away. And how widely the realisations
     scatter about the formula's counts: Pearson's chi-square over them against
-    the scatter of independent units (Poisson), with the chance of one as wide.
+    the scatter of independent units (Poisson), with the chance of one as wide;
+    and, the formula's shape set aside, about each point's own mean (counts
+    that scatter widely about the formula but not within the points come from
+    a curve of another shape, not from units that leave in groups).
 
     Then the gap as one number: the factor f such that the curve's counts are
     Van der Meer's at Ns / f (each run's expected count from the formula at its
@@ -112,6 +115,34 @@ def print_spread(rows):
               f"{chi2 / len(terms):.2f} x independent units' (P {chi2_tail(chi2, len(terms)):.2g} of one this wide)")
 
 
+def print_spread_within(points):
+    """How widely the counts scatter about each point's own mean: the scatter alone, not the shape.
+
+    The spread about the formula is large when units leave in groups, and also
+    when the model's curve has another shape than the formula's (a point high,
+    the next low). Here each point's expected counts are scaled by that point's
+    own factor (its count over the formula's), so that only the scatter within
+    a point is left: Pearson's chi-square over realisations less points. Points
+    that displaced no unit say nothing about scatter and are left out.
+    """
+    chi2, dof = 0.0, 0
+    for g in points:
+        g = [r for r in g if float(r["units_displaced_van_der_meer"]) > 0]
+        shown = sum(float(r["units_displaced"]) for r in g)
+        if len(g) < 2 or shown == 0:
+            continue
+        scale = shown / sum(float(r["units_displaced_van_der_meer"]) for r in g)
+        for r in g:
+            mean = scale * float(r["units_displaced_van_der_meer"])
+            chi2 += (float(r["units_displaced"]) - mean) ** 2 / mean
+        dof += len(g) - 1
+    if dof == 0:
+        print("  spread within the points: no point has two realisations and a unit displaced")
+    else:
+        print(f"  spread within the points (about each point's own mean): chi2 {chi2:.2f} over {dof} degrees "
+              f"of freedom, {chi2 / dof:.2f} x independent units' (P {chi2_tail(chi2, dof):.2g} of one this wide)")
+
+
 def ns_factor(rows):
     """(f, low, high): the counts as Van der Meer's at Ns / f, its 95 % interval; None where no unit moved.
 
@@ -194,6 +225,7 @@ def main():
                   f"(P {poisson_cdf(shown, vdm):.2g})  over {len(g)} realisations")
         print(f"  all: {int(total)} / {expected:.1f} (P {poisson_cdf(int(total), expected):.2g})")
         print_spread(rows)
+        print_spread_within([g for _, g in by_ns])
         print_ns_factor("all", rows)
     if args.pool:
         print(f"{' + '.join(labels)}, pooled:")

@@ -800,8 +800,8 @@ TEST_F(SweepTest, ReportDrawsDamageAgainstVanDerMeerAndHudson) {
 
 // Two kept curves side by side (studies/compare_curves.py): each curve's
 // units displaced per point and in all against Van der Meer's expected count,
-// with the Poisson chance of so few, and their spread about it; a chart; bad
-// input is one error line.
+// with the Poisson chance of so few, and their spread about it and within the
+// points; a chart; bad input is one error line.
 TEST_F(SweepTest, ComparedCurvesCountEachCurvesUnitsAgainstVanDerMeer) {
     const std::string header = "case,unit.0.density,seed,status,Ns,N_od,units_displaced,"
                                "units_displaced_van_der_meer,waves.waves,s_om\n";
@@ -835,6 +835,18 @@ TEST_F(SweepTest, ComparedCurvesCountEachCurvesUnitsAgainstVanDerMeer) {
         << r.output;
     EXPECT_NE(r.output.find("spread about the formula: chi2 0.50 over 2 realisations, 0.25 x independent "
                             "units' (P 0.78 of one this wide)"),
+              std::string::npos)
+        << r.output;
+    // The spread within the points, each point's counts about its own mean: A at 2000 kg/m^3 counts
+    // 0 and 1 about 0.5 and 0.5 (its factor 1 / 1), chi2 1.0 over 1 degree of freedom, P(chi2_1 >= 1)
+    // = erfc(1 / sqrt 2) = 0.317; its one realisation at 1700 has no freedom left. B has no point with
+    // two realisations and a unit displaced.
+    EXPECT_NE(
+        r.output.find("spread within the points (about each point's own mean): chi2 1.00 over 1 degrees of "
+                      "freedom, 1.00 x independent units' (P 0.32 of one this wide)"),
+        std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("spread within the points: no point has two realisations and a unit displaced"),
               std::string::npos)
         << r.output;
 
@@ -881,6 +893,74 @@ TEST_F(SweepTest, ComparedCurvesGiveTheGapAsAFactorOnNs) {
     const auto at = pooled.output.find("pooled:");
     ASSERT_NE(at, std::string::npos) << pooled.output;
     EXPECT_NE(pooled.output.find(expected, at), std::string::npos) << expected << "\n" << pooled.output;
+}
+
+// Who left, when and with whom (studies/departures.py), on a run made up so
+// that each figure is known: Dn 0.1 m, Delta 1, water 1000 kg/m^3, g 10 m/s^2
+// (W' = 10 N); three units move seaward at 3 Dn/s from 1.0, 1.5 and 3.0 s, so
+// each starts its move one record later (its first record over 0.2 Dn) and
+// passes 1 Dn at 1.35, 1.85 and 3.35 s; the first two are neighbours (1.5 Dn
+// apart), the third far. Their seaward loads: 5 N long before and 10 N in the
+// move (2 x), 8 N before and 4 N in the move (0.5 x), and 6 N with none before.
+TEST_F(SweepTest, DeparturesTellTheLoadEachUnitLeftUnderAndWhoLeftTogether) {
+    const fs::path run_dir = dir_ / "run";
+    fs::create_directories(run_dir);
+    write(run_dir / "summary.json", R"({"damage": {"Dn": 0.1, "delta": 1.0, "displaced_threshold": 1.0}})");
+    write(run_dir / "scene.resolved.toml",
+          "[run]\ngravity = [0.0, 0.0, -10.0]\n[fluid]\nfluid_density = 1000.0\n");
+    write(run_dir / "damage.csv",
+          "# damage per unit\nbody,unit,s_m,y_m,displaced\n0,cube,0.0,0,1\n1,cube,0.15,0,1\n"
+          "2,cube,1.0,0,1\n3,cube,0.5,0,0\n");
+    const std::string make = R"(
+import sys, h5py, numpy as np
+t = np.arange(81) * 0.05
+x = np.zeros((81, 4, 3)); F = np.zeros((81, 4, 3)); F[:, :, 2] = 100.0
+for b, seat, start in ((0, 0.0, 1.0), (1, 0.15, 1.5), (2, 1.0, 3.0), (3, 0.5, 99.0)):
+    x[:, b, 0] = seat - 0.3 * np.clip(t - start, 0.0, None)
+def push(b, at, newtons): F[int(round(at / 0.05)), b, 0] = -newtons
+push(0, 0.5, 5.0); push(0, 1.2, 10.0); push(1, 0.5, 8.0); push(1, 1.7, 4.0); push(2, 3.2, 6.0)
+with h5py.File(sys.argv[1], "w") as f:
+    f["time"] = t; f["bodies/position"] = x; f["bodies/external_force"] = F
+)";
+    write(dir_ / "make.py", make);
+    ASSERT_EQ(run("/usr/bin/python3 " + (dir_ / "make.py").string() + " " + (run_dir / "bodies.h5").string())
+                  .status,
+              0);
+
+    const std::string script = "/usr/bin/python3 " + kSource + "/studies/departures.py ";
+    const Result r = run(script + run_dir.string() + " --out " + (dir_ / "out").string());
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(
+        r.output.find("unit 0 (seat 0.000 m up the slope) moved from 1.05 s, passed the threshold at 1.35 s "
+                      "under 1.00 W', 2.00 x the largest load before"),
+        std::string::npos)
+        << r.output;
+    EXPECT_NE(
+        r.output.find("unit 1 (seat 0.150 m up the slope) moved from 1.55 s, passed the threshold at 1.85 s "
+                      "under 0.40 W', 0.50 x the largest load before"),
+        std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("passed the threshold at 3.35 s under 0.60 W', the first load that way"),
+              std::string::npos)
+        << r.output;
+    const json summary = json::parse(read_text(dir_ / "out" / "summary.json"));
+    EXPECT_EQ(summary["units_displaced"], 3);
+    EXPECT_EQ(summary["left_under_a_smaller_load_than_before"], 1);
+    EXPECT_EQ(summary["left_under_the_first_load_that_way"], 1);
+    EXPECT_NEAR(summary["load_ratio_median"].get<double>(), 1.25, 1e-9);
+    // Together: units 0 and 1. Shuffled, the pair of times 0.5 s apart falls to them 1 time in 3
+    // (then 2 together, else 0): a mean of 2/3 and P(>= 2) 1/3, to the shuffles' sampling.
+    EXPECT_EQ(summary["left_with_a_neighbour"], 2);
+    EXPECT_NEAR(summary["left_with_a_neighbour_shuffled"].get<double>(), 2.0 / 3.0, 0.05);
+    EXPECT_NEAR(summary["chance_of_as_many"].get<double>(), 1.0 / 3.0, 0.025);
+    const std::string table = read_text(dir_ / "out" / "departures.csv");
+    EXPECT_EQ(std::count(table.begin(), table.end(), '\n'), 5) << table; // a comment, the header, 3 units
+
+    const Result bad = run(script + (dir_ / "missing").string() + " --out " + (dir_ / "bad").string());
+    EXPECT_EQ(bad.status, 2) << bad.output;
+    EXPECT_EQ(bad.output, "armour: error: " + (dir_ / "missing" / "bodies.h5").string() +
+                              ": not found (not the folder of a coupled damage run)\n");
+    EXPECT_FALSE(fs::exists(dir_ / "bad"));
 }
 
 // A real single-node Slurm (scripts/slurm-local.sh), started for these tests.
