@@ -38,6 +38,9 @@ import statistics
 import sys
 import tomllib
 
+import h5py
+import numpy as np
+
 SHUFFLES = 4000  # enough for a chance of 1e-3 to be told from 0 (seeded: the same figure every run)
 
 
@@ -48,8 +51,6 @@ def fail(message):
 
 def read_run(folder):
     """The run's record and damage: times, positions, fluid forces, the displaced units and the scales."""
-    import numpy as np
-    import h5py
     paths = {name: os.path.join(folder, name)
              for name in ("bodies.h5", "damage.csv", "summary.json", "scene.resolved.toml")}
     for path in paths.values():
@@ -76,7 +77,6 @@ def read_run(folder):
 
 def departure(run, body):
     """One displaced unit: its pass of the threshold, the start of its last move and the load ratio."""
-    import numpy as np
     t, moved = run["time"], run["moved"][:, body]
     k = int(np.argmax(moved >= run["threshold"]))
     start = k
@@ -95,12 +95,16 @@ def departure(run, body):
             "largest_before": float(before), "ratio": float(now / before) if before > 0 else None}
 
 
-def together(run, passed, neighbour, window):
-    """How many of the run's displaced units passed within `window` s of a displaced neighbour."""
-    import numpy as np
-    seats = {b: run["position"][0, b] for b in passed}
-    near = {b: [c for c in passed if c != b and np.linalg.norm(seats[b] - seats[c]) < neighbour * run["dn"]]
-            for b in passed}
+def neighbours(run, neighbour):
+    """Each displaced unit's displaced neighbours: seats closer than `neighbour` Dn."""
+    seats = run["position"][0]
+    return {b: [c for c in run["displaced"]
+                if c != b and np.linalg.norm(seats[b] - seats[c]) < neighbour * run["dn"]]
+            for b in run["displaced"]}
+
+
+def together(passed, near, window):
+    """How many displaced units passed within `window` s of a displaced neighbour."""
     return sum(1 for b in passed if any(abs(passed[b] - passed[c]) <= window for c in near[b]))
 
 
@@ -121,11 +125,12 @@ def main():
         rows = [departure(run, b) for b in run["displaced"]]
         units += rows
         passed = {r["body"]: r["passed"] for r in rows}
-        seen += together(run, passed, args.neighbour, args.window)
+        near = neighbours(run, args.neighbour)
+        seen += together(passed, near, args.window)
+        times = list(passed.values())
         for i in range(SHUFFLES):
-            times = list(passed.values())
             rng.shuffle(times)
-            shuffled[i] += together(run, dict(zip(passed, times)), args.neighbour, args.window)
+            shuffled[i] += together(dict(zip(passed, times)), near, args.window)
         for r in rows:
             print(f"{r['run']}: unit {r['body']} (seat {r['seat_s']:.3f} m up the slope) moved from "
                   f"{r['move_start']:.2f} s, passed the threshold at {r['passed']:.2f} s under "
