@@ -83,7 +83,8 @@ def departure(run, body):
     while start > 0 and moved[start] >= 0.2 * run["threshold"]:
         start -= 1
     way = run["position"][k, body] - run["position"][0, body]
-    way[1] = 0.0  # across the flume: not what the waves push
+    if np.hypot(way[0], way[2]) > 1e-3 * np.linalg.norm(way):
+        way[1] = 0.0  # across the flume: not what the waves push (unless it is all the move)
     way /= np.linalg.norm(way)
     load = (run["force"][:, body] - run["force"][0, body]) @ way
     window = int(np.searchsorted(t, t[start] - 0.5))
