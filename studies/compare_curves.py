@@ -19,6 +19,13 @@ Description
     that scatter widely about the formula but not within the points come from
     a curve of another shape, not from units that leave in groups).
 
+    Where the kept cases' damage.csv are there (cases/<case>/run/damage.csv,
+    as keep_results.py keeps them), how many of the displaced sat in the toe
+    row: seated below the foot of the face (s_m < 0), on the berm in front of
+    it, where the layer has no unit below it to lean on. The counts and the
+    factor on Ns are given again without them, so what the damage owes to the
+    toe is told from what it owes to the face.
+
     Then the gap as one number: the factor f such that the curve's counts are
     Van der Meer's at Ns / f (each run's expected count from the formula at its
     own N and s_om, scaled to the section's width), the maximum of the Poisson
@@ -68,7 +75,52 @@ def read_curve(folder):
         fail(f"{path}: no case is done")
     # The varied key: the column between `case` and `seed`.
     varied = header[1] if header[0] == "case" and header[1] != "seed" else None
+    for r in rows:
+        r["toe_row_displaced"], r["toe_row_units"] = toe_row(folder, r)
     return rows, varied
+
+
+def toe_row(folder, row):
+    """(displaced, units) of the row's case seated below the face's foot (s_m < 0); Nones if not kept."""
+    path = os.path.join(folder, "cases", row.get("case", ""), "run", "damage.csv")
+    if not os.path.isfile(path):
+        return None, None
+    with open(path, newline="") as f:
+        units = list(csv.DictReader(line for line in f if not line.startswith("#")))
+    if not units or not {"s_m", "displaced"} <= set(units[0]):
+        fail(f"{path}: columns 's_m' and 'displaced' missing (not a damage run's damage.csv)")
+    toe = [u for u in units if float(u["s_m"]) < 0]
+    return sum(1 for u in toe if u["displaced"] == "1"), len(toe)
+
+
+def without_toe_row(rows):
+    """The rows with the toe row's displaced units taken out of units_displaced and N_od."""
+    kept = []
+    for r in rows:
+        shown, toe = float(r["units_displaced"]), r["toe_row_displaced"]
+        n_od = float(r["N_od"]) * (shown - toe) / shown if shown > 0 else 0.0
+        kept.append(dict(r, units_displaced=str(shown - toe), N_od=str(n_od)))
+    return kept
+
+
+def print_toe_row(points, rows):
+    """How many of the displaced sat in the toe row, per point; the counts and the factor without them."""
+    if any(r["toe_row_displaced"] is None for r in rows):
+        print("  toe row: not known (the cases' damage.csv are not kept beside results.csv)")
+        return
+    per_point = ", ".join(f"{sum(r['toe_row_displaced'] for r in g)} of "
+                          f"{sum(int(float(r['units_displaced'])) for r in g)}" for g in points)
+    shown = sum(int(float(r["units_displaced"])) for r in rows)
+    toe = sum(r["toe_row_displaced"] for r in rows)
+    toe_units = sum(r["toe_row_units"] for r in rows)
+    face_units = sum(int(float(r["units"])) for r in rows) - toe_units if "units" in rows[0] else None
+    expected = sum(float(r["units_displaced_van_der_meer"]) for r in rows)
+    print(f"  from the toe row (seated below the face's foot): {toe} of {shown} (by point in rising Ns: {per_point}); "
+          f"without them {shown - toe} / {expected:.1f} (P {poisson_cdf(shown - toe, expected):.2g})")
+    if face_units and toe_units:
+        print(f"  displaced per unit: the toe row {toe} of {toe_units} ({100 * toe / toe_units:.1f} %), "
+              f"the face {shown - toe} of {face_units} ({100 * (shown - toe) / face_units:.1f} %)")
+    print_ns_factor("without the toe row", without_toe_row(rows))
 
 
 def poisson_cdf(k, mean):
@@ -227,9 +279,13 @@ def main():
         print_spread(rows)
         print_spread_within([g for _, g in by_ns])
         print_ns_factor("all", rows)
+        print_toe_row([g for _, g in by_ns], rows)
     if args.pool:
         print(f"{' + '.join(labels)}, pooled:")
-        print_ns_factor("all", [r for rows, _ in curves for r in rows])
+        pooled = [r for rows, _ in curves for r in rows]
+        print_ns_factor("all", pooled)
+        if all(r["toe_row_displaced"] is not None for r in pooled):
+            print_ns_factor("without the toe row", without_toe_row(pooled))
     rows = curves[0][0]
     n = median([float(r["waves.waves"]) for r in rows])
     s_om = median([float(r["s_om"]) for r in rows])

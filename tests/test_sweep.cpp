@@ -801,14 +801,28 @@ TEST_F(SweepTest, ReportDrawsDamageAgainstVanDerMeerAndHudson) {
 // Two kept curves side by side (studies/compare_curves.py): each curve's
 // units displaced per point and in all against Van der Meer's expected count,
 // with the Poisson chance of so few, and their spread about it and within the
-// points; a chart; bad input is one error line.
+// points; where the cases' damage.csv are kept, how many of the displaced sat in
+// the toe row (s_m < 0) and the counts without them; a chart; bad input is one
+// error line.
 TEST_F(SweepTest, ComparedCurvesCountEachCurvesUnitsAgainstVanDerMeer) {
     const std::string header = "case,unit.0.density,seed,status,Ns,N_od,units_displaced,"
                                "units_displaced_van_der_meer,waves.waves,s_om\n";
-    write(dir_ / "a" / "results.csv", header + "d-2000_seed-1,2000.0,1,done,2.5,0,0,0.5,27,0.03\n"
-                                               "d-2000_seed-2,2000.0,2,done,2.7,0.16,1,0.5,27,0.03\n"
-                                               "d-1700_seed-1,1700.0,1,done,4.0,0.16,1,4.0,27,0.03\n"
-                                               "d-1700_seed-2,1700.0,2,failed,,,,,,\n");
+    write(dir_ / "a" / "results.csv",
+          "case,unit.0.density,seed,status,Ns,N_od,units_displaced,units_displaced_van_der_meer,waves.waves,"
+          "s_om,units\n"
+          "d-2000_seed-1,2000.0,1,done,2.5,0,0,0.5,27,0.03,3\n"
+          "d-2000_seed-2,2000.0,2,done,2.7,0.16,1,0.5,27,0.03,3\n"
+          "d-1700_seed-1,1700.0,1,done,4.0,0.16,1,4.0,27,0.03,3\n"
+          "d-1700_seed-2,1700.0,2,failed,,,,,,,\n");
+    // Three units a case, one of them in the toe row (below the face's foot): the toe unit left
+    // in d-2000_seed-2, a face unit in d-1700_seed-1.
+    const std::string units = "# damage per unit\nbody,unit,s_m,y_m,displaced\n";
+    write(dir_ / "a" / "cases" / "d-2000_seed-1" / "run" / "damage.csv",
+          units + "0,cube,-0.02,0,0\n1,cube,0.1,0,0\n2,cube,0.2,0,0\n");
+    write(dir_ / "a" / "cases" / "d-2000_seed-2" / "run" / "damage.csv",
+          units + "0,cube,-0.02,0,1\n1,cube,0.1,0,0\n2,cube,0.2,0,0\n");
+    write(dir_ / "a" / "cases" / "d-1700_seed-1" / "run" / "damage.csv",
+          units + "0,cube,-0.02,0,0\n1,cube,0.1,0,1\n2,cube,0.2,0,0\n");
     write(dir_ / "b" / "results.csv", header + "d-2000_seed-1,2000.0,1,done,2.5,0,0,0.5,27,0.03\n"
                                                "d-1700_seed-1,1700.0,1,done,4.0,0.64,4,4.0,27,0.03\n");
     const std::string script = "/usr/bin/python3 " + kSource + "/studies/compare_curves.py ";
@@ -847,6 +861,22 @@ TEST_F(SweepTest, ComparedCurvesCountEachCurvesUnitsAgainstVanDerMeer) {
         std::string::npos)
         << r.output;
     EXPECT_NE(r.output.find("spread within the points: no point has two realisations and a unit displaced"),
+              std::string::npos)
+        << r.output;
+    // A's toe row: 1 of its 2 displaced (the point at 2000 kg/m^3); without it 1 of 5.0 expected,
+    // P(X <= 1 | 5) = 6 e^-5 = 0.040; per unit 1 of the 3 toe units, 1 of the 6 on the face. B kept
+    // no damage.csv.
+    EXPECT_NE(r.output.find("from the toe row (seated below the face's foot): 1 of 2 (by point in rising Ns: "
+                            "1 of 1, 0 of 1); without them 1 / 5.0 (P 0.04)"),
+              std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("displaced per unit: the toe row 1 of 3 (33.3 %), the face 1 of 6 (16.7 %)"),
+              std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("without the toe row: the counts are Van der Meer's at Ns / f, f = "),
+              std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("toe row: not known (the cases' damage.csv are not kept beside results.csv)"),
               std::string::npos)
         << r.output;
 
