@@ -167,16 +167,8 @@ def print_spread(rows):
               f"{chi2 / len(terms):.2f} x independent units' (P {chi2_tail(chi2, len(terms)):.2g} of one this wide)")
 
 
-def print_spread_within(points):
-    """How widely the counts scatter about each point's own mean: the scatter alone, not the shape.
-
-    The spread about the formula is large when units leave in groups, and also
-    when the model's curve has another shape than the formula's (a point high,
-    the next low). Here each point's expected counts are scaled by that point's
-    own factor (its count over the formula's), so that only the scatter within
-    a point is left: Pearson's chi-square over realisations less points. Points
-    that displaced no unit say nothing about scatter and are left out.
-    """
+def spread_within(points):
+    """(chi2, degrees of freedom): Pearson's chi-square of the counts about each point's own mean."""
     chi2, dof = 0.0, 0
     for g in points:
         g = [r for r in g if float(r["units_displaced_van_der_meer"]) > 0]
@@ -188,6 +180,20 @@ def print_spread_within(points):
             mean = scale * float(r["units_displaced_van_der_meer"])
             chi2 += (float(r["units_displaced"]) - mean) ** 2 / mean
         dof += len(g) - 1
+    return chi2, dof
+
+
+def print_spread_within(points):
+    """How widely the counts scatter about each point's own mean: the scatter alone, not the shape.
+
+    The spread about the formula is large when units leave in groups, and also
+    when the model's curve has another shape than the formula's (a point high,
+    the next low). Here each point's expected counts are scaled by that point's
+    own factor (its count over the formula's), so that only the scatter within
+    a point is left: Pearson's chi-square over realisations less points. Points
+    that displaced no unit say nothing about scatter and are left out.
+    """
+    chi2, dof = spread_within(points)
     if dof == 0:
         print("  spread within the points: no point has two realisations and a unit displaced")
     else:
@@ -195,30 +201,44 @@ def print_spread_within(points):
               f"of freedom, {chi2 / dof:.2f} x independent units' (P {chi2_tail(chi2, dof):.2g} of one this wide)")
 
 
-def ns_factor(rows):
-    """(f, low, high): the counts as Van der Meer's at Ns / f, its 95 % interval; None where no unit moved.
+def formula_runs(rows):
+    """Per row (Ns, N, s_om, units displaced, units per N_od of the formula's count); None where none moved.
 
-    Each row's expected count at Ns / f is its units_displaced_van_der_meer
-    scaled by the formula's N_od at Ns / f over that at Ns (so the section's
-    width is the run's own); rows below the formula's onset at Ns take the
-    median width (units per N_od) of the rows that displaced a unit.
+    The scale makes each row's expected count at Ns its own
+    units_displaced_van_der_meer (so the section's width is the run's own);
+    rows below the formula's onset at Ns take the median width (units per
+    N_od) of the rows that displaced a unit.
     """
     widths = [float(r["units_displaced"]) / float(r["N_od"]) for r in rows if float(r["units_displaced"]) > 0]
     if not widths:
         return None
     width = median(widths)
-    runs = []  # (Ns, N, s_om, units displaced, units per N_od of the formula's count)
+    runs = []
     for r in rows:
         ns, n, s = float(r["Ns"]), float(r["waves.waves"]), float(r["s_om"])
         at_ns = van_der_meer_n_od(ns, n, s)
         scale = float(r["units_displaced_van_der_meer"]) / at_ns if at_ns > 0 else width
         runs.append((ns, n, s, int(float(r["units_displaced"])), scale))
+    return runs
+
+
+def expected_at(run, f):
+    """A run's expected count if its units were Van der Meer's at Ns / f."""
+    ns, n, s, _, scale = run
+    return max(scale * van_der_meer_n_od(ns / f, n, s), 1e-300)
+
+
+def ns_factor(rows):
+    """(f, low, high): the counts as Van der Meer's at Ns / f, its 95 % interval; None where no unit moved."""
+    runs = formula_runs(rows)
+    if runs is None:
+        return None
 
     def log_likelihood(f):
         total = 0.0
-        for ns, n, s, k, scale in runs:
-            mean = max(scale * van_der_meer_n_od(ns / f, n, s), 1e-300)
-            total += k * math.log(mean) - mean
+        for run in runs:
+            mean = expected_at(run, f)
+            total += run[3] * math.log(mean) - mean
         return total
 
     grid = [0.25 * 16.0 ** (i / 40000) for i in range(40001)]  # 0.25 to 4, 0.007 % apart
@@ -226,6 +246,82 @@ def ns_factor(rows):
     peak = max(range(len(grid)), key=values.__getitem__)
     inside = [f for f, v in zip(grid, values) if v >= values[peak] - 1.92]
     return grid[peak], min(inside), max(inside)
+
+
+def poisson_deviance(count, mean):
+    """Twice the log-likelihood a count loses to a mean (0 where both are 0)."""
+    if mean <= 0:
+        return 0.0 if count == 0 else math.inf
+    return 2.0 * ((count * math.log(count / mean) if count > 0 else 0.0) - (count - mean))
+
+
+def f_tail(x, d1, d2):
+    """P(X >= x) for X with Fisher's F distribution on (d1, d2) degrees of freedom."""
+    if x <= 0:
+        return 1.0
+    return beta_regularized(d2 / 2.0, d1 / 2.0, d2 / (d2 + d1 * x))
+
+
+def beta_regularized(a, b, x):
+    """I_x(a, b), the regularised incomplete beta function, by its continued fraction (Lentz's method).
+
+    The fraction converges fast for x < (a + 1) / (a + b + 2); past it the
+    symmetry I_x(a, b) = 1 - I_(1-x)(b, a) is used.
+    """
+    if x <= 0 or x >= 1:
+        return 0.0 if x <= 0 else 1.0
+    front = math.exp(math.lgamma(a + b) - math.lgamma(a) - math.lgamma(b) + a * math.log(x) + b * math.log1p(-x))
+    if x > (a + 1) / (a + b + 2):
+        return 1.0 - beta_regularized(b, a, 1.0 - x)
+    tiny = 1e-300
+    c, d = 1.0, 1.0 - (a + b) * x / (a + 1)
+    d = 1.0 / (d if abs(d) > tiny else tiny)
+    fraction = d
+    for m in range(1, 1000):
+        for numerator in (m * (b - m) * x / ((a + 2 * m - 1) * (a + 2 * m)),
+                          -(a + m) * (a + b + m) * x / ((a + 2 * m) * (a + 2 * m + 1))):
+            d = 1.0 + numerator * d
+            d = 1.0 / (d if abs(d) > tiny else tiny)
+            c = 1.0 + numerator / c
+            c = c if abs(c) > tiny else tiny
+            fraction *= c * d
+        if abs(c * d - 1.0) < 1e-15:
+            break
+    return front * fraction / a
+
+
+def print_shape(points, rows):
+    """Is the curve's shape the formula's? One factor on Ns against a scale of its own for each point.
+
+    The Poisson deviance of the counts about Van der Meer's curve at Ns / f (one
+    parameter) less that about each point's own mean (one a point), over points
+    less one, against the points' own scatter (Pearson's chi-square within them
+    over its degrees of freedom, as print_spread_within), is Fisher's F
+    (quasi-Poisson: units that leave in groups widen both alike). A small P says
+    the shape differs from the formula's beyond what the realisations' own
+    scatter explains; a large one, that they cannot tell a shape from a sample.
+    """
+    runs, fit = formula_runs(rows), ns_factor(rows)
+    if runs is None:
+        return
+    one = own = 0.0
+    for r, run in zip(rows, runs):
+        one += poisson_deviance(run[3], expected_at(run, fit[0]))
+    for g in points:
+        shown = sum(float(r["units_displaced"]) for r in g)
+        formula = sum(float(r["units_displaced_van_der_meer"]) for r in g)
+        scale = shown / formula if formula > 0 else 0.0
+        own += sum(poisson_deviance(int(float(r["units_displaced"])), scale * float(r["units_displaced_van_der_meer"]))
+                   for r in g)
+    within, d2 = spread_within(points)
+    d1 = len(points) - 1
+    if d1 < 1 or d2 < 1 or within <= 0 or math.isinf(own):
+        print("  the shape: too few points or realisations to weigh it against the points' own scatter")
+        return
+    f_stat = (one - own) / d1 / (within / d2)
+    print(f"  the shape (one factor on Ns, or a scale for each point): deviance {one:.2f} against {own:.2f}, "
+          f"F {f_stat:.2f} on ({d1}, {d2}) over the points' own scatter: P {f_tail(f_stat, d1, d2):.2g} of a "
+          f"shape this far from the formula's by chance (Poisson's scatter alone: {chi2_tail(one - own, d1):.2g})")
 
 
 def print_ns_factor(label, rows):
@@ -279,6 +375,7 @@ def main():
         print_spread(rows)
         print_spread_within([g for _, g in by_ns])
         print_ns_factor("all", rows)
+        print_shape([g for _, g in by_ns], rows)
         print_toe_row([g for _, g in by_ns], rows)
     if args.pool:
         print(f"{' + '.join(labels)}, pooled:")

@@ -863,6 +863,28 @@ TEST_F(SweepTest, ComparedCurvesCountEachCurvesUnitsAgainstVanDerMeer) {
     EXPECT_NE(r.output.find("spread within the points: no point has two realisations and a unit displaced"),
               std::string::npos)
         << r.output;
+    // The shape: A's counts about each point's own mean lose 2 (0 ln 0 - (0 - 0.5)) + 2 (1 ln 2 - (1 -
+    // 0.5)) + 0 = 2 ln 2 = 1.39 in deviance, weighed on (2 - 1, 1) degrees of freedom; B's two points
+    // have one realisation each.
+    EXPECT_NE(r.output.find(" against 1.39, F "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(" on (1, 1) over the points' own scatter: P "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(
+                  "the shape: too few points or realisations to weigh it against the points' own scatter"),
+              std::string::npos)
+        << r.output;
+    // Fisher's F tail against closed forms: on (2, d) (1 + 2x/d)^(-d/2), on (1, 1) 1 - (2/pi) atan(sqrt x).
+    const Result tail =
+        run("cd " + kSource +
+            "/studies && /usr/bin/python3 -c 'import compare_curves as c; "
+            "print(c.f_tail(0.5, 2, 5), c.f_tail(3.0, 2, 8), c.f_tail(3.0, 1, 1), c.f_tail(0, 3, 4))'");
+    ASSERT_EQ(tail.status, 0) << tail.output;
+    std::istringstream tails(tail.output);
+    double t1 = 0, t2 = 0, t3 = 0, t4 = 0;
+    tails >> t1 >> t2 >> t3 >> t4;
+    EXPECT_NEAR(t1, std::pow(1.0 + 2.0 * 0.5 / 5.0, -2.5), 1e-12);
+    EXPECT_NEAR(t2, std::pow(1.0 + 2.0 * 3.0 / 8.0, -4.0), 1e-12);
+    EXPECT_NEAR(t3, 1.0 - 2.0 / M_PI * std::atan(std::sqrt(3.0)), 1e-12);
+    EXPECT_EQ(t4, 1.0);
     // A's toe row: 1 of its 2 displaced (the point at 2000 kg/m^3); without it 1 of 5.0 expected,
     // P(X <= 1 | 5) = 6 e^-5 = 0.040; per unit 1 of the 3 toe units, 1 of the 6 on the face. B kept
     // no damage.csv.
