@@ -32,6 +32,7 @@ Usage
 import argparse
 import csv
 import json
+import math
 import os
 import random
 import statistics
@@ -68,11 +69,21 @@ def read_run(folder):
         record = {"time": f["time"][:], "position": f["bodies/position"][:],
                   "force": f["bodies/external_force"][:]}
     dn, g = damage["Dn"], abs(scene["run"]["gravity"][2])
-    return {"name": folder, "displaced": [int(r["body"]) for r in rows if r["displaced"] == "1"],
+    return {"name": folder, "face": face_directions(scene), "displaced": [int(r["body"]) for r in rows if r["displaced"] == "1"],
             "seat_s": {int(r["body"]): float(r["s_m"]) for r in rows},
             "dn": dn, "threshold": damage.get("displaced_threshold", 1.0),
             "weight": damage["delta"] * scene["fluid"]["fluid_density"] * g * dn ** 3,
             "moved": np.linalg.norm(record["position"] - record["position"][0], axis=2) / dn, **record}
+
+
+def face_directions(scene):
+    """(up the face, out of it): unit vectors of the scene's slope wall (rising in +x); None without one."""
+    slope = next((w for w in scene.get("wall", []) if w.get("type") == "slope"), None)
+    if slope is None:
+        return None
+    cot = float(slope["cot"])
+    norm = math.hypot(cot, 1.0)
+    return np.array([cot, 0.0, 1.0]) / norm, np.array([-1.0, 0.0, cot]) / norm
 
 
 def departure(run, body):
@@ -83,6 +94,7 @@ def departure(run, body):
     while start > 0 and moved[start] >= 0.2 * run["threshold"]:
         start -= 1
     way = run["position"][k, body] - run["position"][0, body]
+    up, out = (float(way @ e / run["dn"]) for e in run["face"]) if run["face"] else (None, None)
     if np.hypot(way[0], way[2]) > 1e-3 * np.linalg.norm(way):
         way[1] = 0.0  # across the flume: not what the waves push (unless it is all the move)
     way /= np.linalg.norm(way)
@@ -93,7 +105,14 @@ def departure(run, body):
     # None: no load that way before (the first wave to push it so, or no wave before the move)
     return {"run": run["name"], "body": body, "seat_s": run["seat_s"][body], "move_start": float(t[start]),
             "passed": float(t[k]), "load": float(now), "load_over_weight": float(now / run["weight"]),
-            "largest_before": float(before), "ratio": float(now / before) if before > 0 else None}
+            "largest_before": float(before), "ratio": float(now / before) if before > 0 else None,
+            "up_face_over_Dn": up, "out_of_face_over_Dn": out}
+
+
+def slid_down_the_face(row, threshold):
+    """Moved down the face by 3/4 of the threshold or more, and out of its plane by under a quarter of it."""
+    up, out = row["up_face_over_Dn"], row["out_of_face_over_Dn"]
+    return up is not None and up <= -0.75 * threshold and abs(out) < 0.25 * threshold
 
 
 def neighbours(run, neighbour):
@@ -133,10 +152,13 @@ def main():
             rng.shuffle(times)
             shuffled[i] += together(dict(zip(passed, times)), near, args.window)
         for r in rows:
+            r["slid_down_the_face"] = slid_down_the_face(r, run["threshold"])
             print(f"{r['run']}: unit {r['body']} (seat {r['seat_s']:.3f} m up the slope) moved from "
                   f"{r['move_start']:.2f} s, passed the threshold at {r['passed']:.2f} s under "
                   f"{r['load_over_weight']:.2f} W', " + (f"{r['ratio']:.2f} x the largest load before" if r["ratio"]
-                                                        else "the first load that way"))
+                                                        else "the first load that way") +
+                  (f"; moved {r['up_face_over_Dn']:+.2f} Dn up the face, {r['out_of_face_over_Dn']:+.2f} Dn out of it"
+                   if r["up_face_over_Dn"] is not None else ""))
     summary = headline(units, seen, shuffled, args)
     write(args.out, units, summary)
 
@@ -155,6 +177,13 @@ def headline(units, seen, shuffled, args):
         print(f"{len(units)} displaced units: {summary['left_under_a_smaller_load_than_before']} left under a "
               f"smaller load than the largest before, {first} under the first load that way; the ratio's median "
               f"{q[1]:.2f} (quartiles {q[0]:.2f}-{q[2]:.2f}, of the {len(ratios)} with a load before)")
+    if any(r["up_face_over_Dn"] is not None for r in units):
+        slid = [r for r in units if r["slid_down_the_face"]]
+        summary.update(slid_down_the_face=len(slid),
+                       slid_down_the_face_under_the_first_load_that_way=sum(1 for r in slid if r["ratio"] is None))
+        print(f"slid down the face in its plane (down it >= 3/4 of the threshold, out of it < 1/4): {len(slid)} of "
+              f"{len(units)}, {summary['slid_down_the_face_under_the_first_load_that_way']} of them under the first "
+              f"load that way (gravity's move, not the water's)")
     chance = sum(1 for s in shuffled if s >= seen) / len(shuffled)
     summary.update(left_with_a_neighbour=seen, left_with_a_neighbour_shuffled=sum(shuffled) / len(shuffled),
                    chance_of_as_many=chance)
@@ -167,11 +196,13 @@ def headline(units, seen, shuffled, args):
 def write(out, units, summary):
     """Both files whole or neither: each written beside itself and renamed."""
     os.makedirs(out, exist_ok=True)
-    fields = ["run", "body", "seat_s", "move_start", "passed", "load", "load_over_weight", "largest_before", "ratio"]
+    fields = ["run", "body", "seat_s", "move_start", "passed", "load", "load_over_weight", "largest_before", "ratio",
+              "up_face_over_Dn", "out_of_face_over_Dn", "slid_down_the_face"]
     table = os.path.join(out, "departures.csv")
     with open(table + ".tmp", "w", newline="") as f:
         f.write("# displaced units (SI: seat_s m up the slope, times s, loads N along the unit's move; "
-                "load_over_weight in submerged weights; ratio the load over the largest before)\n")
+                "load_over_weight in submerged weights; ratio the load over the largest before; the move at the pass "
+                "up and out of the slope's face in Dn)\n")
         writer = csv.DictWriter(f, fieldnames=fields)
         writer.writeheader()
         writer.writerows(units)

@@ -958,8 +958,9 @@ TEST_F(SweepTest, DeparturesTellTheLoadEachUnitLeftUnderAndWhoLeftTogether) {
     const fs::path run_dir = dir_ / "run";
     fs::create_directories(run_dir);
     write(run_dir / "summary.json", R"({"damage": {"Dn": 0.1, "delta": 1.0, "displaced_threshold": 1.0}})");
-    write(run_dir / "scene.resolved.toml",
-          "[run]\ngravity = [0.0, 0.0, -10.0]\n[fluid]\nfluid_density = 1000.0\n");
+    const std::string scene = "[run]\ngravity = [0.0, 0.0, -10.0]\n[fluid]\nfluid_density = 1000.0\n"
+                              "[[wall]]\nname = \"slope\"\ntype = \"slope\"\ncot = 1.5\n";
+    write(run_dir / "scene.resolved.toml", scene);
     write(run_dir / "damage.csv",
           "# damage per unit\nbody,unit,s_m,y_m,displaced\n0,cube,0.0,0,1\n1,cube,0.15,0,1\n"
           "2,cube,1.0,0,1\n3,cube,0.5,0,0\n");
@@ -995,6 +996,18 @@ with h5py.File(sys.argv[1], "w") as f:
     EXPECT_NE(r.output.find("passed the threshold at 3.35 s under 0.60 W', the first load that way"),
               std::string::npos)
         << r.output;
+    // Each moved 1.05 Dn seaward (-x) by its pass: on the 1:1.5 face that is 1.05 x 1.5 / sqrt(3.25) =
+    // 0.87 Dn down it and 1.05 / sqrt(3.25) = 0.58 Dn out of it, so none slid in the face's plane.
+    EXPECT_NE(
+        r.output.find("under 1.00 W', 2.00 x the largest load before; moved -0.87 Dn up the face, +0.58 Dn "
+                      "out of it"),
+        std::string::npos)
+        << r.output;
+    EXPECT_NE(
+        r.output.find("slid down the face in its plane (down it >= 3/4 of the threshold, out of it < 1/4): "
+                      "0 of 3, 0 of them under the first load that way"),
+        std::string::npos)
+        << r.output;
     const json summary = json::parse(read_text(dir_ / "out" / "summary.json"));
     EXPECT_EQ(summary["units_displaced"], 3);
     EXPECT_EQ(summary["left_under_a_smaller_load_than_before"], 1);
@@ -1007,6 +1020,39 @@ with h5py.File(sys.argv[1], "w") as f:
     EXPECT_NEAR(summary["chance_of_as_many"].get<double>(), 1.0 / 3.0, 0.025);
     const std::string table = read_text(dir_ / "out" / "departures.csv");
     EXPECT_EQ(std::count(table.begin(), table.end(), '\n'), 5) << table; // a comment, the header, 3 units
+
+    // A unit that slides down the face in its plane (along (-1.5, 0, -1) / sqrt(3.25), 0.3 m/s from 1 s)
+    // under the first push that way: 1.05 Dn down the face, none out of it, by its pass at 1.35 s.
+    const fs::path slide_dir = dir_ / "slide";
+    fs::create_directories(slide_dir);
+    write(slide_dir / "summary.json", R"({"damage": {"Dn": 0.1, "delta": 1.0, "displaced_threshold": 1.0}})");
+    write(slide_dir / "scene.resolved.toml", scene);
+    write(slide_dir / "damage.csv", "# damage per unit\nbody,unit,s_m,y_m,displaced\n0,cube,0.3,0,1\n");
+    write(dir_ / "slide.py", R"(
+import sys, h5py, numpy as np
+t = np.arange(81) * 0.05
+x = np.zeros((81, 1, 3)); F = np.zeros((81, 1, 3))
+x[:, 0, :] = np.outer(0.3 * np.clip(t - 1.0, 0.0, None), np.array([-1.5, 0.0, -1.0]) / np.sqrt(3.25))
+F[24, 0, 0] = -5.0
+with h5py.File(sys.argv[1], "w") as f:
+    f["time"] = t; f["bodies/position"] = x; f["bodies/external_force"] = F
+)");
+    ASSERT_EQ(
+        run("/usr/bin/python3 " + (dir_ / "slide.py").string() + " " + (slide_dir / "bodies.h5").string())
+            .status,
+        0);
+    const Result slide = run(script + slide_dir.string() + " --out " + (dir_ / "slide_out").string());
+    ASSERT_EQ(slide.status, 0) << slide.output;
+    EXPECT_NE(slide.output.find("the first load that way; moved -1.05 Dn up the face, +0.00 Dn out of it"),
+              std::string::npos)
+        << slide.output;
+    EXPECT_NE(slide.output.find(
+                  "in its plane (down it >= 3/4 of the threshold, out of it < 1/4): 1 of 1, 1 of them "
+                  "under the first load that way"),
+              std::string::npos)
+        << slide.output;
+    const json slid = json::parse(read_text(dir_ / "slide_out" / "summary.json"));
+    EXPECT_EQ(slid["slid_down_the_face"], 1);
 
     const Result bad = run(script + (dir_ / "missing").string() + " --out " + (dir_ / "bad").string());
     EXPECT_EQ(bad.status, 2) << bad.output;
