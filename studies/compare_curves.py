@@ -290,7 +290,7 @@ def beta_regularized(a, b, x):
     return front * fraction / a
 
 
-def print_shape(points, rows):
+def print_shape(points, rows, fit):
     """Is the curve's shape the formula's? One factor on Ns against a scale of its own for each point.
 
     The Poisson deviance of the counts about Van der Meer's curve at Ns / f (one
@@ -301,12 +301,11 @@ def print_shape(points, rows):
     the shape differs from the formula's beyond what the realisations' own
     scatter explains; a large one, that they cannot tell a shape from a sample.
     """
-    runs, fit = formula_runs(rows), ns_factor(rows)
+    runs = formula_runs(rows)
     if runs is None:
         return
-    one = own = 0.0
-    for r, run in zip(rows, runs):
-        one += poisson_deviance(run[3], expected_at(run, fit[0]))
+    one = sum(poisson_deviance(run[3], expected_at(run, fit[0])) for run in runs)
+    own = 0.0
     for g in points:
         shown = sum(float(r["units_displaced"]) for r in g)
         formula = sum(float(r["units_displaced_van_der_meer"]) for r in g)
@@ -325,12 +324,14 @@ def print_shape(points, rows):
 
 
 def print_ns_factor(label, rows):
+    """Prints the factor on Ns and returns it (None where no unit moved)."""
     fit = ns_factor(rows)
     if fit is None:
         print(f"  {label}: no unit displaced: the factor on Ns is not bounded")
     else:
         print(f"  {label}: the counts are Van der Meer's at Ns / f, f = {fit[0]:.2f} "
               f"(95 % {fit[1]:.2f}-{fit[2]:.2f})")
+    return fit
 
 
 def main():
@@ -374,8 +375,8 @@ def main():
         print(f"  all: {int(total)} / {expected:.1f} (P {poisson_cdf(int(total), expected):.2g})")
         print_spread(rows)
         print_spread_within([g for _, g in by_ns])
-        print_ns_factor("all", rows)
-        print_shape([g for _, g in by_ns], rows)
+        fit = print_ns_factor("all", rows)
+        print_shape([g for _, g in by_ns], rows, fit)
         print_toe_row([g for _, g in by_ns], rows)
     if args.pool:
         print(f"{' + '.join(labels)}, pooled:")

@@ -16,7 +16,11 @@ Description
       survived before (its hold had dropped); in submerged weights
       W' = (rho_s - rho_w) g Dn^3 too;
     - its displaced neighbours (seats closer than --neighbour Dn) and how far
-      apart in time they passed the threshold.
+      apart in time they passed the threshold;
+    - its move at the pass up and out of the scene's slope wall (in Dn): a unit
+      that slid down the face in its plane (down it by 3/4 of the threshold or
+      more, out of it by under 1/4) under the first load that way was moved by
+      gravity, the layer below it gone, not carried off by the water.
     Over all runs: how many displaced units left within --window s of a
     displaced neighbour, against the same count with each run's pass times
     shuffled among its displaced units (so that the waves units leave in are
