@@ -19,8 +19,9 @@ Description
       apart in time they passed the threshold;
     - its move at the pass up and out of the scene's slope wall (in Dn): a unit
       that slid down the face in its plane (down it by 3/4 of the threshold or
-      more, out of it by under 1/4) under the first load that way was moved by
-      gravity, the layer below it gone, not carried off by the water.
+      more, out of it by under 1/4) while the water's load along its move was
+      nowhere above 0 was moved by gravity (the units below it gone, or the
+      water lifting it off its seat), not carried off by the water.
     Over all runs: how many displaced units left within --window s of a
     displaced neighbour, against the same count with each run's pass times
     shuffled among its displaced units (so that the waves units leave in are
@@ -184,10 +185,10 @@ def headline(units, seen, shuffled, args):
     if any(r["up_face_over_Dn"] is not None for r in units):
         slid = [r for r in units if r["slid_down_the_face"]]
         summary.update(slid_down_the_face=len(slid),
-                       slid_down_the_face_under_the_first_load_that_way=sum(1 for r in slid if r["ratio"] is None))
+                       slid_down_the_face_unpushed=sum(1 for r in slid if r["load"] <= 0))
         print(f"slid down the face in its plane (down it >= 3/4 of the threshold, out of it < 1/4): {len(slid)} of "
-              f"{len(units)}, {summary['slid_down_the_face_under_the_first_load_that_way']} of them under the first "
-              f"load that way (gravity's move, not the water's)")
+              f"{len(units)}, {summary['slid_down_the_face_unpushed']} of them with no water load along their move "
+              f"while they moved (gravity's move, not the water's)")
     chance = sum(1 for s in shuffled if s >= seen) / len(shuffled)
     summary.update(left_with_a_neighbour=seen, left_with_a_neighbour_shuffled=sum(shuffled) / len(shuffled),
                    chance_of_as_many=chance)

@@ -947,6 +947,59 @@ TEST_F(SweepTest, ComparedCurvesGiveTheGapAsAFactorOnNs) {
     EXPECT_NE(pooled.output.find(expected, at), std::string::npos) << expected << "\n" << pooled.output;
 }
 
+// A dry scene of a layer as a run left it (studies/dry_scene_at.py): the
+// scene's tables less the fluid's, each body at the record nearest the time
+// asked, at rest; a scene whose bodies are not the record's is one error line
+// and nothing written.
+TEST_F(SweepTest, DrySceneAtTakesEachBodyFromTheRecordWithoutTheFluid) {
+    const std::string body = "[[body]]\nunit = \"cube\"\nposition = [0.0, 0.0, 0.0] # m\n"
+                             "orientation = [1.0, 0.0, 0.0, 0.0]\nvelocity = [0.5, 0.0, 0.0] # m/s\n"
+                             "angular_velocity = [0.0, 0.0, 0.0] # rad/s\n\n";
+    write(dir_ / "scene.toml", "[run]\nduration = 1.0\n\n[fluid]\nwater_level = 0.4\n\n[waves]\ntype = "
+                               "\"irregular\"\n\n[[refine]]\nlevels = 1\n\n" +
+                                   body + body);
+    fs::create_directories(dir_ / "run");
+    write(dir_ / "make.py", R"(
+import sys, h5py, numpy as np
+with h5py.File(sys.argv[1], "w") as f:
+    f["time"] = np.array([0.0, 0.5, 1.0])
+    x = np.zeros((3, 2, 3)); x[:, 1, 0] = [0.0, 0.25, 0.5]; f["bodies/position"] = x
+    q = np.zeros((3, 2, 4)); q[:, :, 3] = 1.0; f["bodies/orientation"] = q
+)");
+    ASSERT_EQ(
+        run("/usr/bin/python3 " + (dir_ / "make.py").string() + " " + (dir_ / "run" / "bodies.h5").string())
+            .status,
+        0);
+    const std::string script = "/usr/bin/python3 " + kSource + "/studies/dry_scene_at.py ";
+    const Result r = run(script + (dir_ / "scene.toml").string() + " " + (dir_ / "run").string() + " 0.6 " +
+                         (dir_ / "dry.toml").string());
+    ASSERT_EQ(r.status, 0) << r.output;
+    const toml::table dry = toml::parse_file((dir_ / "dry.toml").string());
+    EXPECT_FALSE(dry.contains("fluid"));
+    EXPECT_FALSE(dry.contains("waves"));
+    EXPECT_FALSE(dry.contains("refine"));
+    EXPECT_EQ(dry["run"]["duration"].value_or(0.0), 1.0);
+    const auto *bodies = dry["body"].as_array();
+    ASSERT_NE(bodies, nullptr);
+    ASSERT_EQ(bodies->size(), 2u);
+    // The record nearest 0.6 s is 0.5 s: body 1 at x = 0.25 m, both turned by the record's quaternion, at
+    // rest.
+    const toml::table &second = *bodies->at(1).as_table();
+    EXPECT_EQ(second["position"][0].value_or(-1.0), 0.25);
+    EXPECT_EQ(second["orientation"][3].value_or(0.0), 1.0);
+    EXPECT_EQ(second["velocity"][0].value_or(-1.0), 0.0);
+
+    write(dir_ / "three.toml", body + body + body);
+    const Result bad = run(script + (dir_ / "three.toml").string() + " " + (dir_ / "run").string() + " 0.6 " +
+                           (dir_ / "bad.toml").string());
+    EXPECT_EQ(bad.status, 2) << bad.output;
+    EXPECT_EQ(bad.output, "armour: error: " + (dir_ / "three.toml").string() +
+                              ": more [[body]] tables than the 2 "
+                              "bodies of " +
+                              (dir_ / "run" / "bodies.h5").string() + "\n");
+    EXPECT_FALSE(fs::exists(dir_ / "bad.toml"));
+}
+
 // Who left, when and with whom (studies/departures.py), on a run made up so
 // that each figure is known: Dn 0.1 m, Delta 1, water 1000 kg/m^3, g 10 m/s^2
 // (W' = 10 N); three units move seaward at 3 Dn/s from 1.0, 1.5 and 3.0 s, so
@@ -1005,7 +1058,7 @@ with h5py.File(sys.argv[1], "w") as f:
         << r.output;
     EXPECT_NE(
         r.output.find("slid down the face in its plane (down it >= 3/4 of the threshold, out of it < 1/4): "
-                      "0 of 3, 0 of them under the first load that way"),
+                      "0 of 3, 0 of them with no water load along their move while they moved"),
         std::string::npos)
         << r.output;
     const json summary = json::parse(read_text(dir_ / "out" / "summary.json"));
@@ -1022,7 +1075,7 @@ with h5py.File(sys.argv[1], "w") as f:
     EXPECT_EQ(std::count(table.begin(), table.end(), '\n'), 5) << table; // a comment, the header, 3 units
 
     // A unit that slides down the face in its plane (along (-1.5, 0, -1) / sqrt(3.25), 0.3 m/s from 1 s)
-    // under the first push that way: 1.05 Dn down the face, none out of it, by its pass at 1.35 s.
+    // with no water load on it: 1.05 Dn down the face, none out of it, by its pass at 1.35 s.
     const fs::path slide_dir = dir_ / "slide";
     fs::create_directories(slide_dir);
     write(slide_dir / "summary.json", R"({"damage": {"Dn": 0.1, "delta": 1.0, "displaced_threshold": 1.0}})");
@@ -1033,7 +1086,6 @@ import sys, h5py, numpy as np
 t = np.arange(81) * 0.05
 x = np.zeros((81, 1, 3)); F = np.zeros((81, 1, 3))
 x[:, 0, :] = np.outer(0.3 * np.clip(t - 1.0, 0.0, None), np.array([-1.5, 0.0, -1.0]) / np.sqrt(3.25))
-F[24, 0, 0] = -5.0
 with h5py.File(sys.argv[1], "w") as f:
     f["time"] = t; f["bodies/position"] = x; f["bodies/external_force"] = F
 )");
@@ -1048,11 +1100,12 @@ with h5py.File(sys.argv[1], "w") as f:
         << slide.output;
     EXPECT_NE(slide.output.find(
                   "in its plane (down it >= 3/4 of the threshold, out of it < 1/4): 1 of 1, 1 of them "
-                  "under the first load that way"),
+                  "with no water load along their move while they moved"),
               std::string::npos)
         << slide.output;
     const json slid = json::parse(read_text(dir_ / "slide_out" / "summary.json"));
     EXPECT_EQ(slid["slid_down_the_face"], 1);
+    EXPECT_EQ(slid["slid_down_the_face_unpushed"], 1);
 
     const Result bad = run(script + (dir_ / "missing").string() + " --out " + (dir_ / "bad").string());
     EXPECT_EQ(bad.status, 2) << bad.output;
