@@ -74,7 +74,8 @@ def read_run(folder):
         record = {"time": f["time"][:], "position": f["bodies/position"][:],
                   "force": f["bodies/external_force"][:]}
     dn, g = damage["Dn"], abs(scene["run"]["gravity"][2])
-    return {"name": folder, "face": face_directions(scene), "displaced": [int(r["body"]) for r in rows if r["displaced"] == "1"],
+    return {"name": folder, "face": face_directions(scene),
+            "displaced": [int(r["body"]) for r in rows if r["displaced"] == "1"],
             "seat_s": {int(r["body"]): float(r["s_m"]) for r in rows},
             "dn": dn, "threshold": damage.get("displaced_threshold", 1.0),
             "weight": damage["delta"] * scene["fluid"]["fluid_density"] * g * dn ** 3,
@@ -107,17 +108,13 @@ def departure(run, body):
     window = int(np.searchsorted(t, t[start] - 0.5))
     now = load[window:k + 1].max()
     before = max(load[:window].max(), 0.0) if window > 0 else 0.0
+    # slid down the face in its plane: down it by 3/4 of the threshold or more, out of it by under 1/4
+    slid = up is not None and up <= -0.75 * run["threshold"] and abs(out) < 0.25 * run["threshold"]
     # None: no load that way before (the first wave to push it so, or no wave before the move)
     return {"run": run["name"], "body": body, "seat_s": run["seat_s"][body], "move_start": float(t[start]),
             "passed": float(t[k]), "load": float(now), "load_over_weight": float(now / run["weight"]),
             "largest_before": float(before), "ratio": float(now / before) if before > 0 else None,
-            "up_face_over_Dn": up, "out_of_face_over_Dn": out}
-
-
-def slid_down_the_face(row, threshold):
-    """Moved down the face by 3/4 of the threshold or more, and out of its plane by under a quarter of it."""
-    up, out = row["up_face_over_Dn"], row["out_of_face_over_Dn"]
-    return up is not None and up <= -0.75 * threshold and abs(out) < 0.25 * threshold
+            "up_face_over_Dn": up, "out_of_face_over_Dn": out, "slid_down_the_face": slid}
 
 
 def neighbours(run, neighbour):
@@ -157,7 +154,6 @@ def main():
             rng.shuffle(times)
             shuffled[i] += together(dict(zip(passed, times)), near, args.window)
         for r in rows:
-            r["slid_down_the_face"] = slid_down_the_face(r, run["threshold"])
             print(f"{r['run']}: unit {r['body']} (seat {r['seat_s']:.3f} m up the slope) moved from "
                   f"{r['move_start']:.2f} s, passed the threshold at {r['passed']:.2f} s under "
                   f"{r['load_over_weight']:.2f} W', " + (f"{r['ratio']:.2f} x the largest load before" if r["ratio"]
