@@ -13,6 +13,7 @@
 #include <cstring>
 #include <fcntl.h>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <sys/prctl.h>
 #include <sys/wait.h>
@@ -25,17 +26,58 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Stops a tool (mpirun passes the signal to its ranks) and reaps it.
-void stop_tool(pid_t pid) {
-    ::kill(pid, SIGTERM);
-    for (int naps = 0; naps < 1000; ++naps) { // 10 s, then for good
-        int status = 0;
-        if (::waitpid(pid, &status, WNOHANG) != 0)
-            return;
+// The processes whose parent is `parent` (an mpirun's ranks), from /proc.
+std::vector<pid_t> children_of(pid_t parent) {
+    std::vector<pid_t> children;
+    std::error_code ec;
+    for (const auto &entry : fs::directory_iterator("/proc", ec)) {
+        const std::string name = entry.path().filename().string();
+        if (name.find_first_not_of("0123456789") != std::string::npos)
+            continue;
+        std::ifstream in(entry.path() / "stat");
+        const std::string stat((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        // "pid (comm) state ppid ...": comm may hold spaces and brackets.
+        const std::size_t close = stat.rfind(')');
+        if (close == std::string::npos)
+            continue;
+        std::istringstream rest(stat.substr(close + 1));
+        char state = 0;
+        long ppid = 0;
+        if (rest >> state >> ppid && ppid == parent)
+            children.push_back(static_cast<pid_t>(std::stol(name)));
+    }
+    return children;
+}
+
+// Reaps `pid`, a child of this process, waiting up to `naps` x 10 ms; true
+// when it has ended (or was never ours to wait for).
+bool reaped(pid_t pid, int naps) {
+    for (int nap = 0; nap < naps; ++nap) {
+        const pid_t done = ::waitpid(pid, nullptr, WNOHANG);
+        if (done == pid || (done < 0 && errno != EINTR))
+            return true;
         std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
-    ::kill(pid, SIGKILL);
-    ::waitpid(pid, nullptr, 0);
+    return false;
+}
+
+// Stops a tool and reaps it and its ranks. mpirun passes SIGTERM to its
+// ranks but may exit before they have: this process becomes their
+// subreaper first, so that the ranks fall to it and are waited for here;
+// `armour run` returns only once nothing of the solver works in the case.
+void stop_tool(pid_t pid) {
+    ::prctl(PR_SET_CHILD_SUBREAPER, 1);
+    const std::vector<pid_t> ranks = children_of(pid);
+    ::kill(pid, SIGTERM);
+    if (!reaped(pid, 1000)) { // 10 s, then for good
+        ::kill(pid, SIGKILL);
+        ::waitpid(pid, nullptr, 0);
+    }
+    for (const pid_t rank : ranks)
+        if (!reaped(rank, 1000)) {
+            ::kill(rank, SIGKILL);
+            ::waitpid(rank, nullptr, 0);
+        }
 }
 
 // Starts `args` in case_dir, its output into `log`, tied to this process:
