@@ -46,10 +46,8 @@ echo "$settings" >"$out/settings.txt"
 armour="$build/apps/armour"
 
 # The dry scene: every table the fluid needs is dropped, the rest kept as written.
-awk 'BEGIN { drop = 0 }
-     /^[ \t]*\[/ { name = $0; gsub(/[][ \t]/, "", name); sub(/#.*/, "", name)
-                   drop = (name == "fluid" || name == "waves" || name == "porous" || name == "series" || name == "refine") }
-     !drop' "$opt_scene" >"$out/dry.toml"
+/usr/bin/python3 "$root/studies/dry_scene.py" "$opt_scene" "$out/dry.toml" >/dev/null ||
+  bench_fail "--scene $opt_scene: cannot make its dry scene"
 # Each unit's pull waits for its seat (up to twice 5 (Dn/g)^1/2: 0.64 s for 4 cm cubes), rises to
 # --max and holds it a second; the analysis ends the run there, so the spare 5 s cost nothing.
 duration="$(awk -v m="$max" -v r="$rate" 'BEGIN { print m / r + 6 }')"

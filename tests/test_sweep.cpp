@@ -947,17 +947,20 @@ TEST_F(SweepTest, ComparedCurvesGiveTheGapAsAFactorOnNs) {
     EXPECT_NE(pooled.output.find(expected, at), std::string::npos) << expected << "\n" << pooled.output;
 }
 
-// A dry scene of a layer as a run left it (studies/dry_scene_at.py): the
-// scene's tables less the fluid's, each body at the record nearest the time
-// asked, at rest; a scene whose bodies are not the record's is one error line
-// and nothing written.
-TEST_F(SweepTest, DrySceneAtTakesEachBodyFromTheRecordWithoutTheFluid) {
+// A dry scene of a layer (studies/dry_scene.py): the scene's tables less the
+// fluid's (their sub-tables too), the bodies as the scene holds them or, with
+// --run and --time, each at the record nearest the time asked, at rest; a
+// scene whose bodies are not the record's is one error line and nothing
+// written.
+TEST_F(SweepTest, DrySceneTakesEachBodyFromTheRecordWithoutTheFluid) {
     const std::string body = "[[body]]\nunit = \"cube\"\nposition = [0.0, 0.0, 0.0] # m\n"
                              "orientation = [1.0, 0.0, 0.0, 0.0]\nvelocity = [0.5, 0.0, 0.0] # m/s\n"
                              "angular_velocity = [0.0, 0.0, 0.0] # rad/s\n\n";
-    write(dir_ / "scene.toml", "[run]\nduration = 1.0\n\n[fluid]\nwater_level = 0.4\n\n[waves]\ntype = "
-                               "\"irregular\"\n\n[[refine]]\nlevels = 1\n\n" +
-                                   body + body);
+    write(dir_ / "scene.toml",
+          "[run]\nduration = 1.0\n\n[fluid]\nwater_level = 0.4\n\n[fluid.turbulence]\nmodel = "
+          "\"laminar\"\n\n[waves]\ntype = \"irregular\"\n\n[[refine]]\nlevels = 1\nbox = [\n[0.0, "
+          "0.0],\n[1.0, 1.0]]\n\n" +
+              body + body);
     fs::create_directories(dir_ / "run");
     write(dir_ / "make.py", R"(
 import sys, h5py, numpy as np
@@ -970,9 +973,17 @@ with h5py.File(sys.argv[1], "w") as f:
         run("/usr/bin/python3 " + (dir_ / "make.py").string() + " " + (dir_ / "run" / "bodies.h5").string())
             .status,
         0);
-    const std::string script = "/usr/bin/python3 " + kSource + "/studies/dry_scene_at.py ";
-    const Result r = run(script + (dir_ / "scene.toml").string() + " " + (dir_ / "run").string() + " 0.6 " +
-                         (dir_ / "dry.toml").string());
+    const std::string script = "/usr/bin/python3 " + kSource + "/studies/dry_scene.py ";
+    const std::string at = " --run " + (dir_ / "run").string() + " --time 0.6";
+    const Result as_settled =
+        run(script + (dir_ / "scene.toml").string() + " " + (dir_ / "settled.toml").string());
+    ASSERT_EQ(as_settled.status, 0) << as_settled.output;
+    const toml::table settled = toml::parse_file((dir_ / "settled.toml").string());
+    EXPECT_FALSE(settled.contains("fluid"));                         // with its sub-table
+    EXPECT_FALSE(settled.contains("refine"));                        // with its array's rows
+    EXPECT_EQ(settled["body"][0]["velocity"][0].value_or(0.0), 0.5); // as the scene holds it
+
+    const Result r = run(script + (dir_ / "scene.toml").string() + " " + (dir_ / "dry.toml").string() + at);
     ASSERT_EQ(r.status, 0) << r.output;
     const toml::table dry = toml::parse_file((dir_ / "dry.toml").string());
     EXPECT_FALSE(dry.contains("fluid"));
@@ -990,8 +1001,7 @@ with h5py.File(sys.argv[1], "w") as f:
     EXPECT_EQ(second["velocity"][0].value_or(-1.0), 0.0);
 
     write(dir_ / "three.toml", body + body + body);
-    const Result bad = run(script + (dir_ / "three.toml").string() + " " + (dir_ / "run").string() + " 0.6 " +
-                           (dir_ / "bad.toml").string());
+    const Result bad = run(script + (dir_ / "three.toml").string() + " " + (dir_ / "bad.toml").string() + at);
     EXPECT_EQ(bad.status, 2) << bad.output;
     EXPECT_EQ(bad.output, "armour: error: " + (dir_ / "three.toml").string() +
                               ": more [[body]] tables than the 2 "
