@@ -192,6 +192,46 @@ TEST_F(SweepTest, SetOverridesEveryCaseAfterTheFilesSet) {
     EXPECT_EQ(plan["set"], json({"run.duration=8.0", "run.duration=6"}));
 }
 
+// --seeds replaces the sweep file's seeds: --seeds 1,2,3 on a file of [1, 2]
+// lists the same two realisations under the same scene hashes (so a folder's
+// done cases stay done) and a third; a seed given twice, a negative one, or
+// --seeds with --collect is one error line, nothing written.
+TEST_F(SweepTest, SeedsOnTheCommandLineAddRealisationsAndKeepTheOthers) {
+    const fs::path sweep = dir_ / "seeded.toml";
+    write(sweep, "scene = \"" + kSource +
+                     "/scenes/slope_cubes.toml\"\nseeds = [1, 2]\nseed_key = \"drop.0.seed\"\n" +
+                     "[vary]\n\"material.0.friction\" = [0.3]\n");
+    const std::string dry =
+        kArmour + " sweep " + sweep.string() + " --out " + (dir_ / "out").string() + " --dry-run";
+    const Result file = run(dry), more = run(dry + " --seeds 1,2,3");
+    ASSERT_EQ(file.status, 0) << file.output;
+    ASSERT_EQ(more.status, 0) << more.output;
+    const auto hash = [](const std::string &listing, const std::string &id) {
+        const std::size_t at = listing.find(id + "  scene ");
+        return at == std::string::npos ? std::string() : listing.substr(at + id.size() + 8, 16);
+    };
+    for (const char *id : {"friction-0.3_seed-1", "friction-0.3_seed-2"}) {
+        ASSERT_FALSE(hash(file.output, id).empty()) << file.output;
+        EXPECT_EQ(hash(file.output, id), hash(more.output, id)) << id;
+    }
+    EXPECT_TRUE(hash(file.output, "friction-0.3_seed-3").empty()) << file.output;
+    EXPECT_FALSE(hash(more.output, "friction-0.3_seed-3").empty()) << more.output;
+    EXPECT_NE(hash(more.output, "friction-0.3_seed-3"), hash(more.output, "friction-0.3_seed-1"));
+    EXPECT_NE(more.output.find("3 cases of"), std::string::npos) << more.output;
+
+    const Result twice = run(dry + " --seeds 1,2,1");
+    EXPECT_EQ(twice.status, 2);
+    EXPECT_NE(twice.output.find("armour: error: --seeds: seed 1 given twice"), std::string::npos)
+        << twice.output;
+    const Result negative = run(dry + " --seeds -1");
+    EXPECT_EQ(negative.status, 2) << negative.output;
+    EXPECT_NE(negative.output.find("--seeds"), std::string::npos) << negative.output;
+    const Result collect = run(kArmour + " sweep --collect " + (dir_ / "out").string() + " --seeds 4");
+    EXPECT_EQ(collect.status, 2);
+    EXPECT_NE(collect.output.find("no --seeds"), std::string::npos) << collect.output;
+    EXPECT_FALSE(fs::exists(dir_ / "out"));
+}
+
 // A stability curve's sweep over a test series (docs/stability.md, "Test
 // series"): seeds reach each step's train and the layer (seed_key as a list),
 // [vary] a step's height; every case is a different scene, and a seed key

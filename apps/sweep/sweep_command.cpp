@@ -9,6 +9,7 @@
 #include "scene_setup.h"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -352,6 +353,11 @@ CLI::App *add_sweep_command(CLI::App &app, SweepRequest &r) {
                     "--cases density-1685_seed-1,density-1685_seed-3); the others stay for a later sweep "
                     "into the same --out")
         ->delimiter(',');
+    cmd->add_option("--seeds", r.seeds,
+                    "Realisations in place of the sweep file's seeds (integers >= 0, comma-separated: "
+                    "--seeds 1,2,3,4 adds a fourth to seeds = [1, 2, 3]; the cases of 1-3 stay done)")
+        ->delimiter(',')
+        ->check(CLI::NonNegativeNumber);
     cmd->add_option("--collect", r.collect,
                     "Gather the results of a sweep submitted earlier into DIR (waits for "
                     "its Slurm job to end)");
@@ -371,6 +377,9 @@ void check_sweep_options(const SweepRequest &r) {
         throw InputError("--executor: must be local or slurm (got '" + r.executor + "')");
     if (r.jobs < 0) // 0: not given (the command line refuses --jobs 0 itself)
         throw InputError("--jobs: must be >= 1 (got " + std::to_string(r.jobs) + ")");
+    for (std::size_t i = 0; i < r.seeds.size(); ++i)
+        if (std::count(r.seeds.begin(), r.seeds.begin() + i, r.seeds[i]))
+            throw InputError("--seeds: seed " + std::to_string(r.seeds[i]) + " given twice");
     if (r.no_wait && r.executor != "slurm")
         throw InputError("--no-wait: only with --executor slurm");
     if (r.jobs > 0 && r.executor == "slurm") // else it would be ignored without a word
@@ -403,15 +412,17 @@ int run_sweep(const SweepRequest &r) {
     }
     if (!r.collect.empty()) {
         if (!r.sweep_file.empty() || !r.out.empty() || !r.overrides.empty() || !r.kept.empty() ||
-            !r.cases.empty())
+            !r.cases.empty() || !r.seeds.empty())
             throw InputError("--collect: takes the sweep's folder alone (no SWEEP.toml, no --out, no --set, "
-                             "no --kept, no --cases)");
+                             "no --kept, no --cases, no --seeds)");
         return collect(r);
     }
     check_sweep_options(r);
 
     SweepContext ctx;
     SweepSpec spec = read_sweep_file(r.sweep_file);
+    if (!r.seeds.empty()) // before --set: a seed key the seeds vary is refused there
+        spec.seeds = r.seeds;
     add_command_line_sets(spec, r.overrides);
     ctx.plan = plan_sweep(spec); // every case checked before anything runs
     const std::set<std::size_t> selected = selected_cases(ctx.plan, r.cases);

@@ -22,6 +22,7 @@
 //     return run_sweep(r);   // 0 when every case (of --cases, when given) is done
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -39,11 +40,12 @@ struct SweepRequest {
     int jobs = 0;                       // local: parallel cases (--jobs, >= 1); 0 = not given: cores / np
     bool dry_run = false;
     bool retry_failed = false;
-    bool no_wait = false;           // slurm: submit and return
-    std::string kept;               // DIR of studies/keep_results.py: its done cases count as done here
-    std::vector<std::string> cases; // --cases: only these case ids run now; empty: every case
-    std::string collect;            // DIR: gather a sweep submitted earlier
-    std::string run_case;           // internal: run one case folder (what each executor starts)
+    bool no_wait = false;            // slurm: submit and return
+    std::string kept;                // DIR of studies/keep_results.py: its done cases count as done here
+    std::vector<std::string> cases;  // --cases: only these case ids run now; empty: every case
+    std::vector<std::int64_t> seeds; // --seeds: in place of the sweep file's seeds; empty: the file's
+    std::string collect;             // DIR: gather a sweep submitted earlier
+    std::string run_case;            // internal: run one case folder (what each executor starts)
 };
 
 // Adds the `sweep` subcommand to `app`, filling `request`.
