@@ -93,6 +93,13 @@ std::vector<Row> read_csv(const fs::path &path) {
     return rows;
 }
 
+// The scene hash a `--dry-run` listing gives case `id` ("ID  scene HASH  ..."),
+// or "" where the listing has no such case.
+std::string listed_hash(const std::string &listing, const std::string &id) {
+    const std::size_t at = listing.find(id + "  scene ");
+    return at == std::string::npos ? std::string() : listing.substr(at + id.size() + 8, 16);
+}
+
 class SweepTest : public ::testing::Test {
   protected:
     void SetUp() override { dir_ = armour_test::fresh_test_folder("sweep"); }
@@ -171,13 +178,9 @@ TEST_F(SweepTest, SetOverridesEveryCaseAfterTheFilesSet) {
     const Result plain = run(dry), shorter = run(dry + " --set run.duration=6");
     ASSERT_EQ(plain.status, 0) << plain.output;
     ASSERT_EQ(shorter.status, 0) << shorter.output;
-    const auto hash = [](const std::string &listing, const std::string &id) {
-        const std::size_t at = listing.find(id + "  scene ");
-        return at == std::string::npos ? std::string() : listing.substr(at + id.size() + 8, 16);
-    };
     for (const char *id : {"friction-0.3_spheres-20", "friction-0.5_spheres-50"}) {
-        ASSERT_FALSE(hash(plain.output, id).empty()) << plain.output;
-        EXPECT_NE(hash(plain.output, id), hash(shorter.output, id)) << id;
+        ASSERT_FALSE(listed_hash(plain.output, id).empty()) << plain.output;
+        EXPECT_NE(listed_hash(plain.output, id), listed_hash(shorter.output, id)) << id;
     }
     // A real case runs the duration --set gives, not [set]'s.
     const fs::path one = dir_ / "one.toml", out = dir_ / "one";
@@ -206,17 +209,14 @@ TEST_F(SweepTest, SeedsOnTheCommandLineAddRealisationsAndKeepTheOthers) {
     const Result file = run(dry), more = run(dry + " --seeds 1,2,3");
     ASSERT_EQ(file.status, 0) << file.output;
     ASSERT_EQ(more.status, 0) << more.output;
-    const auto hash = [](const std::string &listing, const std::string &id) {
-        const std::size_t at = listing.find(id + "  scene ");
-        return at == std::string::npos ? std::string() : listing.substr(at + id.size() + 8, 16);
-    };
     for (const char *id : {"friction-0.3_seed-1", "friction-0.3_seed-2"}) {
-        ASSERT_FALSE(hash(file.output, id).empty()) << file.output;
-        EXPECT_EQ(hash(file.output, id), hash(more.output, id)) << id;
+        ASSERT_FALSE(listed_hash(file.output, id).empty()) << file.output;
+        EXPECT_EQ(listed_hash(file.output, id), listed_hash(more.output, id)) << id;
     }
-    EXPECT_TRUE(hash(file.output, "friction-0.3_seed-3").empty()) << file.output;
-    EXPECT_FALSE(hash(more.output, "friction-0.3_seed-3").empty()) << more.output;
-    EXPECT_NE(hash(more.output, "friction-0.3_seed-3"), hash(more.output, "friction-0.3_seed-1"));
+    EXPECT_TRUE(listed_hash(file.output, "friction-0.3_seed-3").empty()) << file.output;
+    EXPECT_FALSE(listed_hash(more.output, "friction-0.3_seed-3").empty()) << more.output;
+    EXPECT_NE(listed_hash(more.output, "friction-0.3_seed-3"),
+              listed_hash(more.output, "friction-0.3_seed-1"));
     EXPECT_NE(more.output.find("3 cases of"), std::string::npos) << more.output;
 
     const Result twice = run(dry + " --seeds 1,2,1");
@@ -252,9 +252,8 @@ TEST_F(SweepTest, ASeriesSweepVariesTheStepsSeedsAndTheLayersSeed) {
     ASSERT_EQ(r.status, 0) << r.output;
     std::set<std::string> hashes;
     for (const char *id : {"Hs-0.11_seed-1", "Hs-0.11_seed-2", "Hs-0.12_seed-1", "Hs-0.12_seed-2"}) {
-        const std::size_t at = r.output.find(std::string(id) + "  scene ");
-        ASSERT_NE(at, std::string::npos) << r.output;
-        hashes.insert(r.output.substr(at + std::string(id).size() + 8, 16));
+        ASSERT_FALSE(listed_hash(r.output, id).empty()) << r.output;
+        hashes.insert(listed_hash(r.output, id));
     }
     EXPECT_EQ(hashes.size(), 4u) << r.output;
     // Realisation-major: every height's first realisation before any second,
