@@ -9,19 +9,33 @@ Description
     - when it first passed the displaced threshold (analysis.displaced_threshold,
       in Dn, from its pose at the first record) and when its last move began
       (its last record under a fifth of the threshold before that);
-    - the fluid load that moved it: the dynamic part of its fluid force (less its
-      value at the first record) along the direction it finally moved (x-z
-      plane), largest from 0.5 s before the move began to the pass, over the
-      largest in all the waves before: below 1, it left under a load it had
-      survived before (its hold had dropped); in submerged weights
-      W' = (rho_s - rho_w) g Dn^3 too;
+    - the fluid load that moved it: the dynamic part of its fluid force (less
+      the still water's load on it, its load at the record nearest --still s:
+      buoyancy where it lies under water; the record at 0 s holds no fluid
+      load yet, and the first steps' settle none) along the direction it
+      finally moved (x-z plane), largest from 0.5 s before the move began to
+      the pass, over the largest from --still on before: below 1, it left
+      under a load it had survived before (its hold had dropped); in
+      submerged weights W' = (rho_s - rho_w) g Dn^3 too (a unit dry in still
+      water has its buoyancy in it once the run-up covers it);
+    - the friction angle it would need to stay where it was as a free block
+      face down on the slope, its weight W and whole fluid load F (buoyancy
+      and all) taken together: atan2(W sin a + F.down, W cos a - F.out), a the
+      face's angle; a unit at rest, under water or not, needs a itself, one
+      lifted off the face more than 90 degrees. Its largest over the move's
+      stretch and over the waves before, against the slope wall's friction
+      angle (atan mu): what the water took away from the hold friction gave a
+      unit lying on the wall;
     - its displaced neighbours (seats closer than --neighbour Dn) and how far
       apart in time they passed the threshold;
     - its move at the pass up and out of the scene's slope wall (in Dn): a unit
       that slid down the face in its plane (down it by 3/4 of the threshold or
-      more, out of it by under 1/4) while the water's load along its move was
-      nowhere above 0 was moved by gravity (the units below it gone, or the
-      water lifting it off its seat), not carried off by the water.
+      more, out of it by under 1/4) while the water's dynamic load along its
+      move was nowhere above a twentieth of W' was moved by gravity (the
+      units below it gone, or the water lifting it off its seat), not pushed
+      down by the flow.
+    A unit that passed the threshold before --still s (a layer still settling)
+    has no load figures.
     Over all runs: how many displaced units left within --window s of a
     displaced neighbour, against the same count with each run's pass times
     shuffled among its displaced units (so that the waves units leave in are
@@ -32,7 +46,7 @@ Description
 
 Usage
     python3 studies/departures.py RUN/cases/*/run --out OUT
-    python3 studies/departures.py OUT1 OUT2 --out OUT --neighbour 2.2 --window 1.0
+    python3 studies/departures.py OUT1 OUT2 --out OUT --neighbour 2.2 --window 1.0 --still 1.0
 """
 import argparse
 import csv
@@ -48,6 +62,7 @@ import h5py
 import numpy as np
 
 SHUFFLES = 4000  # enough for a chance of 1e-3 to be told from 0 (seeded: the same figure every run)
+PUSH = 0.05  # submerged weights: a load along a move below this is no push (the record's noise is ~1e-3 W')
 
 
 def fail(message):
@@ -55,8 +70,8 @@ def fail(message):
     sys.exit(2)
 
 
-def read_run(folder):
-    """The run's record and damage: times, positions, fluid forces, the displaced units and the scales."""
+def read_run(folder, still):
+    """The run's record and damage: times, positions, dynamic fluid forces, the displaced units and the scales."""
     paths = {name: os.path.join(folder, name)
              for name in ("bodies.h5", "damage.csv", "summary.json", "scene.resolved.toml")}
     for path in paths.values():
@@ -74,7 +89,14 @@ def read_run(folder):
         record = {"time": f["time"][:], "position": f["bodies/position"][:],
                   "force": f["bodies/external_force"][:]}
     dn, g = damage["Dn"], abs(scene["run"]["gravity"][2])
-    return {"name": folder, "face": face_directions(scene),
+    if still > record["time"][-1]:
+        fail(f"{paths['bodies.h5']}: --still {still:g} s: the record ends at {record['time'][-1]:g} s")
+    k_still = int(np.argmin(np.abs(record["time"] - still)))
+    whole_force = record["force"]
+    record["force"] = whole_force - whole_force[k_still]  # the dynamic part: less the still water's
+    return {"k_still": k_still, "wall_friction": wall_friction(scene),
+            "weight_in_air": (1.0 + damage["delta"]) * scene["fluid"]["fluid_density"] * g * dn ** 3,
+            "whole_force": whole_force, "name": folder, "face": face_directions(scene),
             "displaced": [int(r["body"]) for r in rows if r["displaced"] == "1"],
             "seat_s": {int(r["body"]): float(r["s_m"]) for r in rows},
             "dn": dn, "threshold": damage.get("displaced_threshold", 1.0),
@@ -92,6 +114,13 @@ def face_directions(scene):
     return np.array([cot, 0.0, 1.0]) / norm, np.array([-1.0, 0.0, cot]) / norm
 
 
+def wall_friction(scene):
+    """The slope wall's friction coefficient (its material's), or None."""
+    slope = next((w for w in scene.get("wall", []) if w.get("type") == "slope"), None)
+    material = next((m for m in scene.get("material", []) if slope and m.get("name") == slope.get("material")), None)
+    return float(material["friction"]) if material and "friction" in material else None
+
+
 def departure(run, body):
     """One displaced unit: its pass of the threshold, the start of its last move and the load ratio."""
     t, moved = run["time"], run["moved"][:, body]
@@ -104,17 +133,38 @@ def departure(run, body):
     if np.hypot(way[0], way[2]) > 1e-3 * np.linalg.norm(way):
         way[1] = 0.0  # across the flume: not what the waves push (unless it is all the move)
     way /= np.linalg.norm(way)
-    load = (run["force"][:, body] - run["force"][0, body]) @ way
-    window = int(np.searchsorted(t, t[start] - 0.5))
-    now = load[window:k + 1].max()
-    before = max(load[:window].max(), 0.0) if window > 0 else 0.0
     # slid down the face in its plane: down it by 3/4 of the threshold or more, out of it by under 1/4
     slid = up is not None and up <= -0.75 * run["threshold"] and abs(out) < 0.25 * run["threshold"]
-    # None: no load that way before (the first wave to push it so, or no wave before the move)
-    return {"run": run["name"], "body": body, "seat_s": run["seat_s"][body], "move_start": float(t[start]),
-            "passed": float(t[k]), "load": float(now), "load_over_weight": float(now / run["weight"]),
-            "largest_before": float(before), "ratio": float(now / before) if before > 0 else None,
-            "up_face_over_Dn": up, "out_of_face_over_Dn": out, "slid_down_the_face": slid}
+    row = {"run": run["name"], "body": body, "seat_s": run["seat_s"][body], "move_start": float(t[start]),
+           "passed": float(t[k]), "load": None, "load_over_weight": None, "largest_before": None, "ratio": None,
+           "hold_angle_deg": None, "hold_angle_before_deg": None, "up_face_over_Dn": up, "out_of_face_over_Dn": out,
+           "slid_down_the_face": slid}
+    still = run["k_still"]
+    if k <= still:  # passed while the layer settled: no still water's load to read the water's against
+        return row
+    load = run["force"][:, body] @ way
+    window = max(int(np.searchsorted(t, t[start] - 0.5)), still)
+    now = load[window:k + 1].max()
+    before = max(load[still:window].max(), 0.0) if window > still else 0.0
+    pushed = lambda load: load > PUSH * run["weight"]
+    # ratio None: no push along the move now, or none before (the first wave to push it so)
+    row.update(load=float(now), load_over_weight=float(now / run["weight"]),
+               largest_before=float(before) if pushed(before) else 0.0,
+               ratio=float(now / before) if pushed(now) and pushed(before) else None)
+    if run["face"]:
+        angle = hold_angle(run, body)
+        row["hold_angle_deg"] = float(angle[window:k + 1].max())
+        row["hold_angle_before_deg"] = float(angle[still:window].max()) if window > still else None
+    return row
+
+
+def hold_angle(run, body):
+    """At each record, the friction angle (deg) that would hold the unit as a free block face down on the slope."""
+    up, out = run["face"]
+    weight, force = run["weight_in_air"], run["whole_force"][:, body]
+    down_the_face = weight * up[2] - force @ up  # gravity's pull down the face and the water's
+    onto_the_face = weight * out[2] - force @ out  # the weight's press onto the face less the water's lift
+    return np.degrees(np.arctan2(down_the_face, onto_the_face))
 
 
 def neighbours(run, neighbour):
@@ -137,10 +187,13 @@ def main():
     parser.add_argument("--out", required=True, help="folder to write departures.csv and summary.json")
     parser.add_argument("--neighbour", type=float, default=2.2, help="seats closer than this are neighbours [Dn]")
     parser.add_argument("--window", type=float, default=1.0, help="passes this close leave together [s]")
+    parser.add_argument("--still", type=float, default=1.0,
+                        help="the still water's instant: after the fluid's first steps, before the waves reach the "
+                             "layer (the scenes' fronts arrive at ~4-5 s) [s]")
     args = parser.parse_args()
-    if args.neighbour <= 0 or args.window <= 0:
-        fail("--neighbour and --window: must be above 0")
-    runs = [read_run(folder) for folder in args.runs]
+    if args.neighbour <= 0 or args.window <= 0 or args.still <= 0:
+        fail("--neighbour, --window and --still: must be above 0")
+    runs = [read_run(folder, args.still) for folder in args.runs]
 
     units, seen, shuffled, rng = [], 0, [0] * SHUFFLES, random.Random(1)
     for run in runs:
@@ -155,36 +208,66 @@ def main():
             shuffled[i] += together(dict(zip(passed, times)), near, args.window)
         for r in rows:
             print(f"{r['run']}: unit {r['body']} (seat {r['seat_s']:.3f} m up the slope) moved from "
-                  f"{r['move_start']:.2f} s, passed the threshold at {r['passed']:.2f} s under "
-                  f"{r['load_over_weight']:.2f} W', " + (f"{r['ratio']:.2f} x the largest load before" if r["ratio"]
-                                                        else "the first load that way") +
+                  f"{r['move_start']:.2f} s, passed the threshold at {r['passed']:.2f} s " + load_text(r) +
                   (f"; moved {r['up_face_over_Dn']:+.2f} Dn up the face, {r['out_of_face_over_Dn']:+.2f} Dn out of it"
                    if r["up_face_over_Dn"] is not None else ""))
-    summary = headline(units, seen, shuffled, args)
+    mu = next((run["wall_friction"] for run in runs if run["wall_friction"]), None)
+    summary = headline(runs, units, seen, shuffled, args, mu)
     write(args.out, units, summary)
 
 
-def headline(units, seen, shuffled, args):
+def load_text(r):
+    """The load a unit left under, as a line's words."""
+    if r["load"] is None:
+        return "before the still water's record (no load figures)"
+    if r["ratio"]:
+        push = f"under {r['load_over_weight']:.2f} W', {r['ratio']:.2f} x the largest load before"
+    elif r["largest_before"]:
+        push = f"under no push along its move ({r['load_over_weight']:+.2f} W'; {r['largest_before']:.3g} N before)"
+    else:
+        push = (f"under {r['load_over_weight']:.2f} W', the first load that way" if r["load_over_weight"] > PUSH else
+                f"under no push along its move ({r['load_over_weight']:+.2f} W')")
+    hold = f", needing {r['hold_angle_deg']:.0f} deg of friction to stay" if r["hold_angle_deg"] is not None else ""
+    return push + hold
+
+
+def quartiles(values):
+    """Median and quartiles (inclusive), or None for no values."""
+    values = sorted(values)
+    if not values:
+        return None
+    q = statistics.quantiles(values, n=4, method="inclusive") if len(values) > 1 else values * 3
+    return q[1], [q[0], q[2]]
+
+
+def headline(runs, units, seen, shuffled, args, mu):
     """The figures over all runs, printed and returned for summary.json."""
-    first = sum(1 for r in units if r["ratio"] is None)
-    ratios = sorted(r["ratio"] for r in units if r["ratio"] is not None)
+    loaded = [r for r in units if r["load"] is not None]
+    first = sum(1 for r in loaded if r["ratio"] is None and r["load_over_weight"] > PUSH)
+    ratios = sorted(r["ratio"] for r in loaded if r["ratio"] is not None)
     summary = {"units_displaced": len(units), "neighbour": args.neighbour, "window": args.window,
+               "still": args.still, "passed_before_the_still_record": len(units) - len(loaded),
                "left_under_the_first_load_that_way": first,
                "left_under_a_smaller_load_than_before": sum(1 for r in ratios if r < 1),
-               "si_units": {"neighbour": "Dn", "window": "s"}}
+               "si_units": {"neighbour": "Dn", "window": "s", "still": "s", "hold_angle": "deg"}}
     if ratios:
-        q = statistics.quantiles(ratios, n=4, method="inclusive") if len(ratios) > 1 else [ratios[0]] * 3
-        summary.update(load_ratio_median=q[1], load_ratio_quartiles=[q[0], q[2]])
+        median, (low, high) = quartiles(ratios)
+        summary.update(load_ratio_median=median, load_ratio_quartiles=[low, high])
         print(f"{len(units)} displaced units: {summary['left_under_a_smaller_load_than_before']} left under a "
               f"smaller load than the largest before, {first} under the first load that way; the ratio's median "
-              f"{q[1]:.2f} (quartiles {q[0]:.2f}-{q[2]:.2f}, of the {len(ratios)} with a load before)")
+              f"{median:.2f} (quartiles {low:.2f}-{high:.2f}, of the {len(ratios)} with a load before)")
+    if summary["passed_before_the_still_record"]:
+        print(f"{summary['passed_before_the_still_record']} passed the threshold before the still water's record at "
+              f"{args.still:g} s (a layer still settling): no load figures")
     if any(r["up_face_over_Dn"] is not None for r in units):
-        slid = [r for r in units if r["slid_down_the_face"]]
-        summary.update(slid_down_the_face=len(slid),
-                       slid_down_the_face_unpushed=sum(1 for r in slid if r["load"] <= 0))
-        print(f"slid down the face in its plane (down it >= 3/4 of the threshold, out of it < 1/4): {len(slid)} of "
-              f"{len(units)}, {summary['slid_down_the_face_unpushed']} of them with no water load along their move "
-              f"while they moved (gravity's move, not the water's)")
+        slid = [r for r in loaded if r["slid_down_the_face"]]
+        summary.update(slid_down_the_face=sum(1 for r in units if r["slid_down_the_face"]),
+                       slid_down_the_face_unpushed=sum(1 for r in slid if r["load_over_weight"] <= PUSH))
+        print(f"slid down the face in its plane (down it >= 3/4 of the threshold, out of it < 1/4): "
+              f"{summary['slid_down_the_face']} of {len(units)}, {summary['slid_down_the_face_unpushed']} of them with "
+              f"no dynamic water load along their move while they moved (gravity's move, not the flow's)")
+        stayed = [stayed_hold(run) for run in runs if run["face"]]
+        holds(summary, slid, [r for r in loaded if not r["slid_down_the_face"]], sum(stayed, []), mu)
     chance = sum(1 for s in shuffled if s >= seen) / len(shuffled)
     summary.update(left_with_a_neighbour=seen, left_with_a_neighbour_shuffled=sum(shuffled) / len(shuffled),
                    chance_of_as_many=chance)
@@ -194,16 +277,43 @@ def headline(units, seen, shuffled, args):
     return summary
 
 
+def stayed_hold(run):
+    """The largest friction angle each unit that stayed (moved under a quarter of the threshold) needed, from
+    the still water's record on: what the water asked of the units it did not move."""
+    displaced = set(run["displaced"])
+    return [{"hold_angle_deg": float(hold_angle(run, b)[run["k_still"]:].max())}
+            for b in range(run["moved"].shape[1]) if b not in displaced and run["moved"][-1, b] < 0.25 * run["threshold"]]
+
+
+def holds(summary, slid, others, stayed, mu):
+    """The friction angles the slid units, the other displaced and the units that stayed needed, against the
+    slope wall's (friction mu)."""
+    wall = math.degrees(math.atan(mu)) if mu else None
+    summary["wall_friction_angle_deg"] = wall
+    for name, rows in (("slid", slid), ("others", others), ("stayed", stayed)):
+        q = quartiles(r["hold_angle_deg"] for r in rows)
+        if not q:
+            continue
+        past = sum(1 for r in rows if wall is not None and r["hold_angle_deg"] > wall)
+        summary[f"hold_angle_{name}_median_deg"], summary[f"hold_angle_{name}_quartiles_deg"] = q
+        summary[f"hold_angle_{name}_past_the_wall"] = past
+        when = "from the still water on" if name == "stayed" else "while they moved"
+        print(f"friction angle needed to stay as a free block on the face {when}, {name} ({len(rows)}): "
+              f"median {q[0]:.0f} deg (quartiles {q[1][0]:.0f}-{q[1][1]:.0f})" +
+              (f"; past the slope wall's {wall:.0f} deg (friction {mu:g}): {past}" if wall else ""))
+
+
 def write(out, units, summary):
     """Both files whole or neither: each written beside itself and renamed."""
     os.makedirs(out, exist_ok=True)
     fields = ["run", "body", "seat_s", "move_start", "passed", "load", "load_over_weight", "largest_before", "ratio",
-              "up_face_over_Dn", "out_of_face_over_Dn", "slid_down_the_face"]
+              "hold_angle_deg", "hold_angle_before_deg", "up_face_over_Dn", "out_of_face_over_Dn", "slid_down_the_face"]
     table = os.path.join(out, "departures.csv")
     with open(table + ".tmp", "w", newline="") as f:
-        f.write("# displaced units (SI: seat_s m up the slope, times s, loads N along the unit's move; "
-                "load_over_weight in submerged weights; ratio the load over the largest before; the move at the pass "
-                "up and out of the slope's face in Dn)\n")
+        f.write("# displaced units (SI: seat_s m up the slope, times s, dynamic loads N along the unit's move; "
+                "load_over_weight in submerged weights; ratio the load over the largest before; hold angles in deg (the "
+                "friction angle a free block would need to stay on the face: over the move, over the waves before); the move at the pass up and out of the slope's face in Dn; loads empty for a unit "
+                "that passed before the still water's record)\n")
         writer = csv.DictWriter(f, fieldnames=fields)
         writer.writeheader()
         writer.writerows(units)

@@ -1060,8 +1060,10 @@ TEST_F(SweepTest, DeparturesTellTheLoadEachUnitLeftUnderAndWhoLeftTogether) {
     const fs::path run_dir = dir_ / "run";
     fs::create_directories(run_dir);
     write(run_dir / "summary.json", R"({"damage": {"Dn": 0.1, "delta": 1.0, "displaced_threshold": 1.0}})");
-    const std::string scene = "[run]\ngravity = [0.0, 0.0, -10.0]\n[fluid]\nfluid_density = 1000.0\n"
-                              "[[wall]]\nname = \"slope\"\ntype = \"slope\"\ncot = 1.5\n";
+    const std::string scene =
+        "[run]\ngravity = [0.0, 0.0, -10.0]\n[fluid]\nfluid_density = 1000.0\n"
+        "[[material]]\nname = \"rough\"\nfriction = 0.9\n"
+        "[[wall]]\nname = \"slope\"\ntype = \"slope\"\ncot = 1.5\nmaterial = \"rough\"\n";
     write(run_dir / "scene.resolved.toml", scene);
     write(run_dir / "damage.csv",
           "# damage per unit\nbody,unit,s_m,y_m,displaced\n0,cube,0.0,0,1\n1,cube,0.15,0,1\n"
@@ -1069,7 +1071,7 @@ TEST_F(SweepTest, DeparturesTellTheLoadEachUnitLeftUnderAndWhoLeftTogether) {
     const std::string make = R"(
 import sys, h5py, numpy as np
 t = np.arange(81) * 0.05
-x = np.zeros((81, 4, 3)); F = np.zeros((81, 4, 3)); F[:, :, 2] = 100.0
+x = np.zeros((81, 4, 3)); F = np.zeros((81, 4, 3)); F[1:, :, 2] = 10.0  # buoyancy; none at 0 s, as in a run
 for b, seat, start in ((0, 0.0, 1.0), (1, 0.15, 1.5), (2, 1.0, 3.0), (3, 0.5, 99.0)):
     x[:, b, 0] = seat - 0.3 * np.clip(t - start, 0.0, None)
 def push(b, at, newtons): F[int(round(at / 0.05)), b, 0] = -newtons
@@ -1083,31 +1085,32 @@ with h5py.File(sys.argv[1], "w") as f:
               0);
 
     const std::string script = "/usr/bin/python3 " + kSource + "/studies/departures.py ";
-    const Result r = run(script + run_dir.string() + " --out " + (dir_ / "out").string());
+    const Result r = run(script + run_dir.string() + " --out " + (dir_ / "out").string() + " --still 0.25");
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_NE(
         r.output.find("unit 0 (seat 0.000 m up the slope) moved from 1.05 s, passed the threshold at 1.35 s "
-                      "under 1.00 W', 2.00 x the largest load before"),
+                      "under 1.00 W', 2.00 x the largest load before, needing 79 deg of friction to stay"),
         std::string::npos)
         << r.output;
     EXPECT_NE(
         r.output.find("unit 1 (seat 0.150 m up the slope) moved from 1.55 s, passed the threshold at 1.85 s "
-                      "under 0.40 W', 0.50 x the largest load before"),
+                      "under 0.40 W', 0.50 x the largest load before, needing 55 deg of friction to stay"),
         std::string::npos)
         << r.output;
-    EXPECT_NE(r.output.find("passed the threshold at 3.35 s under 0.60 W', the first load that way"),
+    EXPECT_NE(r.output.find(
+                  "passed the threshold at 3.35 s under 0.60 W', the first load that way, needing 65 deg"),
               std::string::npos)
         << r.output;
     // Each moved 1.05 Dn seaward (-x) by its pass: on the 1:1.5 face that is 1.05 x 1.5 / sqrt(3.25) =
     // 0.87 Dn down it and 1.05 / sqrt(3.25) = 0.58 Dn out of it, so none slid in the face's plane.
-    EXPECT_NE(
-        r.output.find("under 1.00 W', 2.00 x the largest load before; moved -0.87 Dn up the face, +0.58 Dn "
-                      "out of it"),
-        std::string::npos)
+    EXPECT_NE(r.output.find(
+                  "2.00 x the largest load before, needing 79 deg of friction to stay; moved -0.87 Dn up the "
+                  "face, +0.58 Dn out of it"),
+              std::string::npos)
         << r.output;
     EXPECT_NE(
         r.output.find("slid down the face in its plane (down it >= 3/4 of the threshold, out of it < 1/4): "
-                      "0 of 3, 0 of them with no water load along their move while they moved"),
+                      "0 of 3, 0 of them with no dynamic water load along their move while they moved"),
         std::string::npos)
         << r.output;
     const json summary = json::parse(read_text(dir_ / "out" / "summary.json"));
@@ -1115,6 +1118,12 @@ with h5py.File(sys.argv[1], "w") as f:
     EXPECT_EQ(summary["left_under_a_smaller_load_than_before"], 1);
     EXPECT_EQ(summary["left_under_the_first_load_that_way"], 1);
     EXPECT_NEAR(summary["load_ratio_median"].get<double>(), 1.25, 1e-9);
+    // A free block face down on the 1:1.5 face, weight 20 N and buoyancy 10 N, needs atan(1 / 1.5) = 34 deg
+    // of friction at rest; pushed seaward by 10 N, atan2(13.87, 2.77) = 79 deg (unit 0), and past the
+    // wall's atan(0.9) = 42 deg under every push here.
+    EXPECT_NEAR(summary["wall_friction_angle_deg"].get<double>(), 41.99, 0.01);
+    EXPECT_EQ(summary["hold_angle_others_past_the_wall"], 3);
+    EXPECT_NEAR(summary["hold_angle_stayed_median_deg"].get<double>(), 33.69, 0.01); // unit 3, never pushed
     // Together: units 0 and 1. Shuffled, the pair of times 0.5 s apart falls to them 1 time in 3
     // (then 2 together, else 0): a mean of 2/3 and P(>= 2) 1/3, to the shuffles' sampling.
     EXPECT_EQ(summary["left_with_a_neighbour"], 2);
@@ -1124,7 +1133,8 @@ with h5py.File(sys.argv[1], "w") as f:
     EXPECT_EQ(std::count(table.begin(), table.end(), '\n'), 5) << table; // a comment, the header, 3 units
 
     // A unit that slides down the face in its plane (along (-1.5, 0, -1) / sqrt(3.25), 0.3 m/s from 1 s)
-    // with no water load on it: 1.05 Dn down the face, none out of it, by its pass at 1.35 s.
+    // with no water load on it: 1.05 Dn down the face, none out of it, by its pass at 1.35 s, needing
+    // the face's own 34 deg of friction to stay.
     const fs::path slide_dir = dir_ / "slide";
     fs::create_directories(slide_dir);
     write(slide_dir / "summary.json", R"({"damage": {"Dn": 0.1, "delta": 1.0, "displaced_threshold": 1.0}})");
@@ -1144,17 +1154,31 @@ with h5py.File(sys.argv[1], "w") as f:
         0);
     const Result slide = run(script + slide_dir.string() + " --out " + (dir_ / "slide_out").string());
     ASSERT_EQ(slide.status, 0) << slide.output;
-    EXPECT_NE(slide.output.find("the first load that way; moved -1.05 Dn up the face, +0.00 Dn out of it"),
-              std::string::npos)
+    EXPECT_NE(
+        slide.output.find("under no push along its move (+0.00 W'), needing 34 deg of friction to stay; "
+                          "moved -1.05 Dn up the face, +0.00 Dn out of it"),
+        std::string::npos)
         << slide.output;
     EXPECT_NE(slide.output.find(
                   "in its plane (down it >= 3/4 of the threshold, out of it < 1/4): 1 of 1, 1 of them "
-                  "with no water load along their move while they moved"),
+                  "with no dynamic water load along their move while they moved"),
               std::string::npos)
         << slide.output;
     const json slid = json::parse(read_text(dir_ / "slide_out" / "summary.json"));
     EXPECT_EQ(slid["slid_down_the_face"], 1);
     EXPECT_EQ(slid["slid_down_the_face_unpushed"], 1);
+    EXPECT_EQ(slid["hold_angle_slid_past_the_wall"], 0);
+    // Read against still water at 2 s, it passed while the layer settled: no load figures, still counted.
+    const Result settling =
+        run(script + slide_dir.string() + " --out " + (dir_ / "settling").string() + " --still 2");
+    ASSERT_EQ(settling.status, 0) << settling.output;
+    EXPECT_NE(settling.output.find("passed the threshold at 1.35 s before the still water's record (no load "
+                                   "figures); moved -1.05 Dn up the face"),
+              std::string::npos)
+        << settling.output;
+    const json settled = json::parse(read_text(dir_ / "settling" / "summary.json"));
+    EXPECT_EQ(settled["passed_before_the_still_record"], 1);
+    EXPECT_EQ(settled["slid_down_the_face"], 1);
 
     const Result bad = run(script + (dir_ / "missing").string() + " --out " + (dir_ / "bad").string());
     EXPECT_EQ(bad.status, 2) << bad.output;
