@@ -3,7 +3,8 @@
 
 Description
     Copies what a reader of a study needs from a sweep's output folder (kept
-    outside the repository) into DEST: results.csv, summary.json, report.md,
+    outside the repository) into DEST: results.csv (the finished cases' rows:
+    one per realisation), summary.json, report.md,
     sweep.toml, figures/*.png, and from each case its run's summary.json,
     damage.csv and damage_history.csv (when the analysis wrote them) under
     DEST/cases/<case>/run/, where report.md's links point, and its record
@@ -20,6 +21,7 @@ Usage
     python3 studies/keep_results.py RUN docs/results/stability_curve
     armour sweep STUDY --out NEW_RUN --kept docs/results/stability_curve   # elsewhere: the other cases
 """
+import csv
 import json
 import os
 import shutil
@@ -44,6 +46,18 @@ def relative_to_source(summary, root):
     return summary
 
 
+def finished_rows(text):
+    """results.csv with the finished cases' rows alone: a row per realisation (the pending and failed stay in
+    the sweep's own folder and its report)."""
+    lines = text.splitlines(keepends=True)
+    if not lines:
+        return text
+    column = next(csv.reader([lines[0]])).index("status") if "status" in lines[0] else None
+    if column is None:
+        return text
+    return lines[0] + "".join(line for line in lines[1:] if next(csv.reader([line]))[column] == "done")
+
+
 def keep(run, dest):
     if not os.path.isfile(os.path.join(run, "summary.json")):
         print(f"armour: error: {os.path.join(run, 'summary.json')}: not found (not an armour sweep folder)",
@@ -63,6 +77,8 @@ def keep(run, dest):
         if os.path.exists(os.path.join(run, name)):
             with open(os.path.join(run, name)) as f:
                 text = f.read()
+            if name == "results.csv":
+                text = finished_rows(text)
             with open(os.path.join(dest, name), "w") as f:
                 f.write(text.replace(root + os.sep, "") if root else text)  # the report names the scene
     figures = os.path.join(run, "figures")

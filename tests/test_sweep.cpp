@@ -419,6 +419,16 @@ TEST_F(SweepTest, CasesRunsOnlyTheNamedCasesAndTheRestLater) {
         status[row.at("case")] = row.at("status");
     EXPECT_EQ(status, (std::map<std::string, std::string>{
                           {"friction-0.3", "done"}, {"friction-0.5", "pending"}, {"friction-0.7", "done"}}));
+    // Kept part-way, the repository's results.csv holds the finished realisations alone (one row each).
+    const Result keep = run("/usr/bin/python3 " + kSource + "/studies/keep_results.py " + out.string() + " " +
+                            (dir_ / "kept").string());
+    ASSERT_EQ(keep.status, 0) << keep.output;
+    std::set<std::string> kept;
+    for (const Row &row : read_csv(dir_ / "kept" / "results.csv")) {
+        EXPECT_EQ(row.at("status"), "done") << row.at("case");
+        kept.insert(row.at("case"));
+    }
+    EXPECT_EQ(kept, (std::set<std::string>{"friction-0.3", "friction-0.7"}));
 
     const Result rest = run(sweep);
     ASSERT_EQ(rest.status, 0) << rest.output;
