@@ -26,7 +26,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The processes whose parent is `parent` (an mpirun's ranks), from /proc.
+// The processes whose parent is `parent`, from /proc (zombies too).
 std::vector<pid_t> children_of(pid_t parent) {
     std::vector<pid_t> children;
     std::error_code ec;
@@ -49,35 +49,43 @@ std::vector<pid_t> children_of(pid_t parent) {
     return children;
 }
 
-// Reaps `pid`, a child of this process, waiting up to `naps` x 10 ms; true
-// when it has ended (or was never ours to wait for).
-bool reaped(pid_t pid, int naps) {
-    for (int nap = 0; nap < naps; ++nap) {
-        const pid_t done = ::waitpid(pid, nullptr, WNOHANG);
-        if (done == pid || (done < 0 && errno != EINTR))
-            return true;
+// Stops a tool (mpirun passes the signal to its ranks) and reaps it.
+void stop_tool(pid_t pid) {
+    ::kill(pid, SIGTERM);
+    for (int naps = 0; naps < 1000; ++naps) { // 10 s, then for good
+        if (::waitpid(pid, nullptr, WNOHANG) != 0)
+            return;
         std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
-    return false;
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, nullptr, 0);
 }
 
-// Stops a tool and reaps it and its ranks. mpirun passes SIGTERM to its
-// ranks but may exit before they have: this process becomes their
-// subreaper first, so that the ranks fall to it and are waited for here;
-// `armour run` returns only once nothing of the solver works in the case.
-void stop_tool(pid_t pid) {
-    ::prctl(PR_SET_CHILD_SUBREAPER, 1);
-    const std::vector<pid_t> ranks = children_of(pid);
-    ::kill(pid, SIGTERM);
-    if (!reaped(pid, 1000)) { // 10 s, then for good
-        ::kill(pid, SIGKILL);
-        ::waitpid(pid, nullptr, 0);
+// Ends what a tool left behind. An mpirun that ends, or is stopped, before
+// its ranks leaves them to this process, their subreaper (start_tool), so
+// that `armour run` returns only once nothing of the solver works in the
+// case: SIGTERM, 10 s for them all, then SIGKILL. Called once the tool is
+// reaped, when this process's only children are what it left.
+void end_left_behind() {
+    std::vector<pid_t> left = children_of(::getpid());
+    for (const pid_t p : left)
+        ::kill(p, SIGTERM);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+    while (!left.empty() && std::chrono::steady_clock::now() < deadline) {
+        left.erase(std::remove_if(left.begin(), left.end(),
+                                  [](pid_t p) {
+                                      const pid_t done = ::waitpid(p, nullptr, WNOHANG);
+                                      return done == p || (done < 0 && errno != EINTR);
+                                  }),
+                   left.end());
+        if (!left.empty())
+            std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
-    for (const pid_t rank : ranks)
-        if (!reaped(rank, 1000)) {
-            ::kill(rank, SIGKILL);
-            ::waitpid(rank, nullptr, 0);
+    for (const pid_t p : left) {
+        ::kill(p, SIGKILL);
+        while (::waitpid(p, nullptr, 0) < 0 && errno == EINTR) {
         }
+    }
 }
 
 // Starts `args` in case_dir, its output into `log`, tied to this process:
@@ -92,6 +100,7 @@ pid_t start_tool(const std::string &name, const std::vector<std::string> &args, 
     argv.push_back(nullptr);
     const std::string dir = case_dir.string(), log_path = log.string();
     const pid_t armour = ::getpid();
+    ::prctl(PR_SET_CHILD_SUBREAPER, 1); // the ranks an mpirun leaves fall to this process: end_left_behind
     const pid_t pid = ::fork();
     if (pid < 0)
         throw InputError(name + ": cannot start: " + std::strerror(errno));
@@ -154,6 +163,7 @@ void run_tool(const std::string &name, const std::vector<std::string> &args, con
             return;
         if (running)
             stop_tool(pid);
+        end_left_behind();
         if (show_progress && terminal)
             std::fputc('\n', stderr);
         throw InputError(floor.scene_file + ": key 'fluid.min_time_step': " + name + "'s step fell to " +
@@ -194,6 +204,7 @@ void run_tool(const std::string &name, const std::vector<std::string> &args, con
         else if (const std::string line = progress.line(t, elapsed); !line.empty())
             std::fputs(line.c_str(), stderr);
     }
+    end_left_behind();
     check_floor(read_new_lines(log, log_read), solver_time, false);
     if (show_progress && terminal)
         std::fputc('\n', stderr);

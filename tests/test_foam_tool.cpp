@@ -1,14 +1,18 @@
 // How `armour run` runs an OpenFOAM tool (fluid_case/foam_tool.h) and says
 // why one failed, in one line naming the tool and its log: its FOAM FATAL
 // line (even when it exited 0, as mpirun may), a program that cannot start,
-// or its exit status when its log is empty. Stand-in tools are shell lines.
+// or its exit status when its log is empty; what a tool leaves running ends
+// with it. Stand-in tools are shell lines.
 #include "foam_tool.h"
 #include "input_error.h"
 #include "scratch_folder.h"
 
 #include <gtest/gtest.h>
 
+#include <cerrno>
+#include <csignal>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -67,6 +71,19 @@ TEST_F(FoamTool, AProgramThatCannotStartIsNamed) {
         error = e.what();
     }
     EXPECT_NE(error.find("could not run armour-no-such-program"), std::string::npos) << error;
+}
+
+// A tool that ends before what it started (an mpirun gone before its ranks)
+// leaves it to armour, which ends it before run_tool returns: the stand-in's
+// `sleep` (its pid in a file) no longer exists then, not even as a zombie.
+TEST_F(FoamTool, WhatAToolLeftBehindEndsBeforeRunToolReturns) {
+    EXPECT_EQ(error_of("sleep 30 & echo $! > left.pid; exit 0"), "");
+    std::ifstream in(dir_ / "left.pid");
+    pid_t left = 0;
+    ASSERT_TRUE(in >> left);
+    ASSERT_GT(left, 0);
+    EXPECT_EQ(::kill(left, 0), -1) << "process " << left << " still exists";
+    EXPECT_EQ(errno, ESRCH);
 }
 
 } // namespace
