@@ -20,20 +20,25 @@ Description
       water has its buoyancy in it once the run-up covers it);
     - the friction angle it would need to stay where it was as a free block
       face down on the slope, its weight W and whole fluid load F (buoyancy
-      and all) taken together: atan2(W sin a + F.down, W cos a - F.out), a the
-      face's angle; a unit at rest, under water or not, needs a itself, one
-      lifted off the face more than 90 degrees. Its largest over the move's
+      and all) taken together: atan2(|their part along the face|, W cos a -
+      F.out), a the face's angle (the part along the face down, up or across
+      it: friction holds all three); a unit at rest, under water or not,
+      needs a itself, one lifted off the face more than 90 degrees. Its largest over the move's
       stretch and over the waves before, against the slope wall's friction
-      angle (atan mu): what the water took away from the hold friction gave a
-      unit lying on the wall;
+      angle (atan mu, mu the units' pair with the wall as the engines take
+      it); and, for a slid unit of the inner layer (seated on the wall, its
+      centre within 1 Dn of the face), the same angle for the inner layer's
+      units that stayed (moved under a quarter of the threshold) over the same
+      stretch: whether the water asked more of the units that went;
     - its displaced neighbours (seats closer than --neighbour Dn) and how far
       apart in time they passed the threshold;
-    - its move at the pass up and out of the scene's slope wall (in Dn): a unit
-      that slid down the face in its plane (down it by 3/4 of the threshold or
-      more, out of it by under 1/4) while the water's dynamic load along its
-      move was nowhere above a twentieth of W' was moved by gravity (the
-      units below it gone, or the water lifting it off its seat), not pushed
-      down by the flow.
+    - its move at the pass up and out of the scene's slope wall (in Dn): how
+      many slid down the face in its plane (down it by 3/4 of the threshold or
+      more, out of it by under 1/4), and how many of them met no load along
+      their move beyond the still water's (a twentieth of W' or less). That
+      load cannot tell a push from lost buoyancy: a unit the run-down uncovers
+      loses its buoyancy, which counts there as a push down the face; the
+      friction angle above takes the whole load and can.
     A unit that passed the threshold before --still s (a layer still settling)
     has no load figures.
     Over all runs: how many displaced units left within --window s of a
@@ -94,9 +99,12 @@ def read_run(folder, still):
     k_still = int(np.argmin(np.abs(record["time"] - still)))
     whole_force = record["force"]
     record["force"] = whole_force - whole_force[k_still]  # the dynamic part: less the still water's
-    return {"k_still": k_still, "wall_friction": wall_friction(scene),
+    face = face_directions(scene)
+    origin = face_origin(scene)
+    off_wall = (record["position"][0] - origin) @ face[1] / dn if face and origin is not None else None
+    return {"k_still": k_still, "wall_friction": wall_friction(scene), "off_wall": off_wall,
             "weight_in_air": (1.0 + damage["delta"]) * scene["fluid"]["fluid_density"] * g * dn ** 3,
-            "whole_force": whole_force, "name": folder, "face": face_directions(scene),
+            "whole_force": whole_force, "name": folder, "face": face,
             "displaced": [int(r["body"]) for r in rows if r["displaced"] == "1"],
             "seat_s": {int(r["body"]): float(r["s_m"]) for r in rows},
             "dn": dn, "threshold": damage.get("displaced_threshold", 1.0),
@@ -114,11 +122,27 @@ def face_directions(scene):
     return np.array([cot, 0.0, 1.0]) / norm, np.array([-1.0, 0.0, cot]) / norm
 
 
-def wall_friction(scene):
-    """The slope wall's friction coefficient (its material's), or None."""
+def face_origin(scene):
+    """A point of the slope wall's face, its foot (toe_x, 0, floor_z), or None."""
     slope = next((w for w in scene.get("wall", []) if w.get("type") == "slope"), None)
-    material = next((m for m in scene.get("material", []) if slope and m.get("name") == slope.get("material")), None)
-    return float(material["friction"]) if material and "friction" in material else None
+    if slope is None or "toe_x" not in slope or "floor_z" not in slope:
+        return None
+    return np.array([float(slope["toe_x"]), 0.0, float(slope["floor_z"])])
+
+
+def wall_friction(scene):
+    """The friction between the units and the slope wall, as the engines take it: the scene's
+    [[material_pair]] of the two materials, else the smaller of the two; None where it is not known."""
+    slope = next((w for w in scene.get("wall", []) if w.get("type") == "slope"), None)
+    units = scene.get("unit", [])
+    if slope is None or not units:
+        return None
+    names = {slope.get("material"), units[0].get("material")}
+    for pair in scene.get("material_pair", []):
+        if {pair.get("a"), pair.get("b")} == names and "friction" in pair:
+            return float(pair["friction"])
+    frictions = [float(m["friction"]) for m in scene.get("material", []) if m.get("name") in names and "friction" in m]
+    return min(frictions) if len(frictions) == len(names) else None
 
 
 def departure(run, body):
@@ -137,8 +161,9 @@ def departure(run, body):
     slid = up is not None and up <= -0.75 * run["threshold"] and abs(out) < 0.25 * run["threshold"]
     row = {"run": run["name"], "body": body, "seat_s": run["seat_s"][body], "move_start": float(t[start]),
            "passed": float(t[k]), "load": None, "load_over_weight": None, "largest_before": None, "ratio": None,
-           "hold_angle_deg": None, "hold_angle_before_deg": None, "up_face_over_Dn": up, "out_of_face_over_Dn": out,
-           "slid_down_the_face": slid}
+           "hold_angle_deg": None, "hold_angle_before_deg": None, "inner_layer": inner_layer(run, body),
+           "stayed_hold_angle_deg": None, "stayed_past_the_wall": None, "up_face_over_Dn": up,
+           "out_of_face_over_Dn": out, "slid_down_the_face": slid}
     still = run["k_still"]
     if k <= still:  # passed while the layer settled: no still water's load to read the water's against
         return row
@@ -155,16 +180,38 @@ def departure(run, body):
         angle = hold_angle(run, body)
         row["hold_angle_deg"] = float(angle[window:k + 1].max())
         row["hold_angle_before_deg"] = float(angle[still:window].max()) if window > still else None
+        stayed = [float(hold_angle(run, c)[window:k + 1].max()) for c in inner_layer_that_stayed(run)]
+        if row["inner_layer"] and stayed:
+            row["stayed_hold_angle_deg"] = float(np.median(stayed))
+            wall = friction_angle(run["wall_friction"])
+            row["stayed_past_the_wall"] = sum(1 for a in stayed if wall and a > wall) / len(stayed)
     return row
+
+
+def inner_layer(run, body):
+    """Whether a unit sat on the slope wall's face (up the face from its foot, its centre within 1 Dn of it)."""
+    return run["off_wall"] is not None and run["seat_s"][body] >= 0.0 and run["off_wall"][body] < 1.0
+
+
+def inner_layer_that_stayed(run):
+    """The units of the inner layer that the waves moved less than a quarter of the threshold."""
+    displaced = set(run["displaced"])
+    return [c for c in range(run["moved"].shape[1]) if c not in displaced and inner_layer(run, c)
+            and run["moved"][-1, c] < 0.25 * run["threshold"]]
+
+
+def friction_angle(mu):
+    """atan(mu) in degrees, or None."""
+    return math.degrees(math.atan(mu)) if mu else None
 
 
 def hold_angle(run, body):
     """At each record, the friction angle (deg) that would hold the unit as a free block face down on the slope."""
-    up, out = run["face"]
-    weight, force = run["weight_in_air"], run["whole_force"][:, body]
-    down_the_face = weight * up[2] - force @ up  # gravity's pull down the face and the water's
-    onto_the_face = weight * out[2] - force @ out  # the weight's press onto the face less the water's lift
-    return np.degrees(np.arctan2(down_the_face, onto_the_face))
+    out = run["face"][1]
+    total = run["whole_force"][:, body] - np.array([0.0, 0.0, run["weight_in_air"]])  # the water's and gravity's
+    onto_the_face = -(total @ out)  # the weight's press onto the face less the water's lift
+    along_the_face = np.linalg.norm(total + np.outer(onto_the_face, out), axis=1)  # down, up or across it
+    return np.degrees(np.arctan2(along_the_face, onto_the_face))
 
 
 def neighbours(run, neighbour):
@@ -212,7 +259,7 @@ def main():
                   (f"; moved {r['up_face_over_Dn']:+.2f} Dn up the face, {r['out_of_face_over_Dn']:+.2f} Dn out of it"
                    if r["up_face_over_Dn"] is not None else ""))
     mu = next((run["wall_friction"] for run in runs if run["wall_friction"]), None)
-    summary = headline(runs, units, seen, shuffled, args, mu)
+    summary = headline(units, seen, shuffled, args, mu)
     write(args.out, units, summary)
 
 
@@ -240,7 +287,7 @@ def quartiles(values):
     return q[1], [q[0], q[2]]
 
 
-def headline(runs, units, seen, shuffled, args, mu):
+def headline(units, seen, shuffled, args, mu):
     """The figures over all runs, printed and returned for summary.json."""
     loaded = [r for r in units if r["load"] is not None]
     first = sum(1 for r in loaded if r["ratio"] is None and r["load_over_weight"] > PUSH)
@@ -248,26 +295,30 @@ def headline(runs, units, seen, shuffled, args, mu):
     summary = {"units_displaced": len(units), "neighbour": args.neighbour, "window": args.window,
                "still": args.still, "passed_before_the_still_record": len(units) - len(loaded),
                "left_under_the_first_load_that_way": first,
+               "left_under_no_push": sum(1 for r in loaded if r["load_over_weight"] <= PUSH),
                "left_under_a_smaller_load_than_before": sum(1 for r in ratios if r < 1),
                "si_units": {"neighbour": "Dn", "window": "s", "still": "s", "hold_angle": "deg"}}
+    text = (f"{len(units)} displaced units: {summary['left_under_a_smaller_load_than_before']} left under a smaller "
+            f"load than the largest before, {first} under the first load that way, {summary['left_under_no_push']} "
+            f"under no push along their move")
     if ratios:
         median, (low, high) = quartiles(ratios)
         summary.update(load_ratio_median=median, load_ratio_quartiles=[low, high])
-        print(f"{len(units)} displaced units: {summary['left_under_a_smaller_load_than_before']} left under a "
-              f"smaller load than the largest before, {first} under the first load that way; the ratio's median "
-              f"{median:.2f} (quartiles {low:.2f}-{high:.2f}, of the {len(ratios)} with a load before)")
+        text += f"; the ratio's median {median:.2f} (quartiles {low:.2f}-{high:.2f}, of the {len(ratios)} with both)"
+    print(text)
     if summary["passed_before_the_still_record"]:
         print(f"{summary['passed_before_the_still_record']} passed the threshold before the still water's record at "
               f"{args.still:g} s (a layer still settling): no load figures")
     if any(r["up_face_over_Dn"] is not None for r in units):
         slid = [r for r in loaded if r["slid_down_the_face"]]
         summary.update(slid_down_the_face=sum(1 for r in units if r["slid_down_the_face"]),
+                       slid_down_the_face_with_loads=len(slid),
                        slid_down_the_face_unpushed=sum(1 for r in slid if r["load_over_weight"] <= PUSH))
         print(f"slid down the face in its plane (down it >= 3/4 of the threshold, out of it < 1/4): "
-              f"{summary['slid_down_the_face']} of {len(units)}, {summary['slid_down_the_face_unpushed']} of them with "
-              f"no dynamic water load along their move while they moved (gravity's move, not the flow's)")
-        stayed = [stayed_hold(run) for run in runs if run["face"]]
-        holds(summary, slid, [r for r in loaded if not r["slid_down_the_face"]], sum(stayed, []), mu)
+              f"{summary['slid_down_the_face']} of {len(units)}; of the {len(slid)} with load figures, "
+              f"{summary['slid_down_the_face_unpushed']} met no load along their move beyond the still water's "
+              f"(buoyancy a unit loses to the run-down counts there as a push down the face)")
+        holds(summary, slid, [r for r in loaded if not r["slid_down_the_face"]], mu)
     chance = sum(1 for s in shuffled if s >= seen) / len(shuffled)
     summary.update(left_with_a_neighbour=seen, left_with_a_neighbour_shuffled=sum(shuffled) / len(shuffled),
                    chance_of_as_many=chance)
@@ -277,37 +328,41 @@ def headline(runs, units, seen, shuffled, args, mu):
     return summary
 
 
-def stayed_hold(run):
-    """The largest friction angle each unit that stayed (moved under a quarter of the threshold) needed, from
-    the still water's record on: what the water asked of the units it did not move."""
-    displaced = set(run["displaced"])
-    return [{"hold_angle_deg": float(hold_angle(run, b)[run["k_still"]:].max())}
-            for b in range(run["moved"].shape[1]) if b not in displaced and run["moved"][-1, b] < 0.25 * run["threshold"]]
-
-
-def holds(summary, slid, others, stayed, mu):
-    """The friction angles the slid units, the other displaced and the units that stayed needed, against the
-    slope wall's (friction mu)."""
-    wall = math.degrees(math.atan(mu)) if mu else None
+def holds(summary, slid, others, mu):
+    """The friction angles the slid units and the other displaced needed to stay as free blocks, against the
+    slope wall's (friction mu), and the slid units of the inner layer against the inner layer's units that
+    stayed, over the same stretches."""
+    wall = friction_angle(mu)
     summary["wall_friction_angle_deg"] = wall
-    for name, rows in (("slid", slid), ("others", others), ("stayed", stayed)):
-        q = quartiles(r["hold_angle_deg"] for r in rows)
+    for name, rows in (("slid", slid), ("others", others)):
+        q = quartiles(r["hold_angle_deg"] for r in rows if r["hold_angle_deg"] is not None)
         if not q:
             continue
         past = sum(1 for r in rows if wall is not None and r["hold_angle_deg"] > wall)
         summary[f"hold_angle_{name}_median_deg"], summary[f"hold_angle_{name}_quartiles_deg"] = q
         summary[f"hold_angle_{name}_past_the_wall"] = past
-        when = "from the still water on" if name == "stayed" else "while they moved"
-        print(f"friction angle needed to stay as a free block on the face {when}, {name} ({len(rows)}): "
+        print(f"friction angle needed to stay as a free block on the face while they moved, {name} ({len(rows)}): "
               f"median {q[0]:.0f} deg (quartiles {q[1][0]:.0f}-{q[1][1]:.0f})" +
-              (f"; past the slope wall's {wall:.0f} deg (friction {mu:g}): {past}" if wall else ""))
+              (f"; past the wall's {wall:.0f} deg (friction {mu:g}): {past}" if wall else ""))
+    inner = [r for r in slid if r["stayed_hold_angle_deg"] is not None]
+    if inner:
+        own = float(np.median([r["hold_angle_deg"] for r in inner]))
+        stayed = float(np.median([r["stayed_hold_angle_deg"] for r in inner]))
+        share = float(np.mean([r["stayed_past_the_wall"] for r in inner]))
+        summary.update(slid_inner_layer=len(inner), hold_angle_slid_inner_median_deg=own,
+                       hold_angle_stayed_inner_same_stretches_median_deg=stayed,
+                       stayed_inner_past_the_wall_share=share)
+        print(f"of the inner layer (on the wall): the {len(inner)} slid needed a median {own:.0f} deg while they "
+              f"moved; its units that stayed, over the same stretches, {stayed:.0f} deg, {100 * share:.0f} % of them "
+              f"past the wall's")
 
 
 def write(out, units, summary):
     """Both files whole or neither: each written beside itself and renamed."""
     os.makedirs(out, exist_ok=True)
     fields = ["run", "body", "seat_s", "move_start", "passed", "load", "load_over_weight", "largest_before", "ratio",
-              "hold_angle_deg", "hold_angle_before_deg", "up_face_over_Dn", "out_of_face_over_Dn", "slid_down_the_face"]
+              "hold_angle_deg", "hold_angle_before_deg", "inner_layer", "stayed_hold_angle_deg", "stayed_past_the_wall",
+              "up_face_over_Dn", "out_of_face_over_Dn", "slid_down_the_face"]
     table = os.path.join(out, "departures.csv")
     with open(table + ".tmp", "w", newline="") as f:
         f.write("# displaced units (SI: seat_s m up the slope, times s, dynamic loads N along the unit's move; "

@@ -1072,8 +1072,9 @@ TEST_F(SweepTest, DeparturesTellTheLoadEachUnitLeftUnderAndWhoLeftTogether) {
     write(run_dir / "summary.json", R"({"damage": {"Dn": 0.1, "delta": 1.0, "displaced_threshold": 1.0}})");
     const std::string scene =
         "[run]\ngravity = [0.0, 0.0, -10.0]\n[fluid]\nfluid_density = 1000.0\n"
-        "[[material]]\nname = \"rough\"\nfriction = 0.9\n"
-        "[[wall]]\nname = \"slope\"\ntype = \"slope\"\ncot = 1.5\nmaterial = \"rough\"\n";
+        "[[material]]\nname = \"rough\"\nfriction = 0.9\n[[unit]]\nname = \"cube\"\nmaterial = \"rough\"\n"
+        "[[wall]]\nname = \"slope\"\ntype = \"slope\"\ncot = 1.5\nmaterial = \"rough\"\ntoe_x = 0.0\n"
+        "floor_z = -0.05\n";
     write(run_dir / "scene.resolved.toml", scene);
     write(run_dir / "damage.csv",
           "# damage per unit\nbody,unit,s_m,y_m,displaced\n0,cube,0.0,0,1\n1,cube,0.15,0,1\n"
@@ -1120,7 +1121,8 @@ with h5py.File(sys.argv[1], "w") as f:
         << r.output;
     EXPECT_NE(
         r.output.find("slid down the face in its plane (down it >= 3/4 of the threshold, out of it < 1/4): "
-                      "0 of 3, 0 of them with no dynamic water load along their move while they moved"),
+                      "0 of 3; of the 0 with load figures, 0 met no load along their move beyond the still "
+                      "water's"),
         std::string::npos)
         << r.output;
     const json summary = json::parse(read_text(dir_ / "out" / "summary.json"));
@@ -1133,7 +1135,6 @@ with h5py.File(sys.argv[1], "w") as f:
     // wall's atan(0.9) = 42 deg under every push here.
     EXPECT_NEAR(summary["wall_friction_angle_deg"].get<double>(), 41.99, 0.01);
     EXPECT_EQ(summary["hold_angle_others_past_the_wall"], 3);
-    EXPECT_NEAR(summary["hold_angle_stayed_median_deg"].get<double>(), 33.69, 0.01); // unit 3, never pushed
     // Together: units 0 and 1. Shuffled, the pair of times 0.5 s apart falls to them 1 time in 3
     // (then 2 together, else 0): a mean of 2/3 and P(>= 2) 1/3, to the shuffles' sampling.
     EXPECT_EQ(summary["left_with_a_neighbour"], 2);
@@ -1144,16 +1145,18 @@ with h5py.File(sys.argv[1], "w") as f:
 
     // A unit that slides down the face in its plane (along (-1.5, 0, -1) / sqrt(3.25), 0.3 m/s from 1 s)
     // with no water load on it: 1.05 Dn down the face, none out of it, by its pass at 1.35 s, needing
-    // the face's own 34 deg of friction to stay.
+    // the face's own 34 deg of friction to stay; beside it on the wall a unit that stays under a steady
+    // seaward 10 N and buoyancy 10 N, which asks 79 deg of a free block.
     const fs::path slide_dir = dir_ / "slide";
     fs::create_directories(slide_dir);
     write(slide_dir / "summary.json", R"({"damage": {"Dn": 0.1, "delta": 1.0, "displaced_threshold": 1.0}})");
     write(slide_dir / "scene.resolved.toml", scene);
-    write(slide_dir / "damage.csv", "# damage per unit\nbody,unit,s_m,y_m,displaced\n0,cube,0.3,0,1\n");
+    write(slide_dir / "damage.csv",
+          "# damage per unit\nbody,unit,s_m,y_m,displaced\n0,cube,0.3,0,1\n1,cube,0.5,0,0\n");
     write(dir_ / "slide.py", R"(
 import sys, h5py, numpy as np
 t = np.arange(81) * 0.05
-x = np.zeros((81, 1, 3)); F = np.zeros((81, 1, 3))
+x = np.zeros((81, 2, 3)); F = np.zeros((81, 2, 3)); F[1:, 1] = [-10.0, 0.0, 10.0]
 x[:, 0, :] = np.outer(0.3 * np.clip(t - 1.0, 0.0, None), np.array([-1.5, 0.0, -1.0]) / np.sqrt(3.25))
 with h5py.File(sys.argv[1], "w") as f:
     f["time"] = t; f["bodies/position"] = x; f["bodies/external_force"] = F
@@ -1169,15 +1172,19 @@ with h5py.File(sys.argv[1], "w") as f:
                           "moved -1.05 Dn up the face, +0.00 Dn out of it"),
         std::string::npos)
         << slide.output;
-    EXPECT_NE(slide.output.find(
-                  "in its plane (down it >= 3/4 of the threshold, out of it < 1/4): 1 of 1, 1 of them "
-                  "with no dynamic water load along their move while they moved"),
-              std::string::npos)
+    EXPECT_NE(
+        slide.output.find("in its plane (down it >= 3/4 of the threshold, out of it < 1/4): 1 of 1; of the 1 "
+                          "with load figures, 1 met no load along their move beyond the still water's"),
+        std::string::npos)
         << slide.output;
     const json slid = json::parse(read_text(dir_ / "slide_out" / "summary.json"));
     EXPECT_EQ(slid["slid_down_the_face"], 1);
     EXPECT_EQ(slid["slid_down_the_face_unpushed"], 1);
     EXPECT_EQ(slid["hold_angle_slid_past_the_wall"], 0);
+    EXPECT_EQ(slid["slid_inner_layer"], 1);
+    EXPECT_NEAR(slid["hold_angle_slid_inner_median_deg"].get<double>(), 33.69, 0.01);
+    EXPECT_NEAR(slid["hold_angle_stayed_inner_same_stretches_median_deg"].get<double>(), 78.69, 0.01);
+    EXPECT_EQ(slid["stayed_inner_past_the_wall_share"], 1.0);
     // Read against still water at 2 s, it passed while the layer settled: no load figures, still counted.
     const Result settling =
         run(script + slide_dir.string() + " --out " + (dir_ / "settling").string() + " --still 2");
