@@ -34,14 +34,31 @@ def table_name(head):
     return head.split("#", 1)[0].strip().strip("[]").strip()
 
 
+HEADER = re.compile(r"""[ \t]*\[\[?[ \t]*[A-Za-z_][\w.\-"' \t]*\]\]?[ \t]*(#.*)?""")
+
+
+def tables_of(text):
+    """The text cut before each table header line ([name], [[name]], indented or spaced, a comment after):
+    the part before the first header, then one piece per table. An array's row ([1, 2],) is no header."""
+    pieces = [""]
+    for line in text.splitlines(keepends=True):
+        if HEADER.fullmatch(line.rstrip("\r\n")):
+            pieces.append("")
+        pieces[-1] += line
+    return pieces
+
+
 def body_poses(run, time):
     """The bodies' positions and orientations in RUN/bodies.h5 at the record nearest `time`."""
     import h5py  # only here: the plain dry scene needs no record
     import numpy as np
-    with h5py.File(run, "r") as f:
-        times = f["time"][:]
-        k = int(np.argmin(np.abs(times - time)))
-        return float(times[k]), f["bodies/position"][k], f["bodies/orientation"][k]
+    try:
+        with h5py.File(run, "r") as f:
+            times = f["time"][:]
+            k = int(np.argmin(np.abs(times - time)))
+            return float(times[k]), f["bodies/position"][k], f["bodies/orientation"][k]
+    except (OSError, KeyError) as e:
+        fail(f"{run}: not a body record (time, bodies/position, bodies/orientation): {e}")
 
 
 def main():
@@ -60,9 +77,9 @@ def main():
             fail(f"{path}: not found")
     poses = body_poses(record, args.time) if record else None
     with open(args.scene) as f:
-        tables = re.split(r"(?m)^(?=\[\[?[A-Za-z_])", f.read())  # at each header, not at an array's row
-    kept, body = [], 0
-    for table in tables:
+        tables = tables_of(f.read())
+    kept, body = [tables[0]], 0  # the part before the first header: the scene's own keys
+    for table in tables[1:]:
         head = table.split("\n", 1)[0]
         if table_name(head).split(".")[0] in FLUID_TABLES:
             continue

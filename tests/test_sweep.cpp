@@ -219,13 +219,20 @@ TEST_F(SweepTest, SeedsOnTheCommandLineAddRealisationsAndKeepTheOthers) {
               listed_hash(more.output, "friction-0.3_seed-1"));
     EXPECT_NE(more.output.find("3 cases of"), std::string::npos) << more.output;
 
+    // The sweep file may follow the option: one comma-separated word is all --seeds takes.
+    const Result before_file = run(kArmour + " sweep --seeds 1,2,3 " + sweep.string() + " --out " +
+                                   (dir_ / "out").string() + " --dry-run");
+    EXPECT_EQ(before_file.status, 0) << before_file.output;
+    EXPECT_EQ(listed_hash(before_file.output, "friction-0.3_seed-3"),
+              listed_hash(more.output, "friction-0.3_seed-3"));
     const Result twice = run(dry + " --seeds 1,2,1");
     EXPECT_EQ(twice.status, 2);
     EXPECT_NE(twice.output.find("armour: error: --seeds: seed 1 given twice"), std::string::npos)
         << twice.output;
-    const Result negative = run(dry + " --seeds -1");
+    const Result negative = run(dry + " --seeds=-1");
     EXPECT_EQ(negative.status, 2) << negative.output;
-    EXPECT_NE(negative.output.find("--seeds"), std::string::npos) << negative.output;
+    EXPECT_NE(negative.output.find("armour: error: --seeds: must be >= 0 (got -1)"), std::string::npos)
+        << negative.output;
     const Result collect = run(kArmour + " sweep --collect " + (dir_ / "out").string() + " --seeds 4");
     EXPECT_EQ(collect.status, 2);
     EXPECT_NE(collect.output.find("no --seeds"), std::string::npos) << collect.output;

@@ -352,12 +352,14 @@ CLI::App *add_sweep_command(CLI::App &app, SweepRequest &r) {
                     "Run only these cases now (ids as in DIR/cases, comma-separated: "
                     "--cases density-1685_seed-1,density-1685_seed-3); the others stay for a later sweep "
                     "into the same --out")
-        ->delimiter(',');
+        ->delimiter(',')
+        ->allow_extra_args(false);
     cmd->add_option("--seeds", r.seeds,
                     "Realisations in place of the sweep file's seeds (integers >= 0, comma-separated: "
                     "--seeds 1,2,3,4 adds a fourth to seeds = [1, 2, 3]; the cases of 1-3 stay done)")
         ->delimiter(',')
-        ->check(CLI::NonNegativeNumber);
+        ->allow_extra_args(false) // one comma-separated word: the sweep file after it stays the sweep file
+        ->check(integer_at_least(0));
     cmd->add_option("--collect", r.collect,
                     "Gather the results of a sweep submitted earlier into DIR (waits for "
                     "its Slurm job to end)");
