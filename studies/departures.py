@@ -102,9 +102,9 @@ def read_run(folder, still):
     face = face_directions(scene)
     origin = face_origin(scene)
     off_wall = (record["position"][0] - origin) @ face[1] / dn if face and origin is not None else None
+    weight_in_air = (1.0 + damage["delta"]) * scene["fluid"]["fluid_density"] * g * dn ** 3
     return {"k_still": k_still, "wall_friction": wall_friction(scene), "off_wall": off_wall,
-            "weight_in_air": (1.0 + damage["delta"]) * scene["fluid"]["fluid_density"] * g * dn ** 3,
-            "whole_force": whole_force, "name": folder, "face": face,
+            "hold": hold_angles(whole_force, weight_in_air, face[1]) if face else None, "name": folder, "face": face,
             "displaced": [int(r["body"]) for r in rows if r["displaced"] == "1"],
             "seat_s": {int(r["body"]): float(r["s_m"]) for r in rows},
             "dn": dn, "threshold": damage.get("displaced_threshold", 1.0),
@@ -177,15 +177,22 @@ def departure(run, body):
                largest_before=float(before) if pushed(before) else 0.0,
                ratio=float(now / before) if pushed(now) and pushed(before) else None)
     if run["face"]:
-        angle = hold_angle(run, body)
-        row["hold_angle_deg"] = float(angle[window:k + 1].max())
-        row["hold_angle_before_deg"] = float(angle[still:window].max()) if window > still else None
-        stayed = [float(hold_angle(run, c)[window:k + 1].max()) for c in inner_layer_that_stayed(run)]
-        if row["inner_layer"] and stayed:
-            row["stayed_hold_angle_deg"] = float(np.median(stayed))
-            wall = friction_angle(run["wall_friction"])
-            row["stayed_past_the_wall"] = sum(1 for a in stayed if wall and a > wall) / len(stayed)
+        row.update(hold_figures(run, body, still, window, k + 1))
     return row
+
+
+def hold_figures(run, body, still, window, end):
+    """The friction angles a unit needed to stay, over records [window, end) and before them from the still
+    water's record; for a unit of the inner layer, the inner layer's units that stayed over the same records."""
+    angle = run["hold"]
+    figures = {"hold_angle_deg": float(angle[window:end, body].max()),
+               "hold_angle_before_deg": float(angle[still:window, body].max()) if window > still else None}
+    stayed = angle[window:end, inner_layer_that_stayed(run)].max(axis=0) if inner_layer(run, body) else []
+    if len(stayed):
+        wall = friction_angle(run["wall_friction"])
+        figures.update(stayed_hold_angle_deg=float(np.median(stayed)),
+                       stayed_past_the_wall=float(np.mean(stayed > wall)) if wall else None)
+    return figures
 
 
 def inner_layer(run, body):
@@ -205,12 +212,12 @@ def friction_angle(mu):
     return math.degrees(math.atan(mu)) if mu else None
 
 
-def hold_angle(run, body):
-    """At each record, the friction angle (deg) that would hold the unit as a free block face down on the slope."""
-    out = run["face"][1]
-    total = run["whole_force"][:, body] - np.array([0.0, 0.0, run["weight_in_air"]])  # the water's and gravity's
+def hold_angles(whole_force, weight_in_air, out):
+    """At each record (first axis), for each unit (second), the friction angle (deg) that would hold it as a free
+    block face down on the slope whose outward normal is `out`, under its weight and whole fluid load."""
+    total = whole_force - np.array([0.0, 0.0, weight_in_air])  # the water's and gravity's
     onto_the_face = -(total @ out)  # the weight's press onto the face less the water's lift
-    along_the_face = np.linalg.norm(total + np.outer(onto_the_face, out), axis=1)  # down, up or across it
+    along_the_face = np.linalg.norm(total + onto_the_face[..., None] * out, axis=-1)  # down, up or across it
     return np.degrees(np.arctan2(along_the_face, onto_the_face))
 
 
