@@ -96,6 +96,8 @@ def first_number(figures, *keys):
 
 
 def save(fig, path):
+    """The chart at `path` whole or not at all (written beside it and renamed), its folder made if need be."""
+    os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
     tmp = path + ".tmp.png"
     fig.savefig(tmp, dpi=110, bbox_inches="tight")
     os.replace(tmp, path)
