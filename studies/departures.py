@@ -112,9 +112,14 @@ def read_run(folder, still):
             "moved": np.linalg.norm(record["position"] - record["position"][0], axis=2) / dn, **record}
 
 
+def slope_wall(scene):
+    """The scene's slope wall (its first [[wall]] of type "slope"), or None."""
+    return next((w for w in scene.get("wall", []) if w.get("type") == "slope"), None)
+
+
 def face_directions(scene):
     """(up the face, out of it): unit vectors of the scene's slope wall (rising in +x); None without one."""
-    slope = next((w for w in scene.get("wall", []) if w.get("type") == "slope"), None)
+    slope = slope_wall(scene)
     if slope is None:
         return None
     cot = float(slope["cot"])
@@ -124,7 +129,7 @@ def face_directions(scene):
 
 def face_origin(scene):
     """A point of the slope wall's face, its foot (toe_x, 0, floor_z), or None."""
-    slope = next((w for w in scene.get("wall", []) if w.get("type") == "slope"), None)
+    slope = slope_wall(scene)
     if slope is None or "toe_x" not in slope or "floor_z" not in slope:
         return None
     return np.array([float(slope["toe_x"]), 0.0, float(slope["floor_z"])])
@@ -133,7 +138,7 @@ def face_origin(scene):
 def wall_friction(scene):
     """The friction between the units and the slope wall, as the engines take it: the scene's
     [[material_pair]] of the two materials, else the smaller of the two; None where it is not known."""
-    slope = next((w for w in scene.get("wall", []) if w.get("type") == "slope"), None)
+    slope = slope_wall(scene)
     units = scene.get("unit", [])
     if slope is None or not units:
         return None
