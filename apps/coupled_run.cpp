@@ -3,6 +3,7 @@
 #include "analysis.h"
 #include "bodies_file.h"
 #include "body_recorder.h"
+#include "checkpoints.h"
 #include "fluid_models.h"
 #include "flume_mesh.h"
 #include "foam_case.h"
@@ -199,9 +200,11 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
         f.np = r.np; // the resolved scene records what ran
     else if (resume)
         f.np = checkpoint_ranks(*resume); // a resume goes on with the run's ranks unless told
-    const std::vector<std::string> warnings = check_coupled_scene(scene, setup, f.np);
+    std::vector<std::string> warnings = check_coupled_scene(scene, setup, f.np);
     for (const auto &w : warnings)
         std::fprintf(stderr, "armour: warning: %s\n", w.c_str());
+    if (resume && !other_arithmetic_warning(*resume).empty())
+        warnings.push_back(other_arithmetic_warning(*resume)); // printed by checked_resume
 
     folder.open(); // an earlier result of this command is replaced
     const fs::path out = folder.target();
@@ -237,6 +240,7 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
         {"dt", std::atof(rec.attribute("dt").c_str())},
         {"simulated_seconds", simulated},
         {"wall_seconds", wall_seconds},
+        {"arithmetic", arithmetic_fingerprint()}, // two runs with other fingerprints part (checkpoints.h)
         {"wall_seconds_per_simulated_second",
          simulated > 0.0 ? json(wall_seconds / simulated) : json(nullptr)},
         {"records", rec.time.size()},

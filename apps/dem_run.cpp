@@ -6,6 +6,7 @@
 #include "analysis.h"
 #include "bodies_file.h"
 #include "body_recorder.h"
+#include "checkpoints.h"
 #include "clump_io.h"
 #include "engine_registry.h"
 #include "mesh.h"
@@ -139,6 +140,7 @@ json dem_summary(const Scene &scene, const SceneSetup &setup, const RigidBodyEng
         {"steps", engine.steps()},
         {"simulated_seconds", engine.time()},
         {"wall_seconds", wall_seconds},
+        {"arithmetic", arithmetic_fingerprint()}, // two runs with other fingerprints part (checkpoints.h)
         // A run shorter than one step simulates nothing: no cost per second or per step to report.
         {"wall_seconds_per_simulated_second",
          engine.steps() > 0 ? json(wall_seconds / engine.time()) : json(nullptr)},
@@ -302,7 +304,7 @@ int run_dem(OutputFolder &folder, const Scene &scene, SceneSetup &setup, std::ve
         }
         // Not at the last record: the run is whole then (summary.json).
         if (k < outputs && checkpoints.due(engine->time()))
-            checkpoints.write({engine->time(), recorder->steps(), progress.seconds(), {}},
+            checkpoints.write({engine->time(), recorder->steps(), progress.seconds(), {}, {}},
                               [&](const fs::path &dir) { engine->save_state((dir / "engine").string()); });
         progress.update(engine->time());
     }

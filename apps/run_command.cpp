@@ -97,6 +97,8 @@ Checkpoint checked_resume(const RunRequest &r, const Scene &scene, const fs::pat
     if (last->time >= scene.duration)
         throw InputError("--resume: the last checkpoint (t = " + checkpoint_name(last->time) +
                          " s) is not before run.duration = " + checkpoint_name(scene.duration) + " s");
+    if (const std::string w = other_arithmetic_warning(*last); !w.empty())
+        std::fprintf(stderr, "armour: warning: %s\n", w.c_str());
     return *last;
 }
 

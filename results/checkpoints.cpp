@@ -6,8 +6,10 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <unistd.h>
@@ -31,6 +33,7 @@ std::optional<Checkpoint> read_checkpoint(const fs::path &dir) {
     c.records = j["records"].get<long>();
     c.wall_seconds = j.value("wall_seconds", 0.0);
     c.dir = dir;
+    c.arithmetic = j.value("arithmetic", std::string());
     return c;
 }
 
@@ -50,6 +53,42 @@ std::vector<Checkpoint> complete(const fs::path &root) {
 }
 
 } // namespace
+
+std::string arithmetic_fingerprint() {
+    // The arguments pass through a volatile so that the compiler cannot
+    // fold the calls at build time (it would round them its own way).
+    volatile double scale = 0.0123456789;
+    std::uint64_t hash = 1469598103934665603ull; // FNV-1a
+    const auto mix = [&hash](double r) {
+        std::uint64_t bits;
+        std::memcpy(&bits, &r, sizeof bits);
+        hash = (hash ^ bits) * 1099511628211ull;
+    };
+    for (int i = 1; i <= 4096; ++i) {
+        const double x = i * scale + 0.001; // 0.013 .. 50.6
+        mix(std::exp(0.05 * x));
+        mix(std::log(x));
+        mix(std::pow(x, 0.4));
+        mix(std::sin(x));
+        mix(std::cos(x));
+        mix(std::tan(x));
+        mix(std::atan2(x, 1.7));
+    }
+    char text[17];
+    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash));
+    return text;
+}
+
+std::string other_arithmetic_warning(const Checkpoint &c) {
+    if (c.arithmetic.empty() || c.arithmetic == arithmetic_fingerprint())
+        return "";
+    return "--resume: " + c.dir.string() +
+           " was written where the C library's maths rounds otherwise (another processor or C library: "
+           "checkpoint.json arithmetic " +
+           c.arithmetic + ", here " + arithmetic_fingerprint() +
+           "): the run goes on as another realisation of its case, not the run it would have been "
+           "(docs/checkpoints.md)";
+}
 
 std::string checkpoint_name(double t) {
     char text[32];
@@ -102,6 +141,7 @@ fs::path Checkpoints::commit(const Checkpoint &at, const fs::path &partial) {
     const nlohmann::json j = {{"time", at.time},
                               {"records", at.records},
                               {"wall_seconds", at.wall_seconds},
+                              {"arithmetic", arithmetic_fingerprint()},
                               {"si_units", {{"time", "s"}, {"wall_seconds", "s"}}}};
     {
         std::ofstream out(partial / "checkpoint.json");

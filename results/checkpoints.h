@@ -11,7 +11,8 @@
 //     name, and, once one was written, one at least is there to resume
 //     from. What a checkpoint holds:
 //         checkpoint.json  time (s), records (steps of bodies.h5 up to and
-//                          including its time), wall_seconds of the run so far
+//                          including its time), wall_seconds of the run so far,
+//                          arithmetic (the writer's arithmetic_fingerprint())
 //         engine/          the engine's state (RigidBodyEngine::save_state)
 //     and what its writer adds (a coupled run: the fluid's time folder, the
 //     coupler's state; docs/checkpoints.md). Used by `armour run` (dry) and
@@ -37,7 +38,22 @@ struct Checkpoint {
     long records = 0;          // steps of bodies.h5 up to and including this time
     double wall_seconds = 0.0; // s, wall time of the run up to it (earlier resumes included)
     std::filesystem::path dir; // where it lies (set by last_checkpoint and write)
+    std::string arithmetic;    // the writer's arithmetic_fingerprint() ("" in older checkpoints)
 };
+
+// A fingerprint of this process's C library maths: exp, log, pow, sin, cos,
+// tan and atan2 over 4096 fixed arguments, their bits hashed (16 hex digits).
+// glibc picks their code by the processor (FMA or not) and its version, and
+// two machines whose fingerprints differ run one command as two realisations
+// that part from the first records (docs/validation/robustness.md). Equal
+// fingerprints say only that these functions agree.
+std::string arithmetic_fingerprint();
+
+// A warning line (without "armour: warning: ") when checkpoint `c` was written
+// by a process whose arithmetic differs from this one's: the resumed run
+// goes on as another realisation of its case. Empty when they agree or the
+// checkpoint predates the fingerprint.
+std::string other_arithmetic_warning(const Checkpoint &c);
 
 // A coupled run's own state in a checkpoint (CHECKPOINT/coupling): the
 // interFoam plugin writes it, a resume of the plugin and `armour run`'s

@@ -9,8 +9,8 @@ Description
     damage.csv and damage_history.csv (when the analysis wrote them) under
     DEST/cases/<case>/run/, where report.md's links point, and its record
     (case.json: status, scene hash, wall time), so that a sweep on another
-    machine counts the kept cases done: copy DEST/cases into its RUN/cases
-    and it runs only the others. Paths of the source
+    machine counts the kept cases done: `armour sweep ... --kept DEST` copies
+    those with the same scene into its --out and runs only the others. Paths of the source
     tree in summary.json (the scene, the sweep file) are written relative to
     it, so the kept files name no machine's folders. Bodies, fields and
     checkpoints stay in the sweep folder. DEST is written afresh: files of

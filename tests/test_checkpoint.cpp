@@ -17,9 +17,11 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <fcntl.h>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <random>
 #include <set>
 #include <stdexcept>
@@ -310,6 +312,76 @@ TEST_F(Resume, AStoppedRunIsReplacedOnlyWhenAskedTo) { // engine-independent: on
     EXPECT_TRUE(fs::exists(out / "summary.json"));
     // A finished run is replaced by the same command as before, unasked.
     ASSERT_EQ(run(args(file, out, false)), 0);
+}
+
+// A resume on a machine whose C library maths rounds otherwise (another
+// processor: FMA or not; another glibc) goes on as another realisation of
+// the run, not the run itself (docs/validation/robustness.md): it is said,
+// once on stderr and in summary.json's warnings of a coupled run, never
+// silently. Here the checkpoint's fingerprint is rewritten as another
+// machine's would read.
+TEST_F(Resume, AResumeWhereTheMathsRoundsOtherwiseIsWarnedOf) { // engine-independent: one engine
+    const fs::path file = scene(drop_scene("free_body", 0.3));
+    const fs::path out = dir_ / "out";
+    ASSERT_EQ(run(args(file, out, false)), 0);
+    const std::string here = armour::arithmetic_fingerprint();
+    EXPECT_EQ(here.size(), 16u) << here;
+    EXPECT_EQ(armour::arithmetic_fingerprint(), here) << "the fingerprint of one process changed";
+    EXPECT_EQ(summary_of(out).value("arithmetic", ""), here);
+    const auto resume_with = [&](const std::string &theirs, std::string &err) {
+        fs::remove(out / "summary.json"); // as a killed run leaves it: its checkpoints at 0.1 and 0.2 s
+        const std::optional<armour::Checkpoint> last = armour::last_checkpoint(out);
+        if (!last)
+            return -1;
+        EXPECT_EQ(last->arithmetic, here) << "a checkpoint carries its writer's fingerprint";
+        json j = json::parse(std::ifstream(last->dir / "checkpoint.json"));
+        j["arithmetic"] = theirs;
+        std::ofstream(last->dir / "checkpoint.json") << j.dump(2) << "\n";
+        const std::vector<std::string> a = args(file, out, true);
+        std::vector<const char *> argv;
+        for (const auto &s : a)
+            argv.push_back(s.c_str());
+        ::testing::internal::CaptureStderr();
+        const int code = armour::armour_main(static_cast<int>(argv.size()), argv.data());
+        err = ::testing::internal::GetCapturedStderr();
+        return code;
+    };
+    std::string err;
+    ASSERT_EQ(resume_with(here, err), 0) << err;
+    EXPECT_EQ(err.find("rounds otherwise"), std::string::npos) << "the same maths warned of: " << err;
+
+    const std::string theirs = here == "0123456789abcdef" ? "fedcba9876543210" : "0123456789abcdef";
+    ASSERT_EQ(resume_with(theirs, err), 0) << err;
+    const std::string checkpoint = armour::last_checkpoint(out)->dir.string();
+    EXPECT_NE(err.find("armour: warning: --resume: " + checkpoint +
+                       " was written where the C library's maths rounds otherwise (another processor or C "
+                       "library: checkpoint.json arithmetic " +
+                       theirs + ", here " + here + "): the run goes on as another realisation of its case"),
+              std::string::npos)
+        << err;
+    EXPECT_TRUE(fs::exists(out / "summary.json")) << "the warned resume did not finish";
+}
+
+// The fingerprint tells the C library's FMA code from its plain x86-64
+// code, the difference that parts one command's runs on two machines
+// (bench/run_cpu_paths.sh): the armour binary with FMA hidden from glibc
+// (GLIBC_TUNABLES, glibc >= 2.33) writes another into summary.json.
+TEST_F(Resume, TheFingerprintTellsTheMathsWithoutFma) {
+#if defined(__x86_64__)
+    if (!__builtin_cpu_supports("fma"))
+        GTEST_SKIP() << "this processor has no FMA: the C library runs its plain code already";
+    const fs::path file = scene(drop_scene("free_body", 0.05));
+    const std::string command = "GLIBC_TUNABLES=glibc.cpu.hwcaps=-AVX2,-FMA " + std::string(ARMOUR_EXE) +
+                                " run " + file.string() + " --out " + (dir_ / "no_fma").string() +
+                                " --cache " + cache_ + " > " + (dir_ / "no_fma.log").string() + " 2>&1";
+    ASSERT_EQ(std::system(command.c_str()), 0) << command;
+    const std::string theirs = summary_of(dir_ / "no_fma").value("arithmetic", "");
+    EXPECT_EQ(theirs.size(), 16u) << theirs;
+    EXPECT_NE(theirs, armour::arithmetic_fingerprint())
+        << "the maths without FMA gave this process's fingerprint";
+#else
+    GTEST_SKIP() << "FMA code in glibc's libm is picked on x86-64";
+#endif
 }
 
 // Checkpoints fall at multiples of the interval and never at the last step,
