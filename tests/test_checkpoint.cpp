@@ -112,6 +112,16 @@ class Resume : public ::testing::TestWithParam<std::string> {
         const int status = wait(start(a));
         return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
     }
+    // `armour ...` in this process (a free_body run: no engine owns it), its stderr into `err`.
+    static int run_here(const std::vector<std::string> &a, std::string &err) {
+        std::vector<const char *> argv;
+        for (const auto &s : a)
+            argv.push_back(s.c_str());
+        ::testing::internal::CaptureStderr();
+        const int code = armour::armour_main(static_cast<int>(argv.size()), argv.data());
+        err = ::testing::internal::GetCapturedStderr();
+        return code;
+    }
 
     fs::path dir_;
     std::string cache_;
@@ -281,13 +291,7 @@ TEST_F(Resume, AStoppedRunIsReplacedOnlyWhenAskedTo) { // engine-independent: on
     const auto main_with = [&](const std::vector<std::string> &extra, std::string &err) {
         std::vector<std::string> a = args(file, out, false);
         a.insert(a.end(), extra.begin(), extra.end());
-        std::vector<const char *> argv;
-        for (const auto &s : a)
-            argv.push_back(s.c_str());
-        ::testing::internal::CaptureStderr();
-        const int code = armour::armour_main(static_cast<int>(argv.size()), argv.data());
-        err = ::testing::internal::GetCapturedStderr();
-        return code;
+        return run_here(a, err);
     };
     std::string err;
     for (const std::vector<std::string> &extra : {std::vector<std::string>{}, {"--dry-run"}}) {
@@ -337,14 +341,7 @@ TEST_F(Resume, AResumeWhereTheMathsRoundsOtherwiseIsWarnedOf) { // engine-indepe
         json j = json::parse(std::ifstream(last->dir / "checkpoint.json"));
         j["arithmetic"] = theirs;
         std::ofstream(last->dir / "checkpoint.json") << j.dump(2) << "\n";
-        const std::vector<std::string> a = args(file, out, true);
-        std::vector<const char *> argv;
-        for (const auto &s : a)
-            argv.push_back(s.c_str());
-        ::testing::internal::CaptureStderr();
-        const int code = armour::armour_main(static_cast<int>(argv.size()), argv.data());
-        err = ::testing::internal::GetCapturedStderr();
-        return code;
+        return run_here(args(file, out, true), err);
     };
     std::string err;
     ASSERT_EQ(resume_with(here, err), 0) << err;
