@@ -203,8 +203,8 @@ int run_coupled(const RunRequest &r, const Scene &scene_in, const SceneSetup &se
     std::vector<std::string> warnings = check_coupled_scene(scene, setup, f.np);
     for (const auto &w : warnings)
         std::fprintf(stderr, "armour: warning: %s\n", w.c_str());
-    if (resume && !other_arithmetic_warning(*resume).empty())
-        warnings.push_back(other_arithmetic_warning(*resume)); // printed by checked_resume
+    if (const std::string w = resume ? other_arithmetic_warning(*resume) : ""; !w.empty())
+        warnings.push_back(w); // printed by checked_resume
 
     folder.open(); // an earlier result of this command is replaced
     const fs::path out = folder.target();

@@ -54,7 +54,9 @@ std::vector<Checkpoint> complete(const fs::path &root) {
 
 } // namespace
 
-std::string arithmetic_fingerprint() {
+namespace {
+
+std::string libm_fingerprint() {
     // The arguments pass through a volatile so that the compiler cannot
     // fold the calls at build time (it would round them its own way).
     volatile double scale = 0.0123456789;
@@ -79,13 +81,21 @@ std::string arithmetic_fingerprint() {
     return text;
 }
 
+} // namespace
+
+std::string arithmetic_fingerprint() {
+    static const std::string fingerprint = libm_fingerprint(); // the C library's code is picked at start-up
+    return fingerprint;
+}
+
 std::string other_arithmetic_warning(const Checkpoint &c) {
-    if (c.arithmetic.empty() || c.arithmetic == arithmetic_fingerprint())
+    const std::string here = arithmetic_fingerprint();
+    if (c.arithmetic.empty() || c.arithmetic == here)
         return "";
     return "--resume: " + c.dir.string() +
            " was written where the C library's maths rounds otherwise (another processor or C library: "
            "checkpoint.json arithmetic " +
-           c.arithmetic + ", here " + arithmetic_fingerprint() +
+           c.arithmetic + ", here " + here +
            "): the run goes on as another realisation of its case, not the run it would have been "
            "(docs/checkpoints.md)";
 }
