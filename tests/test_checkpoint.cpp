@@ -7,6 +7,7 @@
 #include "bodies_file.h"
 #include "checkpoints.h"
 #include "cli.h"
+#include "output_folder_rule.h"
 #include "rigid_body_engine.h"
 
 #include <gtest/gtest.h>
@@ -113,14 +114,11 @@ class Resume : public ::testing::TestWithParam<std::string> {
         return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
     }
     // `armour ...` in this process (a free_body run: no engine owns it), its stderr into `err`.
-    static int run_here(const std::vector<std::string> &a, std::string &err) {
-        std::vector<const char *> argv;
-        for (const auto &s : a)
-            argv.push_back(s.c_str());
-        ::testing::internal::CaptureStderr();
-        const int code = armour::armour_main(static_cast<int>(argv.size()), argv.data());
-        err = ::testing::internal::GetCapturedStderr();
-        return code;
+    static int run_here(std::vector<std::string> a, std::string &err) {
+        a.erase(a.begin()); // "armour": output_rule::armour puts it first
+        const output_rule::Outcome o = output_rule::armour(a);
+        err = o.err;
+        return o.code;
     }
 
     fs::path dir_;
