@@ -128,6 +128,11 @@ class SweepTest : public ::testing::Test {
             EXPECT_NEAR(std::stod(row.at("slide_angle_deg")), std::atan(mu) * 180.0 / kPi, 0.5)
                 << row.at("case");
             EXPECT_GT(std::stod(row.at("wall_seconds")), 0.0);
+            // Which machine and which maths made the realisation, as its own summary says.
+            const json own = json::parse(read_text(out / "cases" / row.at("case") / "run" / "summary.json"));
+            EXPECT_EQ(row.at("arithmetic"), own.at("arithmetic").get<std::string>()) << row.at("case");
+            EXPECT_EQ(row.at("arithmetic").size(), 16u) << row.at("case");
+            EXPECT_FALSE(row.at("host").empty()) << row.at("case");
         }
         EXPECT_EQ(seen.size(), 4u);
         EXPECT_TRUE(fs::exists(out / "cases" / "friction-0.3_spheres-20" / "run" / "summary.json"));

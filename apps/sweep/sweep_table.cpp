@@ -35,6 +35,16 @@ json numbers_of(const fs::path &summary_file) {
     return figures;
 }
 
+// Which maths the case's process rounded with (checkpoints.h): a sweep run on
+// two machines holds realisations of two arithmetics.
+std::string arithmetic_of(const fs::path &summary_file) {
+    std::ifstream in(summary_file);
+    const json summary = json::parse(in, nullptr, false);
+    return summary.is_object() && summary.contains("arithmetic") && summary["arithmetic"].is_string()
+               ? summary["arithmetic"].get<std::string>()
+               : std::string();
+}
+
 std::string csv_cell(const std::string &text) {
     if (text.find_first_of(",\"\n") == std::string::npos)
         return text;
@@ -123,6 +133,7 @@ SweepTable read_sweep_table(const fs::path &out, const SweepPlan &plan) {
         if (row.status == "running" && !case_is_locked(dir))
             row.status = "pending"; // its sweep was killed
         row.figures = row.status == "done" ? numbers_of(summary) : json::object();
+        row.arithmetic = row.status == "done" ? arithmetic_of(summary) : std::string();
         table.rows.push_back(std::move(row));
     }
     return table;
@@ -138,7 +149,7 @@ void write_sweep_tables(const fs::path &out, const SweepPlan &plan, const SweepT
     csv << "case";
     for (const auto &k : plan.columns)
         csv << ',' << csv_cell(k);
-    csv << ",seed,status,attempts,wall_seconds";
+    csv << ",seed,status,attempts,wall_seconds,host,arithmetic";
     for (const auto &k : figures)
         csv << ',' << csv_cell(k);
     csv << '\n';
@@ -153,7 +164,8 @@ void write_sweep_tables(const fs::path &out, const SweepPlan &plan, const SweepT
             values[plan.columns[k]] = typed(c.column_values[k]);
         }
         csv << ',' << (c.seed ? std::to_string(*c.seed) : "") << ',' << row.status << ','
-            << row.record.attempts << ',' << number_cell(row.record.wall_seconds);
+            << row.record.attempts << ',' << number_cell(row.record.wall_seconds) << ','
+            << csv_cell(row.record.host) << ',' << row.arithmetic;
         for (const auto &k : figures)
             csv << ',' << (row.figures.contains(k) ? number_cell(row.figures[k]) : "");
         csv << '\n';
@@ -165,6 +177,8 @@ void write_sweep_tables(const fs::path &out, const SweepPlan &plan, const SweepT
                       {"attempts", row.record.attempts},
                       {"wall_seconds", row.record.wall_seconds},
                       {"scene_hash", c.scene_hash},
+                      {"host", row.record.host},
+                      {"arithmetic", row.arithmetic},
                       {"figures", row.figures}};
         if (row.status == "failed") {
             entry["reason"] = row.record.reason;

@@ -5,8 +5,10 @@
 //     results.csv has one row per case: case, the varied keys as named in
 //     [vary] (their values in the case's resolved scene), seed, status
 //     (done/failed/running/pending), attempts, wall_seconds (s, the case's
-//     process), then every number of the case's summary.json, the analysis's
-//     headline figures first. summary.json has the same per case (plus the
+//     process), host (where it last ran), arithmetic (its summary's fingerprint
+//     of the C library's maths: two realisations whose fingerprints differ were
+//     rounded otherwise, docs/checkpoints.md), then every number of the case's
+//     summary.json, the analysis's headline figures first. summary.json has the same per case (plus the
 //     scene hash and why a case failed) and the counts. A case counts as done
 //     only when its run/summary.json exists and its scene hash is the plan's;
 //     one recorded as running whose lock is free was lost (its sweep was
@@ -34,6 +36,7 @@ struct CaseRow {
     CaseRecord record;
     std::string status;     // as the table shows it
     nlohmann::json figures; // the numbers of run/summary.json (object)
+    std::string arithmetic; // run/summary.json's "arithmetic" ("" before it was recorded)
 };
 
 struct SweepTable {
