@@ -16,6 +16,7 @@
 #include <sstream>
 #include <string>
 #include <unistd.h>
+#include <utility>
 #include <vector>
 
 namespace fs = std::filesystem;
@@ -35,14 +36,9 @@ class Cli : public ::testing::Test {
 
     // Runs `armour args...`, returns the exit code and keeps stderr.
     int run(std::vector<std::string> args) {
-        args.insert(args.begin(), "armour");
-        std::vector<const char *> argv;
-        for (const auto &a : args)
-            argv.push_back(a.c_str());
-        ::testing::internal::CaptureStderr();
-        const int code = armour::armour_main(static_cast<int>(argv.size()), argv.data());
-        err_ = ::testing::internal::GetCapturedStderr();
-        return code;
+        const output_rule::Outcome o = output_rule::armour(std::move(args));
+        err_ = o.err;
+        return o.code;
     }
 
     // Bad input: exit 2, exactly one line naming `what`, and nothing left in dir_.

@@ -23,6 +23,7 @@
 #include <sstream>
 #include <string>
 #include <unistd.h>
+#include <utility>
 #include <vector>
 
 namespace fs = std::filesystem;
@@ -58,16 +59,11 @@ class Run : public ::testing::Test {
     int run(const std::string &scene, std::vector<std::string> extra = {}) {
         const fs::path file = dir_ / "scene.toml";
         std::ofstream(file) << scene;
-        std::vector<std::string> args = {"armour",       "run",     file.string(), "--out",
-                                         out().string(), "--cache", cache_};
+        std::vector<std::string> args = {"run", file.string(), "--out", out().string(), "--cache", cache_};
         args.insert(args.end(), extra.begin(), extra.end());
-        std::vector<const char *> argv;
-        for (const auto &a : args)
-            argv.push_back(a.c_str());
-        ::testing::internal::CaptureStderr();
-        const int code = armour::armour_main(static_cast<int>(argv.size()), argv.data());
-        err_ = ::testing::internal::GetCapturedStderr();
-        return code;
+        const output_rule::Outcome o = output_rule::armour(std::move(args));
+        err_ = o.err;
+        return o.code;
     }
     fs::path out() const { return dir_ / "out"; }
     std::string error_line() const {
@@ -460,14 +456,10 @@ TEST_F(Run, ReportRefusesWhatIsNotACoupledRunAndWritesNothing) {
         before[e.path().string()] = e.is_regular_file() ? e.file_size() : 0;
     const fs::path report = dir_ / "report";
     const auto refused = [&](const std::string &folder, const std::string &why, const fs::path &into = {}) {
-        const std::vector<std::string> args = {"armour", "report", folder, "--out",
-                                               into.empty() ? report.string() : into.string()};
-        std::vector<const char *> argv;
-        for (const auto &a : args)
-            argv.push_back(a.c_str());
-        ::testing::internal::CaptureStderr();
-        EXPECT_EQ(armour::armour_main(static_cast<int>(argv.size()), argv.data()), 2);
-        err_ = ::testing::internal::GetCapturedStderr();
+        const output_rule::Outcome o =
+            output_rule::armour({"report", folder, "--out", into.empty() ? report.string() : into.string()});
+        err_ = o.err;
+        EXPECT_EQ(o.code, 2) << err_;
         EXPECT_NE(error_line().find(why), std::string::npos) << err_;
         EXPECT_EQ(err_.find('\n'), err_.size() - 1) << err_; // one line
     };
