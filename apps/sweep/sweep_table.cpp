@@ -14,13 +14,16 @@ using nlohmann::json;
 
 namespace {
 
-// The numbers of a summary (top level only: the headline figures live there).
-json numbers_of(const fs::path &summary_file) {
-    json figures = json::object();
+// A case's run/summary.json (an object; empty where it cannot be read).
+json summary_of(const fs::path &summary_file) {
     std::ifstream in(summary_file);
     const json summary = json::parse(in, nullptr, false);
-    if (!summary.is_object())
-        return figures;
+    return summary.is_object() ? summary : json::object();
+}
+
+// The numbers of a summary (top level only: the headline figures live there).
+json numbers_of(const json &summary) {
+    json figures = json::object();
     for (const auto &[key, value] : summary.items())
         if ((value.is_number() || value.is_null()) && key != "wall_seconds")
             figures[key] = value;
@@ -37,10 +40,8 @@ json numbers_of(const fs::path &summary_file) {
 
 // Which maths the case's process rounded with (checkpoints.h): a sweep run on
 // two machines holds realisations of two arithmetics.
-std::string arithmetic_of(const fs::path &summary_file) {
-    std::ifstream in(summary_file);
-    const json summary = json::parse(in, nullptr, false);
-    return summary.is_object() && summary.contains("arithmetic") && summary["arithmetic"].is_string()
+std::string arithmetic_of(const json &summary) {
+    return summary.contains("arithmetic") && summary["arithmetic"].is_string()
                ? summary["arithmetic"].get<std::string>()
                : std::string();
 }
@@ -132,8 +133,13 @@ SweepTable read_sweep_table(const fs::path &out, const SweepPlan &plan) {
             row.status = "pending"; // another scene now, or its result was removed
         if (row.status == "running" && !case_is_locked(dir))
             row.status = "pending"; // its sweep was killed
-        row.figures = row.status == "done" ? numbers_of(summary) : json::object();
-        row.arithmetic = row.status == "done" ? arithmetic_of(summary) : std::string();
+        if (row.status == "done") {
+            const json own = summary_of(summary);
+            row.figures = numbers_of(own);
+            row.arithmetic = arithmetic_of(own);
+        } else {
+            row.figures = json::object();
+        }
         table.rows.push_back(std::move(row));
     }
     return table;

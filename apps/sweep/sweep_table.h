@@ -8,11 +8,11 @@
 //     process), host (where it last ran), arithmetic (its summary's fingerprint
 //     of the C library's maths: two realisations whose fingerprints differ were
 //     rounded otherwise, docs/checkpoints.md), then every number of the case's
-//     summary.json, the analysis's headline figures first. summary.json has the same per case (plus the
-//     scene hash and why a case failed) and the counts. A case counts as done
-//     only when its run/summary.json exists and its scene hash is the plan's;
-//     one recorded as running whose lock is free was lost (its sweep was
-//     killed) and counts as pending.
+//     summary.json, the analysis's headline figures first. summary.json has
+//     the same per case (plus the scene hash and why a case failed) and the
+//     counts. A case counts as done only when its run/summary.json exists and
+//     its scene hash is the plan's; one recorded as running whose lock is free
+//     was lost (its sweep was killed) and counts as pending.
 //
 // Usage
 //     SweepTable table = read_sweep_table(out, plan);
