@@ -150,11 +150,14 @@ void check_options(const RunRequest &r, const Scene &scene) {
                          " engine cannot restore a state, so its runs cannot be resumed");
 }
 
-void warn_if_settle_friction_unused(const Scene &scene) {
+void warn_if_settle_keys_unused(const Scene &scene) {
     if (!scene.fluid || scene.fluid->settle_time > 0.0)
         return;
     if (scene.fluid->settle_friction)
         std::fprintf(stderr, "armour: warning: fluid.settle_friction is unused: there is no settle "
+                             "(fluid.settle_time = 0)\n");
+    if (scene.fluid->settle_density)
+        std::fprintf(stderr, "armour: warning: fluid.settle_density is unused: there is no settle "
                              "(fluid.settle_time = 0)\n");
     if (!scene.fluid->settle_engine.empty())
         std::fprintf(stderr, "armour: warning: fluid.settle_engine is unused: there is no settle "
@@ -271,7 +274,7 @@ int dry_run(const RunRequest &r, const Scene &scene) {
         resume = checked_settled_resume(r, scene, check.setup, out).second;
     if (!r.resume)
         warn_if_no_checkpoint(scene);
-    warn_if_settle_friction_unused(scene);
+    warn_if_settle_keys_unused(scene);
     warn_if_settle_hands_clumps_to_hulls(scene);
     for (const std::string &w : check.warnings)
         std::fprintf(stderr, "armour: warning: %s\n", w.c_str());
@@ -342,7 +345,7 @@ int run_scene(const RunRequest &r) {
             folder.resume();
         return run_dem(folder, scene, setup, nullptr, nullptr, resume ? &*resume : nullptr);
     }
-    warn_if_settle_friction_unused(scene);
+    warn_if_settle_keys_unused(scene);
     warn_if_settle_hands_clumps_to_hulls(scene);
     if (r.resume) {
         if (settles)

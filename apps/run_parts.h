@@ -29,7 +29,8 @@ nlohmann::json settle_report(const std::filesystem::path &dir, const SceneSetup 
 int with_settle_report(OutputFolder &folder, int status, nlohmann::json report);
 
 // The settle's own scene (OUT/settle/scene.resolved.toml): the scene without
-// its fluid and waves, in fluid.settle_engine, with fluid.settle_friction.
+// its fluid and waves, in fluid.settle_engine, with fluid.settle_friction and
+// fluid.settle_density.
 Scene settle_scene(const Scene &scene, const SceneSetup &setup);
 // Every unit as an explicit [[body]] at its state's pose, at rest (a
 // settle's end, a series step's end); the scene's explicit bodies keep their held axes.
@@ -46,8 +47,9 @@ Scene settle_before_coupling(const RunRequest &r, OutputFolder &folder, const Sc
 
 // A run whose checkpoints all fall at or after its end: one warning.
 void warn_if_no_checkpoint(const Scene &scene);
-// fluid.settle_friction or fluid.settle_engine without a settle: one warning each.
-void warn_if_settle_friction_unused(const Scene &scene);
+// fluid.settle_friction, settle_density or settle_engine without a settle: one
+// warning each.
+void warn_if_settle_keys_unused(const Scene &scene);
 // fluid.settle_engine of sphere clumps handing its layer to exact hulls: one
 // warning (measured: the hulls slump off it before the waves).
 void warn_if_settle_hands_clumps_to_hulls(const Scene &scene);

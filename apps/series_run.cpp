@@ -265,7 +265,7 @@ int dry_run_series(const RunRequest &r, const Scene &scene) {
     const bool settles = scene.fluid->settle_time > 0.0;
     if (r.resume)
         checked_series_start(r, scene, setup, out);
-    warn_if_settle_friction_unused(scene);
+    warn_if_settle_keys_unused(scene);
     warn_if_settle_hands_clumps_to_hulls(scene);
     warn_if_steps_unresumable(scene);
     if (!settles) // the layer the waves meet is known (a settle's is not yet)
@@ -304,7 +304,7 @@ int run_series(const RunRequest &r, const Scene &scene) {
     OutputFolder folder(r.out, "armour run", OutputFolder::Mode::streaming); // refused before any work
     check_options(r, scene);
     SceneSetup setup = build_scene(scene, cache_of(r), true);
-    warn_if_settle_friction_unused(scene);
+    warn_if_settle_keys_unused(scene);
     warn_if_settle_hands_clumps_to_hulls(scene);
     check_steps(r, scene, setup); // every step's case, before anything is written
     warn_if_steps_unresumable(scene);

@@ -109,7 +109,7 @@ void grow_units_to_hold_clumps(Scene &dry, const Scene &scene, const SceneSetup 
 
 // The settle's own scene (OUT/settle/scene.resolved.toml reruns it): the
 // scene without its fluid, the pile's headroom in its domain, its friction
-// between units as pairs.
+// between units as pairs, its units at the settle's density.
 Scene settle_scene(const Scene &scene, const SceneSetup &setup) {
     const SceneFluid &fluid = *scene.fluid;
     Scene dry = scene;
@@ -128,6 +128,9 @@ Scene settle_scene(const Scene &scene, const SceneSetup &setup) {
     dry.domain_max.z() += settle_headroom(scene, setup);
     if (fluid.settle_friction)
         set_friction_between_units(dry, *fluid.settle_friction);
+    if (fluid.settle_density)
+        for (SceneUnit &u : dry.units)
+            u.density = *fluid.settle_density;
     return dry;
 }
 
@@ -155,6 +158,7 @@ Scene settled_scene(const Scene &scene, std::vector<SceneBody> bodies) {
     Scene settled = scene;
     settled.fluid->settle_time = 0.0;
     settled.fluid->settle_friction.reset();
+    settled.fluid->settle_density.reset();
     settled.fluid->settled_by =
         scene.fluid->settle_engine.empty() ? scene.engine : scene.fluid->settle_engine;
     settled.fluid->settle_engine.clear();
@@ -170,14 +174,15 @@ namespace {
 // from the run's), before the settle's own log lines.
 void announce_settle(const Scene &scene, const Scene &dry, std::size_t units, const fs::path &dir) {
     const SceneFluid &fluid = *scene.fluid;
+    std::string how;
+    if (fluid.settle_friction)
+        how += ", friction " + number_text(*fluid.settle_friction) + " between units";
+    if (fluid.settle_density)
+        how += ", units at " + number_text(*fluid.settle_density) + " kg/m^3";
     std::fprintf(stderr,
                  "run: settling %zu units in the DEM under still water (level %g m) for %g s "
                  "(fluid.settle_time)%s -> %s\n",
-                 units, fluid.water_level, fluid.settle_time,
-                 fluid.settle_friction
-                     ? (", friction " + number_text(*fluid.settle_friction) + " between units").c_str()
-                     : "",
-                 dir.c_str());
+                 units, fluid.water_level, fluid.settle_time, how.c_str(), dir.c_str());
     for (std::size_t k = 0; k < dry.units.size(); ++k)
         if (dry.units[k].size != scene.units[k].size)
             std::fprintf(
@@ -218,14 +223,17 @@ void run_settle(const RunRequest &r, const Scene &scene, const Scene &dry, const
                     resolved_scene_toml(settled_scene(scene, std::move(bodies))));
     write_text_file(
         settle_folder.claim("settled.json"),
-        json{{"settle_time", fluid.settle_time},
-             {"settle_friction", fluid.settle_friction ? json(*fluid.settle_friction) : json(nullptr)},
-             {"water_level", water.level},
-             {"water_density", water.density},
-             {"max_speed_at_end", speed},
-             {"max_displacement", displacement},
-             {"units", states.size()},
-             {"si_units", {{"speed", "m/s"}, {"lengths", "m"}, {"water_density", "kg/m^3"}}}}
+        json{
+            {"settle_time", fluid.settle_time},
+            {"settle_friction", fluid.settle_friction ? json(*fluid.settle_friction) : json(nullptr)},
+            {"settle_density", fluid.settle_density ? json(*fluid.settle_density) : json(nullptr)},
+            {"water_level", water.level},
+            {"water_density", water.density},
+            {"max_speed_at_end", speed},
+            {"max_displacement", displacement},
+            {"units", states.size()},
+            {"si_units",
+             {{"speed", "m/s"}, {"lengths", "m"}, {"water_density", "kg/m^3"}, {"settle_density", "kg/m^3"}}}}
                 .dump(2) +
             "\n");
 }

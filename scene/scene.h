@@ -182,6 +182,12 @@ struct SceneFluid {
     // materials' own). A placer seats each unit by hand or crane; a pile
     // dropped at once locks loose at concrete's 0.6 (docs/stability.md).
     std::optional<double> settle_friction;
+    // kg/m^3: every unit's density during the settle only (unset: the units'
+    // own). A laboratory places one layer whatever the concrete; a DEM pile
+    // settles into a different layer at each density (the seat's overlaps and
+    // the chaos of the drop), so a sweep over density that holds the layer
+    // settles every case at one density (docs/stability.md).
+    std::optional<double> settle_density;
     // The engine of the settle ("" = run.engine): clumps settle a layer that
     // exact hulls then meet the waves in, so both engines start from one layer.
     std::string settle_engine;

@@ -127,6 +127,12 @@ const std::vector<Key<SceneFluid>> &fluid_keys() {
             "Coulomb friction between units (and walls of their material) in the settle only (below)")
             .in(Range::at_least(0))
             .defaults("the materials' own"),
+        key("settle_density", &F::settle_density, "kg/m^3",
+            "every unit's density in the settle only: a sweep over unit.density that settles at one "
+            "density meets the waves on one layer per seed, as a laboratory places one layer whatever the "
+            "concrete (below)")
+            .in(Range::above(0))
+            .defaults("the units' own"),
         key("settle_engine", &F::settle_engine, "",
             "the engine of the settle: bullet (exact hulls, each cube grown to hold its clump) settles the "
             "layer that run.engine liggghts (clumps) runs and its settled scene runs with --engine bullet: "

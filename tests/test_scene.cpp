@@ -981,6 +981,8 @@ TEST_F(SceneFile, FluidErrorsNameLineAndKey) {
                  ">= 0 s");
     expect_error(at("water_level = 1\ncells = [4, 4, 4]\nsettle_time = 1\nsettle_friction = -0.1\n"), 18,
                  "fluid.settle_friction", ">= 0");
+    expect_error(at("water_level = 1\ncells = [4, 4, 4]\nsettle_time = 1\nsettle_density = 0\n"), 18,
+                 "fluid.settle_density", "> 0 kg/m^3");
     // Fluid analyses need the fluid.
     const std::string p = write(std::string(kMinimal) + "[analysis]\nkind = \"float\"\n");
     expect_error(p, 15, "analysis.kind", "needs a [fluid] table");
@@ -990,7 +992,8 @@ TEST_F(SceneFile, FluidRoundTripsAndOverrides) {
     for (const std::string &fluid :
          {std::string(kFluid), std::string("[fluid]\nwater_level = 0.3\ncell_size = 0.07\n"),
           std::string(
-              "[fluid]\nwater_level = 0.3\ncell_size = 0.07\nsettle_time = 0.5\nsettle_friction = 0.1\n")}) {
+              "[fluid]\nwater_level = 0.3\ncell_size = 0.07\nsettle_time = 0.5\nsettle_friction = 0.1\n"
+              "settle_density = 2050\n")}) {
         const Scene a = load_scene(write(std::string(kMinimal) + fluid), {"fluid.penalty=3.25e5"});
         EXPECT_DOUBLE_EQ(a.fluid->penalty, 3.25e5);
         const std::string resolved = armour::resolved_scene_toml(a);

@@ -470,4 +470,52 @@ TEST(StabilityCubes, RandomLayerSeatedAtTheSettleFrictionPacksAsTheRockManualLay
     }
 }
 
+// A settled scene's text past its first line (which names the run's
+// folder), with its units' density lines taken out.
+std::string settled_layer_text(const fs::path &out) {
+    std::istringstream in(read_text(out / "settle" / "scene.settled.toml"));
+    std::string line, text;
+    std::getline(in, line);
+    while (std::getline(in, line))
+        if (line.rfind("density = ", 0) != 0)
+            text += line + "\n";
+    return text;
+}
+
+// fluid.settle_density (docs/scenes.md): the layer is the one the units
+// settle into at that density, whatever their own. Three settles of one
+// random layer (seed 2): cubes of 1845 kg/m^3 settled at 2050 lie where
+// 2050 kg/m^3 cubes settle, to the last digit of every pose, and not where
+// 1845 kg/m^3 cubes settle at their own density (the layer the key exists
+// to hold); the waves then meet the 1845 kg/m^3 cubes.
+TEST(StabilityCubes, ASettleDensityHoldsOneLayerForEveryUnitDensity) {
+    const std::string still = "--set pattern.0.seed=2 --set waves.Hs=0.001 --set run.duration=0.01 "
+                              "--set run.output_interval=0.01 ";
+    const SceneRun held =
+        run_stability("held", still + "--set unit.0.density=1845 --set fluid.settle_density=2050");
+    const SceneRun own = run_stability("own_2050", still + "--set unit.0.density=2050");
+    const SceneRun light = run_stability("own_1845", still + "--set unit.0.density=1845");
+    ASSERT_EQ(held.status, 0) << held.output;
+    ASSERT_EQ(own.status, 0) << own.output;
+    ASSERT_EQ(light.status, 0) << light.output;
+    EXPECT_NE(held.output.find("units at 2050 kg/m^3"), std::string::npos) << held.output;
+    const std::string layer = settled_layer_text(held.out);
+    ASSERT_NE(layer.find("[[body]]"), std::string::npos) << layer.substr(0, 2000);
+    EXPECT_EQ(layer, settled_layer_text(own.out));
+    EXPECT_NE(layer, settled_layer_text(light.out));
+    // The settled scene carries the units' own density and no settle
+    // density; the settle's own scene and report the settle's.
+    const std::string settled = read_text(held.out / "settle" / "scene.settled.toml");
+    EXPECT_NE(settled.find("density = 1845.0 # kg/m^3"), std::string::npos);
+    EXPECT_EQ(settled.find("settle_density"), std::string::npos);
+    EXPECT_NE(read_text(held.out / "settle" / "scene.resolved.toml").find("density = 2050.0 # kg/m^3"),
+              std::string::npos);
+    EXPECT_EQ(held.summary["settle"]["settle_density"].get<double>(), 2050.0);
+    EXPECT_TRUE(own.summary["settle"]["settle_density"].is_null());
+    EXPECT_NEAR(held.summary["damage"]["delta"].get<double>(), 0.845, 1e-12);
+    if (!HasFailure())
+        for (const SceneRun *r : {&held, &own, &light})
+            fs::remove_all(r->dir);
+}
+
 } // namespace
