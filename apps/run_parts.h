@@ -25,7 +25,10 @@ std::filesystem::path write_scene_and_units(OutputFolder &folder, const Scene &s
 
 // OUT/settle/settled.json, with the speed below which the layer counts as still.
 nlohmann::json settle_report(const std::filesystem::path &dir, const SceneSetup &setup);
-// Adds `report` to OUT/summary.json as its "settle" object (status 0 only); returns `status`.
+// The warning for a settle report whose layer still moved at its end ("" when still).
+std::string unsettled_warning(const nlohmann::json &report);
+// Adds `report` to OUT/summary.json as its "settle" object, and its warning
+// to the summary's (status 0 only); returns `status`.
 int with_settle_report(OutputFolder &folder, int status, nlohmann::json report);
 
 // The settle's own scene (OUT/settle/scene.resolved.toml): the scene without

@@ -247,8 +247,11 @@ int write_series_summary(const Scene &series, const Scene &last, const SceneSetu
                                          *end.equivalent_waves + *sea_states.back().waves, *s_om))
             : json(nullptr);
     summary["damage"]["wave_source"] = "series";
-    if (!settle.is_null())
+    if (!settle.is_null()) {
+        if (const std::string w = unsettled_warning(settle); !w.empty())
+            summary["warnings"].push_back(w);
         summary["settle"] = settle;
+    }
     summary["series"] = steps;
     write_text_file(folder.claim("summary.json"), summary.dump(2) + "\n");
     std::printf("%s: series of %zu steps, %.4g s coupled in %.1f s wall, %s -> %s\n", series.name.c_str(),

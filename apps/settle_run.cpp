@@ -66,13 +66,29 @@ json settle_report(const fs::path &dir, const SceneSetup &setup) {
     return report;
 }
 
-// The coupled summary says where its start came from.
+// The warning for a layer that still moves at the settle's end (a settle
+// report's speeds); "" for a still one.
+std::string unsettled_warning(const json &report) {
+    const double speed = report["max_speed_at_end"].get<double>(),
+                 still = report["still_speed"].get<double>();
+    if (speed <= still)
+        return "";
+    return "after fluid.settle_time = " + number_text(report["settle_time"].get<double>()) +
+           " s a unit still moves at " + figure_text(speed) + " m/s (> " + figure_text(still) +
+           " m/s, 1 % of Dn per second): the layer has not settled and will readjust in the water; raise "
+           "fluid.settle_time";
+}
+
+// The coupled summary says where its start came from, and whether the
+// layer had come to rest (among its warnings: a sweep's table reads them).
 int with_settle_report(OutputFolder &folder, int status, json report) {
     const fs::path summary_file = folder.claim("summary.json");
     std::ifstream in(summary_file);
     if (status == 0 && in) {
         json summary = json::parse(in);
         in.close();
+        if (const std::string w = unsettled_warning(report); !w.empty())
+            summary["warnings"].push_back(w);
         report["scene"] = "settle/scene.settled.toml";
         summary["settle"] = report;
         write_text_file(summary_file, summary.dump(2) + "\n");
@@ -279,12 +295,8 @@ Scene settle_before_coupling(const RunRequest &r, OutputFolder &folder, const Sc
     report = settle_report(dir, setup);
     const double speed = report["max_speed_at_end"].get<double>(),
                  still = report["still_speed"].get<double>();
-    if (speed > still)
-        std::fprintf(stderr,
-                     "armour: warning: after fluid.settle_time = %g s a unit still moves at %.3g m/s (> %.3g "
-                     "m/s, 1 %% of Dn per second): the layer has not settled and will readjust in the "
-                     "water; raise fluid.settle_time\n",
-                     fluid.settle_time, speed, still);
+    if (const std::string w = unsettled_warning(report); !w.empty())
+        std::fprintf(stderr, "armour: warning: %s\n", w.c_str());
     // A settle cut short hands over a pile still falling: units above the
     // domain or overlapping. Say so in the user's own terms.
     try {

@@ -367,6 +367,30 @@ TEST(StabilityCubes, ASettleCutShortIsRefusedNamingTheSettleTime) {
         fs::remove_all(run.dir);
 }
 
+// A settle long enough to land the pile but too short to bring it to rest
+// (0.4 s: the pile has landed, none outside the domain or overlapping, and
+// a unit still moves at 0.40 m/s, 1000 x the still speed): the run goes on
+// from the moving layer, and says so on stderr and in summary.json's
+// warnings, where a sweep's table and a user reading the results meet it.
+TEST(StabilityCubes, ALayerStillMovingAfterTheSettleIsAWarningInTheSummary) {
+    const SceneRun run =
+        run_stability("moving_settle", "--set waves.Hs=0.001 --set fluid.settle_time=0.4 "
+                                       "--set run.duration=0.01 --set run.output_interval=0.01");
+    ASSERT_EQ(run.status, 0) << run.output;
+    const json &settle = run.summary["settle"];
+    ASSERT_GT(settle["max_speed_at_end"].get<double>(), settle["still_speed"].get<double>())
+        << settle.dump(2);
+    const std::string line = "after fluid.settle_time = 0.4 s a unit still moves at ";
+    EXPECT_NE(run.output.find("armour: warning: " + line), std::string::npos) << run.output;
+    int in_summary = 0;
+    for (const json &w : run.summary["warnings"])
+        in_summary += w.get<std::string>().rfind(line, 0) == 0 &&
+                      w.get<std::string>().find("raise fluid.settle_time") != std::string::npos;
+    EXPECT_EQ(in_summary, 1) << run.summary["warnings"].dump(2);
+    if (!HasFailure())
+        fs::remove_all(run.dir);
+}
+
 // The graded mesh (fluid.refine_min/max) must hold every unit and the free
 // surface's band: a box that starts above the lowest rows (the toe at x =
 // 1.40 m), or below the troughs, is refused before anything runs or is
