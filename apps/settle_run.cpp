@@ -80,7 +80,7 @@ std::string unsettled_warning(const json &report) {
 }
 
 // The coupled summary says where its start came from, and whether the
-// layer had come to rest (among its warnings: a sweep's table reads them).
+// layer had come to rest (among its warnings, beside the run's others).
 int with_settle_report(OutputFolder &folder, int status, json report) {
     const fs::path summary_file = folder.claim("summary.json");
     std::ifstream in(summary_file);

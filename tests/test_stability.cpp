@@ -371,7 +371,7 @@ TEST(StabilityCubes, ASettleCutShortIsRefusedNamingTheSettleTime) {
 // (0.4 s: the pile has landed, none outside the domain or overlapping, and
 // a unit still moves at 0.40 m/s, 1000 x the still speed): the run goes on
 // from the moving layer, and says so on stderr and in summary.json's
-// warnings, where a sweep's table and a user reading the results meet it.
+// warnings, where a user reading the results (or a kept case) meets it.
 TEST(StabilityCubes, ALayerStillMovingAfterTheSettleIsAWarningInTheSummary) {
     const SceneRun run =
         run_stability("moving_settle", "--set waves.Hs=0.001 --set fluid.settle_time=0.4 "
