@@ -186,7 +186,8 @@ struct SceneFluid {
     // own). A laboratory places one layer whatever the concrete; a DEM pile
     // settles into a different layer at each density (the seat's overlaps and
     // the chaos of the drop), so a sweep over density that holds the layer
-    // settles every case at one density (docs/stability.md).
+    // settles every case at one density (docs/scenes.md, "Settling before
+    // coupling").
     std::optional<double> settle_density;
     // The engine of the settle ("" = run.engine): clumps settle a layer that
     // exact hulls then meet the waves in, so both engines start from one layer.
