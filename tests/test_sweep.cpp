@@ -198,6 +198,19 @@ TEST_F(SweepTest, SetOverridesEveryCaseAfterTheFilesSet) {
     EXPECT_NEAR(summary["simulated_seconds"].get<double>(), 6.0, 0.01);
     const json plan = json::parse(read_text(out / "sweep.json"));
     EXPECT_EQ(plan["set"], json({"run.duration=8.0", "run.duration=6"}));
+    // The copy of the sweep file is the file as written, then a comment naming the --set:
+    // a kept copy says how its cases were made, and still reads as the same sweep.
+    const std::string copy = read_text(out / "sweep.toml"), file = read_text(one);
+    EXPECT_EQ(copy.substr(0, file.size()), file);
+    EXPECT_NE(copy.find("\n# armour sweep ran this file with --set 'run.duration=6'\n", file.size()),
+              std::string::npos)
+        << copy;
+    const std::string listing = " --out " + (dir_ / "listed").string() + " --dry-run";
+    const Result of_file = run(kArmour + " sweep " + one.string() + listing),
+                 of_copy = run(kArmour + " sweep " + (out / "sweep.toml").string() + listing);
+    ASSERT_EQ(of_copy.status, 0) << of_copy.output;
+    EXPECT_EQ(listed_hash(of_copy.output, "friction-0.5"), listed_hash(of_file.output, "friction-0.5"));
+    EXPECT_FALSE(listed_hash(of_file.output, "friction-0.5").empty()) << of_file.output;
 }
 
 // --seeds replaces the sweep file's seeds: --seeds 1,2,3 on a file of [1, 2]

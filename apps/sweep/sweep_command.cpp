@@ -87,7 +87,7 @@ void copy_kept_case(const fs::path &from, const fs::path &to) {
     fs::copy_file(from / "case.json", to / "case.json", fs::copy_options::overwrite_existing);
 }
 
-// [set] and --set, as KEY=VALUE: what every case shares (sweep.toml lacks --set).
+// [set] and --set, as KEY=VALUE: what every case shares (sweep.json's `set`).
 std::vector<std::string> set_overrides(const SweepSpec &spec) {
     std::vector<std::string> out;
     for (const auto &[key, value] : spec.fixed)
@@ -280,9 +280,26 @@ void check_cases_run(const SweepPlan &plan, const std::vector<std::size_t> &to_r
         std::fprintf(stderr, "\r\033[K");
 }
 
-// The sweep's own files in DIR (its marker first) and each case to run's
-// scene and plan.
-void write_sweep_folder(const SweepContext &ctx, const std::string &sweep_file,
+// What the command line added to the sweep file (--seeds, --set), as TOML
+// comments for its copy in DIR/sweep.toml: a kept copy then says by itself
+// how its cases were made (empty when the file was run as written).
+std::string command_line_note(const SweepRequest &r) {
+    if (r.seeds.empty() && r.overrides.empty())
+        return "";
+    std::string line = "# armour sweep ran this file with";
+    if (!r.seeds.empty()) {
+        line += " --seeds ";
+        for (std::size_t i = 0; i < r.seeds.size(); ++i)
+            line += (i ? "," : "") + std::to_string(r.seeds[i]);
+    }
+    for (const std::string &kv : r.overrides)
+        line += " --set '" + kv + "'";
+    return "\n" + line + "\n# (--seeds in place of the file's seeds; --set after its [set], in every case)\n";
+}
+
+// The sweep's own files in DIR (its marker first), the sweep file as run
+// (with `note`, command_line_note) and each case to run's scene and plan.
+void write_sweep_folder(const SweepContext &ctx, const std::string &sweep_file, const std::string &note,
                         const std::vector<std::size_t> &to_run) {
     fs::create_directories(ctx.out / "cases");
     std::string marker = "armour sweep\n";
@@ -294,7 +311,10 @@ void write_sweep_folder(const SweepContext &ctx, const std::string &sweep_file,
         std::ifstream in(sweep_file);
         std::stringstream text;
         text << in.rdbuf();
-        write_text_file(ctx.out / "sweep.toml", text.str());
+        std::string copy = text.str();
+        if (!note.empty() && !copy.empty() && copy.back() != '\n')
+            copy += '\n';
+        write_text_file(ctx.out / "sweep.toml", copy + note);
     }
     for (const std::size_t i : to_run) {
         const SweepCase &c = ctx.plan.cases[i];
@@ -452,7 +472,7 @@ int run_sweep(const SweepRequest &r) {
         return 0;
     }
 
-    write_sweep_folder(ctx, r.sweep_file, to_run);
+    write_sweep_folder(ctx, r.sweep_file, command_line_note(r), to_run);
     for (const std::size_t i : from_kept) // the record last: a copy cut short stays pending
         copy_kept_case(fs::path(r.kept) / "cases" / ctx.plan.cases[i].id,
                        case_dir(ctx.out, ctx.plan.cases[i]));
