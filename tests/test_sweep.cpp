@@ -870,6 +870,27 @@ TEST_F(SweepTest, ReportDrawsDamageAgainstVanDerMeerAndHudson) {
     EXPECT_NEAR(vdm, (6.7 * std::pow(0.5, 0.4) / std::pow(1000.0, 0.3) + 1.0) * std::pow(0.03, -0.1), 1e-9);
     EXPECT_NEAR(vdm, 2.3277, 1e-3);
     EXPECT_NEAR(hudson, std::cbrt(6.5 * 1.5), 1e-9);
+
+    // Hudson's lines from the runs' own figures before the scene's slope: a
+    // case gathered from --kept holds its summary but not its scene.
+    const Result h =
+        run("cd " + kSource +
+            "/apps/sweep && /usr/bin/python3 -c 'import sweep_report as s; "
+            "own = [{\"figures\": {\"Ns_hudson_breaking\": 9.75 ** (1 / 3), "
+            "\"Ns_hudson_nonbreaking\": 11.25 ** (1 / 3)}}]; "
+            "a, lines = s.hudson_lines(own, [2.0]); b, _ = s.hudson_lines([{\"figures\": {}}], [2.0]); "
+            "print(\"%.12f %.12f %.12f %.12f\" % (a, lines[0][1], lines[1][1], b)); "
+            "print(s.hudson_lines([{\"figures\": {}}], []))'");
+    ASSERT_EQ(h.status, 0) << h.output;
+    double own_cot = 0.0, breaking = 0.0, nonbreaking = 0.0, scene_cot = 0.0;
+    ASSERT_EQ(std::sscanf(h.output.c_str(), "%lf %lf %lf %lf", &own_cot, &breaking, &nonbreaking, &scene_cot),
+              4)
+        << h.output;
+    EXPECT_NEAR(own_cot, 1.5, 1e-9); // (K_D cot α)^(1/3) = Ns, K_D 7.5 non-breaking
+    EXPECT_NEAR(breaking, std::cbrt(6.5 * 1.5), 1e-9);
+    EXPECT_NEAR(nonbreaking, std::cbrt(7.5 * 1.5), 1e-9);
+    EXPECT_NEAR(scene_cot, 2.0, 1e-12);
+    EXPECT_NE(h.output.find("None"), std::string::npos) << h.output; // neither: no lines
 }
 
 // Two kept curves side by side (studies/compare_curves.py): each curve's

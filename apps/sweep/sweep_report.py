@@ -161,6 +161,23 @@ def slope_cot(folder, case):
     return None
 
 
+def hudson_lines(points, cots):
+    """(cot α, [(K_D, Ns)]) of Hudson's two lines, or None.
+
+    The runs' own figures (Ns_hudson_*, the damage analysis's for the slope it
+    measured) first: a case gathered from --kept holds only its summary, not
+    its scene. The scene's slope (cots) for runs that lack them."""
+    own = [(c["figures"]["Ns_hudson_breaking"], c["figures"]["Ns_hudson_nonbreaking"]) for c in points
+           if number(c["figures"].get("Ns_hudson_breaking")) and number(c["figures"].get("Ns_hudson_nonbreaking"))]
+    if own:
+        lines = [(HUDSON_KD[0], median([o[0] for o in own])), (HUDSON_KD[1], median([o[1] for o in own]))]
+        return lines[1][1] ** 3 / HUDSON_KD[1], lines  # Ns³ = K_D cot α
+    if cots:
+        cot = median(cots)
+        return cot, [(k_d, hudson_ns(k_d, cot)) for k_d in HUDSON_KD]
+    return None
+
+
 def median(values):
     v = sorted(values)
     return v[len(v) // 2] if len(v) % 2 else 0.5 * (v[len(v) // 2 - 1] + v[len(v) // 2])
@@ -211,12 +228,12 @@ def stability_chart(plt, done, folder):
             text.append(f"band: 90 % of the displaced-unit counts a {width:.3g} Dn wide section sees when "
                         "Van der Meer's N_od is the mean (Poisson; the formula's own scatter for cubes is "
                         "not in it)")
-    if cots:
-        cot = median(cots)
-        for k_d, style in zip(HUDSON_KD, (":", "-.")):
-            x = hudson_ns(k_d, cot)
-            ax.axvline(x, linestyle=style, color="grey", label=f"Hudson K_D = {k_d:g}, cot α = {cot:g}")
-        text.append(f"Hudson lines for cot α = {cot:g}")
+    hudson = hudson_lines(points, cots)
+    if hudson:
+        cot, lines = hudson
+        for (k_d, x), style in zip(lines, (":", "-.")):
+            ax.axvline(x, linestyle=style, color="grey", label=f"Hudson K_D = {k_d:g}, cot α = {cot:.3g}")
+        text.append(f"Hudson lines for cot α = {cot:.3g}")
     ax.set_xlabel("Ns = Hs / (Δ Dn) [-]")
     ax.set_ylabel("N_od [units per Dn width]")
     ax.set_ylim(0, top)
