@@ -803,8 +803,6 @@ TEST_F(SweepTest, ReportDrawsDamageAgainstVanDerMeerAndHudson) {
     for (int k = 0; k < 4; ++k)
         for (int seed = 1; seed <= 2; ++seed) {
             const std::string id = "Hs-" + std::to_string(k) + "_seed-" + std::to_string(seed);
-            write(out / "cases" / id / "scene.toml",
-                  "[[wall]]\nname = \"slope\"\ntype = \"slope\"\ncot = 2.0\n");
             const double Ns = hs[k];
             if (k == 3) // a history as the damage analysis writes it, for two realisations
                 write(out / "cases" / id / "run" / "damage_history.csv",
@@ -822,6 +820,9 @@ TEST_F(SweepTest, ReportDrawsDamageAgainstVanDerMeerAndHudson) {
                                {"s_om", 0.03},
                                {"N_od_van_der_meer", 0.05 * Ns},
                                {"units_displaced_van_der_meer", 0.5 * Ns}, // a 10 Dn wide section
+                               // Hudson's Ns on a 1:2 slope, as the damage analysis writes them
+                               {"Ns_hudson_breaking", std::cbrt(6.5 * 2.0)},
+                               {"Ns_hudson_nonbreaking", std::cbrt(7.5 * 2.0)},
                                {"damage_S", 0.5 * Ns}}}});
         }
     write(out / "summary.json", json{{"sweep_file", "stability.toml"},
@@ -854,43 +855,38 @@ TEST_F(SweepTest, ReportDrawsDamageAgainstVanDerMeerAndHudson) {
         << report;
 
     // The formulas the chart draws (stability.md): Van der Meer for cubes and Hudson.
-    const Result f =
-        run("cd " + kSource +
-            "/apps/sweep && /usr/bin/python3 -c 'import sweep_report as s; "
-            "print(\"%.12f %.12f %d %d\" % (s.van_der_meer_ns(0.5, 1000, 0.03), "
-            "s.hudson_ns(6.5, 1.5), s.poisson_quantile(3, 0.05), s.poisson_quantile(3, 0.95)))'");
+    const Result f = run("cd " + kSource +
+                         "/apps/sweep && /usr/bin/python3 -c 'import sweep_report as s; "
+                         "print(\"%.12f %d %d\" % (s.van_der_meer_ns(0.5, 1000, 0.03), "
+                         "s.poisson_quantile(3, 0.05), s.poisson_quantile(3, 0.95)))'");
     ASSERT_EQ(f.status, 0) << f.output;
-    double vdm = 0.0, hudson = 0.0;
+    double vdm = 0.0;
     int low = -1, high = -1;
-    ASSERT_EQ(std::sscanf(f.output.c_str(), "%lf %lf %d %d", &vdm, &hudson, &low, &high), 4) << f.output;
+    ASSERT_EQ(std::sscanf(f.output.c_str(), "%lf %d %d", &vdm, &low, &high), 3) << f.output;
     // Poisson(3): P(X <= 0) = 0.0498 < 0.05 <= P(X <= 1) = 0.199; P(X <= 5) = 0.916 < 0.95 <= P(X <= 6) =
     // 0.966.
     EXPECT_EQ(low, 1);
     EXPECT_EQ(high, 6);
     EXPECT_NEAR(vdm, (6.7 * std::pow(0.5, 0.4) / std::pow(1000.0, 0.3) + 1.0) * std::pow(0.03, -0.1), 1e-9);
     EXPECT_NEAR(vdm, 2.3277, 1e-3);
-    EXPECT_NEAR(hudson, std::cbrt(6.5 * 1.5), 1e-9);
 
-    // Hudson's lines from the runs' own figures before the scene's slope: a
-    // case gathered from --kept holds its summary but not its scene.
-    const Result h =
-        run("cd " + kSource +
-            "/apps/sweep && /usr/bin/python3 -c 'import sweep_report as s; "
-            "own = [{\"figures\": {\"Ns_hudson_breaking\": 9.75 ** (1 / 3), "
-            "\"Ns_hudson_nonbreaking\": 11.25 ** (1 / 3)}}]; "
-            "a, lines = s.hudson_lines(own, [2.0]); b, _ = s.hudson_lines([{\"figures\": {}}], [2.0]); "
-            "print(\"%.12f %.12f %.12f %.12f\" % (a, lines[0][1], lines[1][1], b)); "
-            "print(s.hudson_lines([{\"figures\": {}}], []))'");
+    // Hudson's lines from the runs' own figures (the damage analysis's Ns for
+    // its slope, test_slope): a case gathered from --kept holds its summary but
+    // not its scene.
+    const Result h = run("cd " + kSource +
+                         "/apps/sweep && /usr/bin/python3 -c 'import sweep_report as s; "
+                         "own = [{\"figures\": {\"Ns_hudson_breaking\": 9.75 ** (1 / 3), "
+                         "\"Ns_hudson_nonbreaking\": 11.25 ** (1 / 3)}}]; "
+                         "a, lines = s.hudson_lines(own); "
+                         "print(\"%.12f %.12f %.12f\" % (a, lines[0][1], lines[1][1])); "
+                         "print(s.hudson_lines([{\"figures\": {}}]))'");
     ASSERT_EQ(h.status, 0) << h.output;
-    double own_cot = 0.0, breaking = 0.0, nonbreaking = 0.0, scene_cot = 0.0;
-    ASSERT_EQ(std::sscanf(h.output.c_str(), "%lf %lf %lf %lf", &own_cot, &breaking, &nonbreaking, &scene_cot),
-              4)
-        << h.output;
+    double own_cot = 0.0, breaking = 0.0, nonbreaking = 0.0;
+    ASSERT_EQ(std::sscanf(h.output.c_str(), "%lf %lf %lf", &own_cot, &breaking, &nonbreaking), 3) << h.output;
     EXPECT_NEAR(own_cot, 1.5, 1e-9); // (K_D cot α)^(1/3) = Ns, K_D 7.5 non-breaking
     EXPECT_NEAR(breaking, std::cbrt(6.5 * 1.5), 1e-9);
     EXPECT_NEAR(nonbreaking, std::cbrt(7.5 * 1.5), 1e-9);
-    EXPECT_NEAR(scene_cot, 2.0, 1e-12);
-    EXPECT_NE(h.output.find("None"), std::string::npos) << h.output; // neither: no lines
+    EXPECT_NE(h.output.find("None"), std::string::npos) << h.output; // without them: no lines
 }
 
 // Two kept curves side by side (studies/compare_curves.py): each curve's

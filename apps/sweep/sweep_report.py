@@ -11,7 +11,8 @@ Description
     a point per set of varied values (the mean of its realisations, with 95 %
     intervals in Ns and N_od, each realisation dotted), with the Van der Meer curve for cubes at the sweep's N and s_om,
         Ns = (6.7 N_od^0.4 / N^0.3 + 1.0) s_om^-0.1,
-    and Hudson's lines Ns = (K_D cot alpha)^(1/3) for K_D = 6.5 and 7.5. Around
+    and Hudson's lines Ns = (K_D cot alpha)^(1/3) for K_D = 6.5 and 7.5 (the runs' own
+    Ns_hudson_breaking and Ns_hudson_nonbreaking, the median over the cases). Around
     the curve, a band: where 90 % of the counts of displaced units fall in a
     section as wide as the cases' (units per N_od) if the formula's N_od is the
     mean (Poisson). A narrow flume sees few units, and 0 or 1 of them can agree
@@ -29,7 +30,6 @@ import json
 import math
 import os
 import sys
-import tomllib
 from collections import defaultdict
 
 # Two-sided 95 % quantiles of Student's t for 1..30 degrees of freedom.
@@ -67,10 +67,6 @@ def section_width(points):
               for c in points if number(c["figures"].get("units_displaced_van_der_meer"))
               and number(c["figures"].get("N_od_van_der_meer")) and c["figures"]["N_od_van_der_meer"] > 0]
     return median(widths) if widths else None
-
-
-def hudson_ns(k_d, cot_alpha):
-    return (k_d * cot_alpha) ** (1.0 / 3.0)
 
 
 def mean_interval(values):
@@ -147,35 +143,17 @@ def figure_charts(plt, summary, done, folder):
     return charts
 
 
-def slope_cot(folder, case):
-    """cot(alpha) of the case's first slope wall, from its resolved scene."""
-    for name in ("run/scene.resolved.toml", "scene.toml"):
-        path = os.path.join(folder, case["folder"], name)
-        if os.path.exists(path):
-            with open(path, "rb") as f:
-                scene = tomllib.load(f)
-            for wall in scene.get("wall", []):
-                if wall.get("type") == "slope":
-                    return float(wall.get("cot", 1.5))
-            return None
-    return None
+def hudson_lines(points):
+    """(cot α, [(K_D, Ns)]) of Hudson's two lines from the runs' own figures, or None.
 
-
-def hudson_lines(points, cots):
-    """(cot α, [(K_D, Ns)]) of Hudson's two lines, or None.
-
-    The runs' own figures (Ns_hudson_*, the damage analysis's for the slope it
-    measured) first: a case gathered from --kept holds only its summary, not
-    its scene. The scene's slope (cots) for runs that lack them."""
+    The damage analysis writes Ns_hudson_* for the slope it measured; a case
+    gathered from --kept holds that summary, not its scene."""
     own = [(c["figures"]["Ns_hudson_breaking"], c["figures"]["Ns_hudson_nonbreaking"]) for c in points
            if number(c["figures"].get("Ns_hudson_breaking")) and number(c["figures"].get("Ns_hudson_nonbreaking"))]
-    if own:
-        lines = [(HUDSON_KD[0], median([o[0] for o in own])), (HUDSON_KD[1], median([o[1] for o in own]))]
-        return lines[1][1] ** 3 / HUDSON_KD[1], lines  # Ns³ = K_D cot α
-    if cots:
-        cot = median(cots)
-        return cot, [(k_d, hudson_ns(k_d, cot)) for k_d in HUDSON_KD]
-    return None
+    if not own:
+        return None
+    lines = [(HUDSON_KD[0], median([o[0] for o in own])), (HUDSON_KD[1], median([o[1] for o in own]))]
+    return lines[1][1] ** 3 / HUDSON_KD[1], lines  # Ns³ = K_D cot α
 
 
 def median(values):
@@ -191,7 +169,6 @@ def stability_chart(plt, done, folder):
     # N and s_om: the damage analysis's own, else those of the measured waves.
     waves = [x for x in (first_number(c["figures"], "waves", "waves.waves") for c in points) if x is not None]
     steep = [x for x in (first_number(c["figures"], "s_om", "waves.s_om") for c in points) if x is not None]
-    cots = [x for x in (slope_cot(folder, c) for c in points) if x is not None]
     with_s = [c for c in points if number(c["figures"].get("damage_S"))]
     fig, axes = plt.subplots(1, 2 if with_s else 1, figsize=(11 if with_s else 6, 4), squeeze=False)
     ax = axes[0][0]
@@ -228,7 +205,7 @@ def stability_chart(plt, done, folder):
             text.append(f"band: 90 % of the displaced-unit counts a {width:.3g} Dn wide section sees when "
                         "Van der Meer's N_od is the mean (Poisson; the formula's own scatter for cubes is "
                         "not in it)")
-    hudson = hudson_lines(points, cots)
+    hudson = hudson_lines(points)
     if hudson:
         cot, lines = hudson
         for (k_d, x), style in zip(lines, (":", "-.")):
