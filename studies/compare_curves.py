@@ -41,6 +41,14 @@ Usage
         docs/results/stability_curve --label "47 spheres" --label "118 spheres" --out chart.png
     python3 studies/compare_curves.py docs/results/stability_curve \\
         docs/results/stability_by_height --pool --out chart.png
+    python3 studies/compare_curves.py docs/results/stability_curve_dn4 \\
+        docs/results/stability_one_layer_dn4+docs/results/stability_curve_dn4:2050 --out chart.png
+
+    A curve given as FOLDER[:VALUE,...]+FOLDER... is one curve of several
+    kept studies' points: each folder's realisations, or only those whose
+    varied key takes one of the VALUEs (the second example: the one-layer
+    study's points on the 2050 kg/m3 layers with the curve's own 2050 point,
+    whose layers they are).
 """
 import argparse
 import csv
@@ -59,7 +67,32 @@ def fail(message):
     sys.exit(2)
 
 
-def read_curve(folder):
+def read_curve(spec):
+    """Rows of a curve given as FOLDER[:VALUE,...][+FOLDER[:VALUE,...]...], with the varied key's name.
+
+    One curve may join the points of several kept studies (a study that ran some points on
+    another's layers, the rest being that study's own): each folder's done rows, or only those
+    whose varied key takes one of the VALUEs. The folders must vary the same key.
+    """
+    rows, varied = [], None
+    for part in spec.split("+"):
+        folder, _, values = part.partition(":")
+        part_rows, part_varied = read_folder(folder)
+        if rows and part_varied != varied:
+            fail(f"{spec}: {folder} varies '{part_varied}', the curve's first folder '{varied}'")
+        if values:
+            if part_varied is None:
+                fail(f"{spec}: {folder} varies no key, so ':{values}' picks nothing")
+            wanted = [float(v) for v in values.split(",")]
+            for v in wanted:
+                if not any(float(r[part_varied]) == v for r in part_rows):
+                    fail(f"{spec}: {folder} has no done case with {part_varied} = {v:g}")
+            part_rows = [r for r in part_rows if float(r[part_varied]) in wanted]
+        rows, varied = rows + part_rows, part_varied
+    return rows, varied
+
+
+def read_folder(folder):
     """Rows of FOLDER/results.csv that are done, with the varied key's name."""
     path = os.path.join(folder, "results.csv")
     if not os.path.isfile(path):
@@ -337,12 +370,15 @@ def print_ns_factor(label, rows):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[1].strip(),
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("curves", nargs="+", help="folders of kept stability curves (results.csv in each)")
+    parser.add_argument("curves", nargs="+", help="folders of kept stability curves (results.csv in each); "
+                        "FOLDER:V1,V2+FOLDER2 joins FOLDER's points V1 and V2 and FOLDER2's into one curve")
     parser.add_argument("--label", action="append", default=[], help="a name per curve, in order")
     parser.add_argument("--out", required=True, help="the chart to write (PNG)")
     parser.add_argument("--pool", action="store_true", help="also one factor on Ns over every curve given")
     args = parser.parse_args()
-    labels = args.label or [os.path.basename(os.path.normpath(c)) for c in args.curves]
+    labels = args.label or [" + ".join(os.path.basename(os.path.normpath(part.partition(":")[0])) +
+                                       (":" + part.partition(":")[2] if ":" in part else "")
+                                       for part in c.split("+")) for c in args.curves]
     if len(labels) != len(args.curves):
         fail(f"--label: {len(labels)} labels for {len(args.curves)} curves")
     curves = [read_curve(c) for c in args.curves]

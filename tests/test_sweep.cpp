@@ -893,8 +893,8 @@ TEST_F(SweepTest, ReportDrawsDamageAgainstVanDerMeerAndHudson) {
 // units displaced per point and in all against Van der Meer's expected count,
 // with the Poisson chance of so few, and their spread about it and within the
 // points; where the cases' damage.csv are kept, how many of the displaced sat in
-// the toe row (s_m < 0) and the counts without them; a chart; bad input is one
-// error line.
+// the toe row (s_m < 0) and the counts without them; a chart; one curve joined
+// from two studies' points; bad input is one error line.
 TEST_F(SweepTest, ComparedCurvesCountEachCurvesUnitsAgainstVanDerMeer) {
     const std::string header = "case,unit.0.density,seed,status,Ns,N_od,units_displaced,"
                                "units_displaced_van_der_meer,waves.waves,s_om\n";
@@ -993,10 +993,33 @@ TEST_F(SweepTest, ComparedCurvesCountEachCurvesUnitsAgainstVanDerMeer) {
               std::string::npos)
         << r.output;
 
+    // One curve of two studies' points (FOLDER+FOLDER:VALUE): B's two points with A's 1700 kg/m^3
+    // realisation, so at 1700 kg/m^3 4 + 1 units of 4.0 + 4.0 (P(X <= 5 | 8) = 0.19) over 2
+    // realisations, 5 of 8.5 in all (P 0.15); A's 2000 kg/m^3 point stays out.
+    const std::string joined = (dir_ / "b").string() + "+" + (dir_ / "a").string() + ":1700";
+    const Result j = run(script + joined + " --out " + (dir_ / "j.png").string());
+    ASSERT_EQ(j.status, 0) << j.output;
+    EXPECT_NE(j.output.find("unit.0.density 1700.0: Ns 4.00  5 / 8.0 (P 0.19)  over 2 realisations"),
+              std::string::npos)
+        << j.output;
+    EXPECT_NE(j.output.find("unit.0.density 2000.0: Ns 2.50  0 / 0.5 (P 0.61)  over 1 realisations"),
+              std::string::npos)
+        << j.output;
+    EXPECT_NE(j.output.find("all: 5 / 8.5 (P 0.15)"), std::string::npos) << j.output;
+    EXPECT_NE(j.output.find("b + a:1700: units displaced"), std::string::npos) << j.output; // its label
+
     const Result bad = run(script + (dir_ / "missing").string() + " --out " + (dir_ / "d.png").string());
     EXPECT_EQ(bad.status, 2) << bad.output;
     EXPECT_EQ(bad.output, "armour: error: " + (dir_ / "missing" / "results.csv").string() +
                               ": not found (not a kept stability curve)\n");
+    EXPECT_FALSE(fs::exists(dir_ / "d.png"));
+    // A value the folder's varied key never takes is refused, naming the folder, key and value.
+    const Result none = run(script + (dir_ / "b").string() + "+" + (dir_ / "a").string() + ":2100 --out " +
+                            (dir_ / "d.png").string());
+    EXPECT_EQ(none.status, 2) << none.output;
+    EXPECT_EQ(none.output, "armour: error: " + (dir_ / "b").string() + "+" + (dir_ / "a").string() +
+                               ":2100: " + (dir_ / "a").string() +
+                               " has no done case with unit.0.density = 2100\n");
     EXPECT_FALSE(fs::exists(dir_ / "d.png"));
 }
 
