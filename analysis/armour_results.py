@@ -74,6 +74,12 @@ if __name__ == "__main__":
 
     import numpy as np
 
+    usage = "usage: python3 analysis/armour_results.py RUN_DIR   (a one-line look at a run's bodies.h5)"
+    if sys.argv[1:] in (["-h"], ["--help"]):
+        sys.exit(print(usage))
+    if len(sys.argv) != 2:
+        print(f"armour: error: {usage}", file=sys.stderr)
+        sys.exit(2)
     b = read_bodies(sys.argv[1])
     print(f"{b.path}: {b.steps} steps, {b.bodies} bodies, t = {b.time[0] if b.steps else 0:g}.."
           f"{b.time[-1] if b.steps else 0:g} s, attributes {sorted(b.attributes)}")

@@ -14,6 +14,9 @@ import sys
 
 
 def main():
+    if sys.argv[1:] in (["-h"], ["--help"]):
+        print(__doc__)
+        return
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt

@@ -57,6 +57,9 @@ def main(run_dirs, png):
 
 
 if __name__ == "__main__":
+    if sys.argv[1:] in (["-h"], ["--help"]):
+        print(__doc__)
+        sys.exit(0)
     if len(sys.argv) < 3:
         sys.exit(__doc__)
     main(sys.argv[1:-1], sys.argv[-1])

@@ -72,6 +72,9 @@ def fields_at(run, checkpoint, work):
 
 def main():
     args = sys.argv[1:]
+    if args in (["-h"], ["--help"]):
+        print(__doc__)
+        return
     top = 8
     if len(args) == 3 and args[1] == "--top":
         top, args = int(args[2]), args[:1]

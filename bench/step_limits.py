@@ -37,6 +37,9 @@ def steps(log, start=0.0):
 
 def main():
     args = sys.argv[1:]
+    if args in (["-h"], ["--help"]):
+        print(__doc__)
+        return
     start = 0.0
     if len(args) == 3 and args[1] == "--from":
         start = float(args[2])

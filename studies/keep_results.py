@@ -103,6 +103,9 @@ def keep(run, dest):
 
 
 if __name__ == "__main__":
+    if sys.argv[1:] in (["-h"], ["--help"]):
+        print(__doc__)
+        sys.exit(0)
     if len(sys.argv) != 3:
         sys.exit("usage: keep_results.py SWEEP_OUTPUT_DIR DEST")
     keep(sys.argv[1], sys.argv[2])

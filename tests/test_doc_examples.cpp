@@ -1,5 +1,6 @@
 // Every `armour` command line in README.md and docs/**/*.md runs as a user
-// would paste it, so a broken example fails CI. One test case per document.
+// would paste it, so a broken example fails CI; so does every `python3
+// SCRIPT.py` line (below). One test case per document.
 //
 // What counts as an example
 //   - In a fenced code block (``` or ```sh, bash, shell, console; a block
@@ -26,6 +27,17 @@
 //   A command the table does not know gets dry for run, compare and sweep
 //   and full for the rest, so a new example is tested without touching
 //   this file; a slow or special one gets a row in kRules.
+//
+// Scripts (`python3 studies/x.py ...` or `/usr/bin/python3 bench/y.py ...`,
+// fenced or inline as above; the interpreter is the system's, /usr/bin/python3,
+// which has matplotlib and h5py)
+//   full     a script kScriptRules names, with an --out and no placeholder
+//            in any other word: run, its --out sent to a file of the test's
+//            working folder (an example that writes into docs/ writes nothing
+//            there); exit 0 and that file or folder written.
+//   syntax   the rest (they read run folders outside the repository): the
+//            script exists (under the source tree, or the document's folder)
+//            and `SCRIPT --help` exits 0 and lists every --option named.
 //
 // Placeholders (the rule)
 //   - An all-capitals word, alone or leading a path (OUT, DIR, RUN, REPORT,
@@ -119,6 +131,11 @@ const Rule kRules[] = {
      "four full tilt runs (a minute or two); tests/test_sweep.cpp runs this sweep"},
 };
 
+// The scripts whose examples run in full (matched against the script's path as written).
+const char *const kScriptRules[] = {
+    R"(^studies/compare_curves\.py$)", // reads kept results in docs/results/: ~2 s a chart
+};
+
 // Internal options the documents name but --help leaves out on purpose.
 const char *const kHidden[] = {"sweep --run-case"};
 
@@ -129,11 +146,22 @@ struct Example {
     int line = 0;
     std::string text; // the command line as written, continuations joined, comment dropped
     bool fenced = false;
+    bool script = false; // a `python3 SCRIPT.py ...` line, not an armour command
 };
 
 std::string trimmed(const std::string &s) {
     const auto b = s.find_first_not_of(" \t");
     return b == std::string::npos ? "" : s.substr(b, s.find_last_not_of(" \t") - b + 1);
+}
+
+// The text from the interpreter on when the line runs a Python script ("" otherwise).
+std::string script_command(std::string text) {
+    text = trimmed(text);
+    for (const char *prefix : {"$ ", "time ", "/usr/bin/time "})
+        if (text.rfind(prefix, 0) == 0)
+            text = trimmed(text.substr(std::string(prefix).size()));
+    static const std::regex script(R"(^(python3|/usr/bin/python3)\s+\S+\.py(\s.*)?$)");
+    return std::regex_match(text, script) ? text : "";
 }
 
 bool is_armour_word(const std::string &w) {
@@ -212,6 +240,8 @@ void inline_examples(const std::vector<std::pair<int, std::string>> &paragraph, 
         const std::string command = armour_command(span);
         if (!command.empty() && command.find(' ') != std::string::npos)
             out.push_back({file, line_at(k), command, false});
+        else if (const std::string script = script_command(span); !script.empty())
+            out.push_back({file, line_at(k), script, false, true});
         k = end + ticks.size();
     }
 }
@@ -253,6 +283,8 @@ std::vector<Example> extract_examples(const std::string &document, const std::st
             const std::string command = armour_command(without_comment(joined));
             if (!command.empty())
                 out.push_back({file, first, command, true});
+            else if (const std::string script = script_command(without_comment(joined)); !script.empty())
+                out.push_back({file, first, script, true, true});
             continue;
         }
         if (trimmed(lines[i]).empty()) {
@@ -556,7 +588,79 @@ void check_syntax(const Example &e, const Plan &p) {
     }
 }
 
+std::string single_quoted(const std::string &text) {
+    return "'" + std::regex_replace(text, std::regex("'"), "'\\''") + "'";
+}
+
+// A script example: full for the scripts kScriptRules names (an --out, no
+// other placeholder), syntax for the rest (see the top of this file).
+void check_script(const Example &e, const fs::path &scratch, int index) {
+    const std::vector<Word> words = shell_words(e.text);
+    const std::string written = words[1].text;
+    fs::path script = kSource / written;
+    if (!fs::is_regular_file(script)) // a results folder's own command, run from that folder
+        script = (kSource / e.file).parent_path() / written;
+    if (!fs::is_regular_file(script)) {
+        ADD_FAILURE() << where(e) << "\n  no such script " << written;
+        return;
+    }
+    std::vector<std::string> options, args;
+    std::string out;
+    bool synopsis = false;
+    for (std::size_t i = 2; i < words.size(); ++i) {
+        const Word &w = words[i];
+        if (!w.quoted && w.text.front() == '/') {
+            ADD_FAILURE() << where(e) << "\n  names an absolute path (" << w.text
+                          << "): documents name no machine's folders";
+            return;
+        }
+        synopsis = synopsis || synopsis_marks(w) || (!w.quoted && has_placeholder(w.text));
+        args.push_back(w.text);
+        if (w.quoted || w.text.rfind("--", 0) != 0)
+            continue;
+        options.push_back(w.text.substr(0, w.text.find('=')));
+        if (w.text == "--out" && i + 1 < words.size()) {
+            out = words[++i].text;
+            args.push_back("\x01"); // --out's value, replaced below
+        }
+    }
+    const bool listed = std::any_of(std::begin(kScriptRules), std::end(kScriptRules),
+                                    [&](const char *r) { return std::regex_match(written, std::regex(r)); });
+    const std::string python = "/usr/bin/python3 " + single_quoted(script.string());
+    if (!listed || out.empty() || synopsis) {
+        int status = 0;
+        const std::string help = run_capture(python + " --help", status);
+        if (status != 0) {
+            ADD_FAILURE() << where(e) << "\n  `" << written << " --help` exits " << status << ":\n"
+                          << last_lines(help, 10);
+            return;
+        }
+        for (const std::string &name : options)
+            if (!std::regex_search(help, std::regex("(^|[\\s\\[,])" + name + "($|[\\s\\],=])")))
+                ADD_FAILURE() << where(e) << "\n  `" << written << " --help` lists no option " << name;
+        return;
+    }
+    const fs::path cwd = working_folder(scratch, index);
+    const fs::path written_out = cwd / "script_out" / fs::path(out).filename();
+    fs::create_directories(written_out.parent_path());
+    std::string command = "cd " + single_quoted(cwd.string()) + " || exit 99\n" + python;
+    for (const std::string &a : args)
+        command += " " + single_quoted(a == "\x01" ? written_out.string() : a);
+    const fs::path shell = scratch / ("example" + std::to_string(index) + ".sh");
+    std::ofstream(shell) << command << "\n";
+    int status = 0;
+    const std::string output = run_capture("timeout 300 bash " + single_quoted(shell.string()), status);
+    std::printf("[script] %s:%d %s\n", e.file.c_str(), e.line, e.text.c_str());
+    EXPECT_EQ(status, 0) << where(e) << "\n  ran: " << command << "\n  its output ends:\n"
+                         << last_lines(output, 25);
+    EXPECT_TRUE(fs::exists(written_out)) << where(e) << "\n  wrote no " << written_out;
+}
+
 void check_example(const Example &e, const fs::path &scratch, int index) {
+    if (e.script) {
+        check_script(e, scratch, index);
+        return;
+    }
     const Plan p = plan_example(e);
     if (!p.problem.empty()) {
         ADD_FAILURE() << where(e) << "\n  " << p.problem;
@@ -686,6 +790,22 @@ TEST(DocExampleRules, FindsFencedAndInlineCommandsAndPlansEach) {
     EXPECT_EQ(
         plan_example({"x.md", 1, "armour run scenes/x.toml --set material.0.friction=MU --out o", true}).mode,
         Mode::syntax);
+}
+
+// Script lines are examples too: fenced or inline, `python3` or the system's path to it.
+TEST(DocExampleRules, FindsScriptCommands) {
+    const std::string doc = "```sh\n"
+                            "python3 studies/compare_curves.py docs/results/a --out OUT/c.png  # a chart\n"
+                            "/usr/bin/python3 bench/compare_damage.py RUN_A RUN_B --out OUT\n"
+                            "python3 -c 'print(1)'\n"
+                            "```\n"
+                            "Prose `python3 studies/keep_results.py RUN DEST`.\n";
+    const std::vector<Example> found = extract_examples(doc, "x.md");
+    ASSERT_EQ(found.size(), 3u);
+    EXPECT_TRUE(found[0].script && found[1].script && found[2].script);
+    EXPECT_EQ(found[0].text, "python3 studies/compare_curves.py docs/results/a --out OUT/c.png");
+    EXPECT_EQ(found[1].line, 3);
+    EXPECT_EQ(found[2].text, "python3 studies/keep_results.py RUN DEST");
 }
 
 } // namespace
