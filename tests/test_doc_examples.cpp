@@ -30,12 +30,14 @@
 //
 // Scripts (`python3 studies/x.py ...` or `/usr/bin/python3 bench/y.py ...`,
 // fenced or inline as above; the interpreter is the system's, /usr/bin/python3,
-// which has matplotlib and h5py)
+// which has matplotlib and h5py; and `bash bench/run_x.sh ...`, the benchmarks)
 //   full     a script kScriptRules names, with an --out and no placeholder
 //            in any other word: run, its --out sent to a file of the test's
 //            working folder (an example that writes into docs/ writes nothing
 //            there); exit 0 and that file or folder written.
-//   syntax   the rest (they read run folders outside the repository): the
+//   syntax   the rest (they read run folders outside the repository, or are
+//            benchmarks of minutes to hours, several of them run by their
+//            capability's tests with small options): the
 //            script exists (under the source tree, or the document's folder)
 //            and `SCRIPT --help` exits 0 and lists every --option named.
 //
@@ -160,7 +162,7 @@ std::string script_command(std::string text) {
     for (const char *prefix : {"$ ", "time ", "/usr/bin/time "})
         if (text.rfind(prefix, 0) == 0)
             text = trimmed(text.substr(std::string(prefix).size()));
-    static const std::regex script(R"(^(python3|/usr/bin/python3)\s+\S+\.py(\s.*)?$)");
+    static const std::regex script(R"(^((python3|/usr/bin/python3)\s+\S+\.py|bash\s+bench/\S+\.sh)(\s.*)?$)");
     return std::regex_match(text, script) ? text : "";
 }
 
@@ -626,8 +628,10 @@ void check_script(const Example &e, const fs::path &scratch, int index) {
     }
     const bool listed = std::any_of(std::begin(kScriptRules), std::end(kScriptRules),
                                     [&](const char *r) { return std::regex_match(written, std::regex(r)); });
-    const std::string python = "/usr/bin/python3 " + single_quoted(script.string());
-    if (!listed || out.empty() || synopsis) {
+    const bool shell_script = script.extension() == ".sh";
+    const std::string python =
+        (shell_script ? "bash " : "/usr/bin/python3 ") + single_quoted(script.string());
+    if (!listed || shell_script || out.empty() || synopsis) {
         int status = 0;
         const std::string help = run_capture(python + " --help", status);
         if (status != 0) {
@@ -792,17 +796,21 @@ TEST(DocExampleRules, FindsFencedAndInlineCommandsAndPlansEach) {
         Mode::syntax);
 }
 
-// Script lines are examples too: fenced or inline, `python3` or the system's path to it.
+// Script lines are examples too: fenced or inline, `python3` or the system's path to it, and
+// the benchmarks' `bash bench/...sh`.
 TEST(DocExampleRules, FindsScriptCommands) {
-    const std::string doc = "```sh\n"
-                            "python3 studies/compare_curves.py docs/results/a --out OUT/c.png  # a chart\n"
-                            "/usr/bin/python3 bench/compare_damage.py RUN_A RUN_B --out OUT\n"
-                            "python3 -c 'print(1)'\n"
-                            "```\n"
-                            "Prose `python3 studies/keep_results.py RUN DEST`.\n";
+    const std::string doc =
+        "```sh\n"
+        "python3 studies/compare_curves.py docs/results/a --out OUT/c.png  # a chart\n"
+        "/usr/bin/python3 bench/compare_damage.py RUN_A RUN_B --out OUT\n"
+        "python3 -c 'print(1)'\n"
+        "bash scripts/test.sh\n"
+        "```\n"
+        "Prose `python3 studies/keep_results.py RUN DEST`, `bash bench/run_x.sh --out OUT`.\n";
     const std::vector<Example> found = extract_examples(doc, "x.md");
-    ASSERT_EQ(found.size(), 3u);
-    EXPECT_TRUE(found[0].script && found[1].script && found[2].script);
+    ASSERT_EQ(found.size(), 4u); // not `python3 -c`, nor the install-and-build scripts
+    EXPECT_TRUE(found[0].script && found[1].script && found[2].script && found[3].script);
+    EXPECT_EQ(found[3].text, "bash bench/run_x.sh --out OUT");
     EXPECT_EQ(found[0].text, "python3 studies/compare_curves.py docs/results/a --out OUT/c.png");
     EXPECT_EQ(found[1].line, 3);
     EXPECT_EQ(found[2].text, "python3 studies/keep_results.py RUN DEST");
