@@ -92,6 +92,15 @@ def read_curve(spec):
     return rows, varied
 
 
+def default_label(spec):
+    """A curve's name when --label gives none: each folder's own name, with the values it picks."""
+    names = []
+    for part in spec.split("+"):
+        folder, colon, values = part.partition(":")
+        names.append(os.path.basename(os.path.normpath(folder)) + colon + values)
+    return " + ".join(names)
+
+
 def read_folder(folder):
     """Rows of FOLDER/results.csv that are done, with the varied key's name."""
     path = os.path.join(folder, "results.csv")
@@ -376,9 +385,7 @@ def main():
     parser.add_argument("--out", required=True, help="the chart to write (PNG)")
     parser.add_argument("--pool", action="store_true", help="also one factor on Ns over every curve given")
     args = parser.parse_args()
-    labels = args.label or [" + ".join(os.path.basename(os.path.normpath(part.partition(":")[0])) +
-                                       (":" + part.partition(":")[2] if ":" in part else "")
-                                       for part in c.split("+")) for c in args.curves]
+    labels = args.label or [default_label(c) for c in args.curves]
     if len(labels) != len(args.curves):
         fail(f"--label: {len(labels)} labels for {len(args.curves)} curves")
     curves = [read_curve(c) for c in args.curves]

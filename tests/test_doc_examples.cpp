@@ -1,6 +1,6 @@
 // Every `armour` command line in README.md and docs/**/*.md runs as a user
 // would paste it, so a broken example fails CI; so does every `python3
-// SCRIPT.py` line (below). One test case per document.
+// SCRIPT.py` and `bash bench/SCRIPT.sh` line (below). One test case per document.
 //
 // What counts as an example
 //   - In a fenced code block (``` or ```sh, bash, shell, console; a block
@@ -148,7 +148,7 @@ struct Example {
     int line = 0;
     std::string text; // the command line as written, continuations joined, comment dropped
     bool fenced = false;
-    bool script = false; // a `python3 SCRIPT.py ...` line, not an armour command
+    bool script = false; // a `python3 SCRIPT.py` or `bash bench/SCRIPT.sh` line, not an armour command
 };
 
 std::string trimmed(const std::string &s) {
@@ -156,12 +156,18 @@ std::string trimmed(const std::string &s) {
     return b == std::string::npos ? "" : s.substr(b, s.find_last_not_of(" \t") - b + 1);
 }
 
-// The text from the interpreter on when the line runs a Python script ("" otherwise).
-std::string script_command(std::string text) {
+// The line without a leading prompt (`$ `) or `time`.
+std::string without_prefix(std::string text) {
     text = trimmed(text);
     for (const char *prefix : {"$ ", "time ", "/usr/bin/time "})
         if (text.rfind(prefix, 0) == 0)
             text = trimmed(text.substr(std::string(prefix).size()));
+    return text;
+}
+
+// The text from the interpreter on when the line runs a script ("" otherwise).
+std::string script_command(std::string text) {
+    text = without_prefix(text);
     static const std::regex script(R"(^((python3|/usr/bin/python3)\s+\S+\.py|bash\s+bench/\S+\.sh)(\s.*)?$)");
     return std::regex_match(text, script) ? text : "";
 }
@@ -172,10 +178,7 @@ bool is_armour_word(const std::string &w) {
 
 // The text from the armour word on ("" when the line does not invoke armour).
 std::string armour_command(std::string text) {
-    text = trimmed(text);
-    for (const char *prefix : {"$ ", "time ", "/usr/bin/time "})
-        if (text.rfind(prefix, 0) == 0)
-            text = trimmed(text.substr(std::string(prefix).size()));
+    text = without_prefix(text);
     const std::string first = text.substr(0, text.find_first_of(" \t"));
     return is_armour_word(first) ? text : "";
 }
@@ -611,7 +614,7 @@ void check_script(const Example &e, const fs::path &scratch, int index) {
     bool synopsis = false;
     for (std::size_t i = 2; i < words.size(); ++i) {
         const Word &w = words[i];
-        if (!w.quoted && w.text.front() == '/') {
+        if (!w.quoted && !w.text.empty() && w.text.front() == '/') {
             ADD_FAILURE() << where(e) << "\n  names an absolute path (" << w.text
                           << "): documents name no machine's folders";
             return;
@@ -629,11 +632,11 @@ void check_script(const Example &e, const fs::path &scratch, int index) {
     const bool listed = std::any_of(std::begin(kScriptRules), std::end(kScriptRules),
                                     [&](const char *r) { return std::regex_match(written, std::regex(r)); });
     const bool shell_script = script.extension() == ".sh";
-    const std::string python =
+    const std::string invoke =
         (shell_script ? "bash " : "/usr/bin/python3 ") + single_quoted(script.string());
     if (!listed || shell_script || out.empty() || synopsis) {
         int status = 0;
-        const std::string help = run_capture(python + " --help", status);
+        const std::string help = run_capture(invoke + " --help", status);
         if (status != 0) {
             ADD_FAILURE() << where(e) << "\n  `" << written << " --help` exits " << status << ":\n"
                           << last_lines(help, 10);
@@ -647,7 +650,7 @@ void check_script(const Example &e, const fs::path &scratch, int index) {
     const fs::path cwd = working_folder(scratch, index);
     const fs::path written_out = cwd / "script_out" / fs::path(out).filename();
     fs::create_directories(written_out.parent_path());
-    std::string command = "cd " + single_quoted(cwd.string()) + " || exit 99\n" + python;
+    std::string command = "cd " + single_quoted(cwd.string()) + " || exit 99\n" + invoke;
     for (const std::string &a : args)
         command += " " + single_quoted(a == "\x01" ? written_out.string() : a);
     const fs::path shell = scratch / ("example" + std::to_string(index) + ".sh");
