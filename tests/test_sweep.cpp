@@ -1013,6 +1013,17 @@ TEST_F(SweepTest, ComparedCurvesCountEachCurvesUnitsAgainstVanDerMeer) {
     EXPECT_EQ(bad.output, "armour: error: " + (dir_ / "missing" / "results.csv").string() +
                               ": not found (not a kept stability curve)\n");
     EXPECT_FALSE(fs::exists(dir_ / "d.png"));
+    // Folders that vary different keys do not make one curve.
+    write(dir_ / "h" / "results.csv", "case,waves.Hs,seed,status,Ns,N_od,units_displaced,"
+                                      "units_displaced_van_der_meer,waves.waves,s_om\n"
+                                      "Hs-0.15_seed-1,0.15,1,done,3.3,0,0,1.4,27,0.04\n");
+    const Result mixed = run(script + (dir_ / "b").string() + "+" + (dir_ / "h").string() + " --out " +
+                             (dir_ / "d.png").string());
+    EXPECT_EQ(mixed.status, 2) << mixed.output;
+    EXPECT_NE(mixed.output.find("varies 'waves.Hs', the curve's first folder 'unit.0.density'"),
+              std::string::npos)
+        << mixed.output;
+    EXPECT_FALSE(fs::exists(dir_ / "d.png"));
     // A value the folder's varied key never takes is refused, naming the folder, key and value.
     const Result none = run(script + (dir_ / "b").string() + "+" + (dir_ / "a").string() + ":2100 --out " +
                             (dir_ / "d.png").string());
