@@ -76,7 +76,8 @@ if __name__ == "__main__":
 
     usage = "usage: python3 analysis/armour_results.py RUN_DIR   (a one-line look at a run's bodies.h5)"
     if sys.argv[1:] in (["-h"], ["--help"]):
-        sys.exit(print(usage))
+        print(usage)
+        sys.exit(0)
     if len(sys.argv) != 2:
         print(f"armour: error: {usage}", file=sys.stderr)
         sys.exit(2)
