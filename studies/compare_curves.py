@@ -33,8 +33,15 @@ Description
     is within 1.92 of its peak (chi-square, one degree of freedom). f > 1:
     the model needs f times the formula's Ns for the formula's damage, which is
     what loads f times too low would do (Ns is a load over a weight). With
-    --pool, one f over every curve given, as one set of realisations. All
-    figures are dimensionless (counts, N_od, Ns, f); the chart is a PNG.
+    --pool, one f over every curve given, as one set of realisations.
+
+    Last, what a point would take: how many realisations of the runs' length
+    each point needs for its own f to be known within +-10 % (95 %;
+    --precision), from the count Van der Meer expects of a realisation there
+    at the curve's f, how steeply that count moves with f there, and the
+    curve's own scatter within its points (where wider than independent
+    units'). All figures are dimensionless (counts, N_od, Ns, f,
+    realisations); the chart is a PNG.
 
 Usage
     python3 studies/compare_curves.py docs/results/stability_curve_47spheres \\
@@ -365,6 +372,46 @@ def print_shape(points, rows, fit):
           f"shape this far from the formula's by chance (Poisson's scatter alone: {chi2_tail(one - own, d1):.2g})")
 
 
+def realisations_needed(run, f, dispersion, precision):
+    """Realisations like `run` for one point's f within a factor 1 +- precision (95 %).
+
+    Over n realisations the point's count has mean M = n m (m = one
+    realisation's expected count at Ns / f) and variance dispersion x M, so
+    ln f is known to sqrt(dispersion / M) / |d ln m / d ln f| (the delta
+    method); setting 1.96 of that to ln(1 + precision) gives n. The slope is
+    the formula's own (Van der Meer's N_od grows as (Ns s_om^0.1 - 1)^2.5, so
+    ~5 near the onset, ~3.5 at Ns 4): near the onset a realisation holds few
+    units, each of which tells much about f.
+    """
+    step = 1e-4
+    slope = abs(math.log(expected_at(run, f * (1 + step)) / expected_at(run, f * (1 - step)))) / (2 * step)
+    m = expected_at(run, f)
+    if slope == 0 or m <= 1e-12:
+        return math.inf
+    return dispersion * (1.96 / (math.log(1.0 + precision) * slope)) ** 2 / m
+
+
+def print_planning(points, rows, fit, precision):
+    """Per point, the realisations of the runs' length that its own f within +-precision needs."""
+    runs = formula_runs(rows)
+    if runs is None or fit is None:
+        return
+    chi2, dof = spread_within(points)
+    dispersion = max(1.0, chi2 / dof) if dof else 1.0
+    run_of = {id(r): run for r, run in zip(rows, runs)}  # the points hold the rows themselves
+    needs = []
+    for g in points:
+        here = [run_of[id(r)] for r in g]
+        n = median([realisations_needed(run, fit[0], dispersion, precision) for run in here])
+        needs.append(f"Ns {mean_interval([run[0] for run in here])[0]:.2f}: "
+                     + (f"{math.ceil(n)}" if math.isfinite(n) else "not bounded"))
+    scatter = (f"the points' own scatter, {dispersion:.2f} x independent units'" if dispersion > 1.0
+               else "independent units' scatter")
+    print(f"  realisations a point needs for its f within +-{100 * precision:g} % (95 %), each of the runs' "
+          f"length (median N {median([run[1] for run in runs]):g} waves), at f {fit[0]:.2f} and {scatter}: "
+          + ", ".join(needs))
+
+
 def print_ns_factor(label, rows):
     """Prints the factor on Ns and returns it (None where no unit moved)."""
     fit = ns_factor(rows)
@@ -384,10 +431,15 @@ def main():
     parser.add_argument("--label", action="append", default=[], help="a name per curve, in order")
     parser.add_argument("--out", required=True, help="the chart to write (PNG)")
     parser.add_argument("--pool", action="store_true", help="also one factor on Ns over every curve given")
+    parser.add_argument("--precision", type=float, default=0.1,
+                        help="the relative half-width on a point's f (95 %%) the planning line asks for "
+                        "(default 0.1)")
     args = parser.parse_args()
     labels = args.label or [default_label(c) for c in args.curves]
     if len(labels) != len(args.curves):
         fail(f"--label: {len(labels)} labels for {len(args.curves)} curves")
+    if not 0.0 < args.precision <= 1.0:
+        fail(f"--precision: {args.precision:g} is not a relative half-width in (0, 1]")
     curves = [read_curve(c) for c in args.curves]
 
     import matplotlib
@@ -420,6 +472,7 @@ def main():
         print_spread_within([g for _, g in by_ns])
         fit = print_ns_factor("all", rows)
         print_shape([g for _, g in by_ns], rows, fit)
+        print_planning([g for _, g in by_ns], rows, fit, args.precision)
         print_toe_row([g for _, g in by_ns], rows)
     if args.pool:
         print(f"{' + '.join(labels)}, pooled:")

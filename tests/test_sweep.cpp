@@ -1072,6 +1072,39 @@ TEST_F(SweepTest, ComparedCurvesGiveTheGapAsAFactorOnNs) {
     EXPECT_NE(pooled.output.find(expected, at), std::string::npos) << expected << "\n" << pooled.output;
 }
 
+// What a point would take (studies/compare_curves.py): a realisation whose
+// count is the formula's (4 of 4.0, so f = 1) and no second realisation to
+// widen the scatter: n realisations hold 4 n units on average, and f within a
+// factor 1.1 at 95 % asks 1.96 sqrt(1 / (4 n)) / slope = ln 1.1, with the
+// slope of ln N_od against ln Ns the formula's, 2.5 x / (x - 1) at x = Ns
+// s_om^0.1: 7.04 realisations at 10 %, 1.92 at 20 %; a precision of 0 is
+// refused before anything is written.
+TEST_F(SweepTest, ComparedCurvesSayHowManyRealisationsAPointNeeds) {
+    write(dir_ / "one" / "results.csv", "case,unit.0.density,seed,status,Ns,N_od,units_displaced,"
+                                        "units_displaced_van_der_meer,waves.waves,s_om\n"
+                                        "d-1700_seed-1,1700.0,1,done,4.0,0.11,4,4.0,27,0.03\n");
+    const double x = 4.0 * std::pow(0.03, 0.1), slope = 2.5 * x / (x - 1.0);
+    const auto needed = [&](double precision) {
+        return std::pow(1.96 / (std::log(1.0 + precision) * slope), 2) / 4.0;
+    };
+    ASSERT_NEAR(needed(0.1), 7.04, 0.01); // far enough from 7 and 8 for the likelihood's grid
+    const std::string script = "/usr/bin/python3 " + kSource + "/studies/compare_curves.py " +
+                               (dir_ / "one").string() + " --out " + (dir_ / "c.png").string();
+    for (const double precision : {0.1, 0.2}) {
+        const Result r = run(script + " --precision " + std::to_string(precision));
+        ASSERT_EQ(r.status, 0) << r.output;
+        char line[160];
+        std::snprintf(line, sizeof line, "at f 1.00 and independent units' scatter: Ns 4.00: %d\n",
+                      static_cast<int>(std::ceil(needed(precision))));
+        EXPECT_NE(r.output.find(line), std::string::npos) << line << "\n" << r.output;
+    }
+    fs::remove(dir_ / "c.png");
+    const Result bad = run(script + " --precision 0");
+    EXPECT_EQ(bad.status, 2) << bad.output;
+    EXPECT_EQ(bad.output, "armour: error: --precision: 0 is not a relative half-width in (0, 1]\n");
+    EXPECT_FALSE(fs::exists(dir_ / "c.png"));
+}
+
 // A dry scene of a layer (studies/dry_scene.py): the scene's tables less the
 // fluid's (their sub-tables too), the bodies as the scene holds them or, with
 // --run and --time, each at the record nearest the time asked, at rest; a
