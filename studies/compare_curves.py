@@ -380,8 +380,8 @@ def realisations_needed(run, f, dispersion, precision):
     ln f is known to sqrt(dispersion / M) / |d ln m / d ln f| (the delta
     method); setting 1.96 of that to ln(1 + precision) gives n. The slope is
     the formula's own (Van der Meer's N_od grows as (Ns s_om^0.1 - 1)^2.5, so
-    ~5 near the onset, ~3.5 at Ns 4): near the onset a realisation holds few
-    units, each of which tells much about f.
+    ~8.5 at Ns 2 and ~3.9 at Ns 4 for s_om 0.031): near the onset a
+    realisation holds few units, each of which tells much about f.
     """
     step = 1e-4
     slope = abs(math.log(expected_at(run, f * (1 + step)) / expected_at(run, f * (1 - step)))) / (2 * step)
