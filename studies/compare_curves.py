@@ -24,7 +24,11 @@ Description
     row: seated below the foot of the face (s_m < 0), on the berm in front of
     it, where the layer has no unit below it to lean on. The counts and the
     factor on Ns are given again without them, so what the damage owes to the
-    toe is told from what it owes to the face.
+    toe is told from what it owes to the face. And whether the same seats
+    leave at rising Ns: per seed, the units that ended 0.25 Dn or more from
+    their settled pose at one point and again at the next point up, against
+    the count if the next point's were drawn at random (on a curve whose points
+    share their layers, a body is one seat at every point).
 
     Then the gap as one number: the factor f such that the curve's counts are
     Van der Meer's at Ns / f (each run's expected count from the formula at its
@@ -66,6 +70,7 @@ import sys
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "apps", "sweep"))
 from sweep_report import mean_interval, median, save, van_der_meer_n_od, van_der_meer_ns  # noqa: E402
 
+SEAT_LEFT = 0.25  # Dn: a unit ending this far from its settled pose has left its seat (the pull test's mark)
 NEEDED = ("Ns", "N_od", "units_displaced", "units_displaced_van_der_meer", "waves.waves", "s_om")
 
 
@@ -125,21 +130,38 @@ def read_folder(folder):
     # The varied key: the column between `case` and `seed`.
     varied = header[1] if header[0] == "case" and header[1] != "seed" else None
     for r in rows:
-        r["toe_row_displaced"], r["toe_row_units"] = toe_row(folder, r)
+        units = case_units(folder, r)
+        r["toe_row_displaced"], r["toe_row_units"] = toe_row(units)
+        r["left_seat"] = left_seat(units)
+        r["units_kept"] = len(units) if units else None
     return rows, varied
 
 
-def toe_row(folder, row):
-    """(displaced, units) of the row's case seated below the face's foot (s_m < 0); Nones if not kept."""
+def case_units(folder, row):
+    """The row's case's units, from its kept damage.csv; None if not kept."""
     path = os.path.join(folder, "cases", row.get("case", ""), "run", "damage.csv")
     if not os.path.isfile(path):
-        return None, None
+        return None
     with open(path, newline="") as f:
         units = list(csv.DictReader(line for line in f if not line.startswith("#")))
     if not units or not {"s_m", "displaced"} <= set(units[0]):
         fail(f"{path}: columns 's_m' and 'displaced' missing (not a damage run's damage.csv)")
+    return units
+
+
+def toe_row(units):
+    """(displaced, units) of a case's units seated below the face's foot (s_m < 0); Nones if not kept."""
+    if units is None:
+        return None, None
     toe = [u for u in units if float(u["s_m"]) < 0]
     return sum(1 for u in toe if u["displaced"] == "1"), len(toe)
+
+
+def left_seat(units):
+    """The bodies of a case that ended SEAT_LEFT Dn or more from their settled pose; None if not kept."""
+    if units is None or not {"body", "final_displacement_over_Dn"} <= set(units[0]):
+        return None
+    return {u["body"] for u in units if float(u["final_displacement_over_Dn"]) >= SEAT_LEFT}
 
 
 def without_toe_row(rows):
@@ -170,6 +192,53 @@ def print_toe_row(points, rows):
         print(f"  displaced per unit: the toe row {toe} of {toe_units} ({100 * toe / toe_units:.1f} %), "
               f"the face {shown - toe} of {face_units} ({100 * (shown - toe) / face_units:.1f} %)")
     print_ns_factor("without the toe row", without_toe_row(rows))
+
+
+def print_same_seats(points):
+    """Whether a layer decides who moves: the same seats leaving at rising Ns.
+
+    For each seed, its realisation at each point in rising Ns: the units that
+    left their seat (ended SEAT_LEFT Dn or more from their settled pose) at one
+    point, and how many of them left it again at the next point up, against
+    the count if that point's were drawn at random from its units. On a curve
+    whose points share one settled layer per seed (`fluid.settle_density`), a
+    body is the same seat at every point, so many more than at random says the
+    layer ranks its seats and Ns sets how far down the ranking the waves reach.
+    Where each point settled its own layers, a body number names only where
+    the unit was placed before its settle.
+    """
+    again = left = at_random = 0.0
+    seeds = sorted({r.get("seed") for g in points for r in g})
+    for seed in seeds:
+        chain = [next((r for r in g if r.get("seed") == seed), None) for g in points]
+        chain = [r for r in chain if r is not None]
+        for low, high in zip(chain, chain[1:]):
+            if seed is None or low["left_seat"] is None or high["left_seat"] is None:
+                print("  the same seats at rising Ns: not known (needs the seed column and the cases' damage.csv "
+                      "with final_displacement_over_Dn)")
+                return
+            left += len(low["left_seat"])
+            again += len(low["left_seat"] & high["left_seat"])
+            at_random += len(low["left_seat"]) * len(high["left_seat"]) / high["units_kept"]
+    if left == 0:
+        print(f"  the same seats at rising Ns: no unit left its seat (>= {SEAT_LEFT} Dn) below a seed's top point")
+        return
+    print(f"  the same seats at rising Ns (per seed, units ending >= {SEAT_LEFT} Dn from their settled pose at one "
+          f"point that do again at the next point up): {again:.0f} of {left:.0f} ({100 * again / left:.0f} %), "
+          f"{at_random:.1f} at random (P {poisson_sf(int(again), at_random):.2g} of so many)")
+
+
+def poisson_sf(k, mean):
+    """P(X >= k) for X Poisson with this mean, summed upward so that tiny tails keep their digits."""
+    if k <= 0:
+        return 1.0
+    term = math.exp(-mean + k * math.log(mean) - math.lgamma(k + 1)) if mean > 0 else 0.0
+    total, i = 0.0, k
+    while term > 1e-17 * max(total, 1e-300) or i < k + 1:
+        total += term
+        i += 1
+        term *= mean / i
+    return total
 
 
 def poisson_cdf(k, mean):
@@ -474,6 +543,7 @@ def main():
         print_shape([g for _, g in by_ns], rows, fit)
         print_planning([g for _, g in by_ns], rows, fit, args.precision)
         print_toe_row([g for _, g in by_ns], rows)
+        print_same_seats([g for _, g in by_ns])
     if args.pool:
         print(f"{' + '.join(labels)}, pooled:")
         pooled = [r for rows, _ in curves for r in rows]

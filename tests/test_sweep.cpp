@@ -1105,6 +1105,52 @@ TEST_F(SweepTest, ComparedCurvesSayHowManyRealisationsAPointNeeds) {
     EXPECT_FALSE(fs::exists(dir_ / "c.png"));
 }
 
+// The same seats at rising Ns (studies/compare_curves.py): per seed, the units
+// that ended 0.25 Dn or more from their settled pose at one point and again at
+// the next point up, against the count if the next point's were drawn at
+// random from its units. Seed 1 runs at three points, {0, 1} -> {0, 1, 2} ->
+// {2, 5}: 2 of 2 and 1 of 3 again; seed 2 at two, {3} -> {4}: none. 3 of 6,
+// where random draws give 2·3/10 + 3·2/10 + 1·1/10 = 1.3, P(X >= 3 | 1.3) =
+// 1 - e^-1.3 (1 + 1.3 + 1.3²/2) = 0.14. Unit 2 ends at exactly 0.25 Dn (it
+// counts), unit 7 at 0.2499 (it does not). Without damage.csv it is not known.
+TEST_F(SweepTest, ComparedCurvesSayWhetherTheSameSeatsLeaveAtRisingNs) {
+    write(dir_ / "held" / "results.csv", "case,unit.0.density,seed,status,Ns,N_od,units_displaced,"
+                                         "units_displaced_van_der_meer,waves.waves,s_om\n"
+                                         "d-2400_seed-1,2400.0,1,done,2.0,0,0,0.1,27,0.03\n"
+                                         "d-2400_seed-2,2400.0,2,done,2.1,0,0,0.1,27,0.03\n"
+                                         "d-2000_seed-1,2000.0,1,done,3.0,0,0,1.0,27,0.03\n"
+                                         "d-2000_seed-2,2000.0,2,done,3.1,0,0,1.0,27,0.03\n"
+                                         "d-1700_seed-1,1700.0,1,done,4.0,0,0,4.0,27,0.03\n");
+    const auto damage = [&](const std::string &c, const std::map<int, double> &moved) {
+        std::string text = "# damage per unit\nbody,unit,s_m,y_m,final_displacement_over_Dn,displaced\n";
+        for (int body = 0; body < 10; ++body) {
+            const auto it = moved.find(body);
+            text += std::to_string(body) + ",cube,0.1,0," +
+                    std::to_string(it == moved.end() ? 0.01 : it->second) + ",0\n";
+        }
+        write(dir_ / "held" / "cases" / c / "run" / "damage.csv", text);
+    };
+    damage("d-2400_seed-1", {{0, 0.3}, {1, 0.6}});
+    damage("d-2000_seed-1", {{0, 0.5}, {1, 0.9}, {2, 0.25}, {7, 0.2499}});
+    damage("d-1700_seed-1", {{2, 1.2}, {5, 0.4}});
+    damage("d-2400_seed-2", {{3, 0.3}});
+    damage("d-2000_seed-2", {{4, 0.7}});
+    const std::string script = "/usr/bin/python3 " + kSource + "/studies/compare_curves.py ";
+    const Result r = run(script + (dir_ / "held").string() + " --out " + (dir_ / "c.png").string());
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(
+        r.output.find("the same seats at rising Ns (per seed, units ending >= 0.25 Dn from their settled "
+                      "pose at one point that do again at the next point up): 3 of 6 (50 %), 1.3 at "
+                      "random (P 0.14 of so many)"),
+        std::string::npos)
+        << r.output;
+
+    fs::remove_all(dir_ / "held" / "cases");
+    const Result bare = run(script + (dir_ / "held").string() + " --out " + (dir_ / "c.png").string());
+    ASSERT_EQ(bare.status, 0) << bare.output;
+    EXPECT_NE(bare.output.find("the same seats at rising Ns: not known"), std::string::npos) << bare.output;
+}
+
 // A dry scene of a layer (studies/dry_scene.py): the scene's tables less the
 // fluid's (their sub-tables too), the bodies as the scene holds them or, with
 // --run and --time, each at the record nearest the time asked, at rest; a
