@@ -207,37 +207,40 @@ def print_same_seats(points):
     Where each point settled its own layers, a body number names only where
     the unit was placed before its settle.
     """
-    again = left = at_random = 0.0
-    seeds = sorted({r.get("seed") for g in points for r in g})
-    for seed in seeds:
-        chain = [next((r for r in g if r.get("seed") == seed), None) for g in points]
-        chain = [r for r in chain if r is not None]
+    pairs, left, again, at_random = 0, 0, 0, 0.0
+    for seed in sorted({r.get("seed") for g in points for r in g}, key=str):
+        chain = [r for r in (next((r for r in g if r.get("seed") == seed), None) for g in points) if r]
         for low, high in zip(chain, chain[1:]):
             if seed is None or low["left_seat"] is None or high["left_seat"] is None:
                 print("  the same seats at rising Ns: not known (needs the seed column and the cases' damage.csv "
                       "with final_displacement_over_Dn)")
                 return
+            pairs += 1
             left += len(low["left_seat"])
             again += len(low["left_seat"] & high["left_seat"])
             at_random += len(low["left_seat"]) * len(high["left_seat"]) / high["units_kept"]
     if left == 0:
-        print(f"  the same seats at rising Ns: no unit left its seat (>= {SEAT_LEFT} Dn) below a seed's top point")
+        why = "no seed ran at two points" if pairs == 0 else f"no unit left its seat (>= {SEAT_LEFT} Dn) below a " \
+                                                             "seed's top point"
+        print(f"  the same seats at rising Ns: {why}")
         return
     print(f"  the same seats at rising Ns (per seed, units ending >= {SEAT_LEFT} Dn from their settled pose at one "
-          f"point that do again at the next point up): {again:.0f} of {left:.0f} ({100 * again / left:.0f} %), "
-          f"{at_random:.1f} at random (P {poisson_sf(int(again), at_random):.2g} of so many)")
+          f"point that do again at the next point up): {again} of {left} ({100 * again / left:.0f} %), "
+          f"{at_random:.1f} at random (P {poisson_sf(again, at_random):.2g} of so many)")
 
 
 def poisson_sf(k, mean):
     """P(X >= k) for X Poisson with this mean, summed upward so that tiny tails keep their digits."""
     if k <= 0:
         return 1.0
-    term = math.exp(-mean + k * math.log(mean) - math.lgamma(k + 1)) if mean > 0 else 0.0
-    total, i = 0.0, k
-    while term > 1e-17 * max(total, 1e-300) or i < k + 1:
-        total += term
+    if mean <= 0:
+        return 0.0
+    term = total = math.exp(-mean + k * math.log(mean) - math.lgamma(k + 1))
+    i = k
+    while i <= mean or term > 1e-17 * total:  # the terms fall from the mode on
         i += 1
         term *= mean / i
+        total += term
     return total
 
 
