@@ -219,10 +219,11 @@ def print_same_seats(points):
             left += len(low["left_seat"])
             again += len(low["left_seat"] & high["left_seat"])
             at_random += len(low["left_seat"]) * len(high["left_seat"]) / high["units_kept"]
+    if pairs == 0:
+        print("  the same seats at rising Ns: no seed ran at two points")
+        return
     if left == 0:
-        why = "no seed ran at two points" if pairs == 0 else f"no unit left its seat (>= {SEAT_LEFT} Dn) below a " \
-                                                             "seed's top point"
-        print(f"  the same seats at rising Ns: {why}")
+        print(f"  the same seats at rising Ns: no unit left its seat (>= {SEAT_LEFT} Dn) below a seed's top point")
         return
     print(f"  the same seats at rising Ns (per seed, units ending >= {SEAT_LEFT} Dn from their settled pose at one "
           f"point that do again at the next point up): {again} of {left} ({100 * again / left:.0f} %), "
