@@ -134,6 +134,7 @@ def read_folder(folder):
         r["toe_row_displaced"], r["toe_row_units"] = toe_row(units)
         r["left_seat"] = left_seat(units)
         r["units_kept"] = len(units) if units else None
+        r["kept_units"] = units  # each unit's row of the kept damage.csv (studies/seats.py reads them)
     return rows, varied
 
 

@@ -136,6 +136,7 @@ const Rule kRules[] = {
 // The scripts whose examples run in full (matched against the script's path as written).
 const char *const kScriptRules[] = {
     R"(^studies/compare_curves\.py$)", // reads kept results in docs/results/: ~2 s a chart
+    R"(^studies/seats\.py$)",          // reads kept results and layers in docs/results/: ~1 s
 };
 
 // Internal options the documents name but --help leaves out on purpose.

@@ -1151,6 +1151,70 @@ TEST_F(SweepTest, ComparedCurvesSayWhetherTheSameSeatsLeaveAtRisingNs) {
     EXPECT_NE(bare.output.find("the same seats at rising Ns: not known"), std::string::npos) << bare.output;
 }
 
+// Seats on a settled layer (studies/seats.py): how far each cube's outermost
+// corner stands above its highest neighbour's, in closed form on four
+// unturned cubes beside a 1:1.5 face, and the displaced among the proud
+// against a random draw (hypergeometric); a case whose bodies do not sit where
+// the layer has them is refused.
+TEST_F(SweepTest, SeatsTellHowFarEachUnitStandsAboveItsNeighbours) {
+    const double cot = 1.5, root = std::sqrt(1.0 + cot * cot);
+    // Unit s up the face from its foot (0, 0), y across, its centre c out of the face (m).
+    const auto body = [&](double s, double y, double c) {
+        const double x = s * cot / root - c / root, z = s / root + c * cot / root;
+        return "[[body]]\nunit = \"cube\"\nposition = [" + std::to_string(x) + ", " + std::to_string(y) +
+               ", " + std::to_string(z) + "]\norientation = [1.0, 0.0, 0.0, 0.0]\n\n";
+    };
+    // Body 0 stands 1 Dn above 1 and 2 (0.04 m higher, 1 Dn = 0.04 m along the face from each); body 3,
+    // within 1.5 Dn of all three (0.057 m from 1 and 2), stands 0.25 Dn above 1 and 2 but 0.75 Dn below 0:
+    // only 0 is above its highest neighbour, so only 0 is proud.
+    write(dir_ / "layer.toml", "[[unit]]\nname = \"cube\"\nshape = \"cube\"\nsize = 0.04\n\n[[wall]]\nname = "
+                               "\"slope\"\ntype = \"slope\"\ncot = 1.5\nheight = 1.0\nwidth = 1.0\n\n" +
+                                   body(0.1, 0.0, 0.06) + body(0.1, 0.04, 0.02) + body(0.1, -0.04, 0.02) +
+                                   body(0.14, 0.0, 0.03));
+    write(dir_ / "held" / "results.csv", "case,unit.0.density,seed,status,Ns,N_od,units_displaced,"
+                                         "units_displaced_van_der_meer,waves.waves,s_om\n"
+                                         "d-2000_seed-1,2000.0,1,done,3.0,0,2,1.0,27,0.03\n"
+                                         "d-1700_seed-1,1700.0,1,done,4.0,0,1,4.0,27,0.03\n");
+    const auto damage = [&](const std::string &c, const std::set<int> &displaced, double shift) {
+        const double s[] = {0.1, 0.1, 0.1, 0.14}, y[] = {0.0, 0.04, -0.04, 0.0};
+        std::string text = "# damage per unit\nbody,unit,s_m,y_m,final_displacement_over_Dn,displaced\n";
+        for (int b = 0; b < 4; ++b)
+            text += std::to_string(b) + ",cube," + std::to_string(s[b] + shift) + "," + std::to_string(y[b]) +
+                    (displaced.count(b) ? ",1.5,1\n" : ",0.01,0\n");
+        write(dir_ / "held" / "cases" / c / "run" / "damage.csv", text);
+    };
+    damage("d-2000_seed-1", {0, 1}, 0.0);
+    damage("d-1700_seed-1", {0}, 0.0);
+    const std::string command = "/usr/bin/python3 " + kSource + "/studies/seats.py " +
+                                (dir_ / "held").string() + " --layer 1=" + (dir_ / "layer.toml").string() +
+                                " --out " + (dir_ / "out").string();
+    const Result r = run(command);
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(
+        r.output.find("proud units (above every neighbour within 1.5 Dn): 1 of 4; of the 2 units that were "
+                      "displaced at a point, 1 were proud (2 of 3 unit-points), 0.5 at random (P 0.5 of so "
+                      "many)"),
+        std::string::npos)
+        << r.output;
+    EXPECT_NE(
+        r.output.find("+0.5 Dn or more:    1 units; left their seat at a point   1 (100.0 %), displaced at "
+                      "a point   1 (100.0 %), unit-points displaced 2"),
+        std::string::npos)
+        << r.output;
+    const json summary = json::parse(read_text(dir_ / "out" / "summary.json"));
+    EXPECT_EQ(summary["proud_units"], 1);
+    EXPECT_EQ(summary["displaced_unit_points_proud"], 2);
+    EXPECT_NEAR(summary["displaced_p_value"].get<double>(), 0.5, 1e-12); // 1 - C(3,2) / C(4,2)
+
+    damage("d-1700_seed-1", {0}, 0.002); // 2 mm up the face: another layer
+    const Result other = run(command);
+    EXPECT_EQ(other.status, 2);
+    EXPECT_NE(other.output.find("armour: error: case d-1700_seed-1: body 0 sits at s_m 0.1020"),
+              std::string::npos)
+        << other.output;
+    EXPECT_NE(other.output.find("the case did not run on this layer"), std::string::npos) << other.output;
+}
+
 // A dry scene of a layer (studies/dry_scene.py): the scene's tables less the
 // fluid's (their sub-tables too), the bodies as the scene holds them or, with
 // --run and --time, each at the record nearest the time asked, at rest; a

@@ -1,0 +1,213 @@
+#!/usr/bin/env python3
+"""What makes a seat weak: each settled cube's seat against whether it left, on a curve's layers.
+
+Description
+    On a curve whose points share one settled layer per seed (`fluid.settle_density`: a
+    body is the same seat at every point), reads each seed's settled layer (its
+    scene.settled.toml) and measures every unit's seat there:
+      - how far its outermost corner stands out of the slope's face (out_of_face_Dn), and
+      - how far that stands above the outermost corner of its highest neighbour, the units
+        whose centres lie within 1.5 Dn of its own along the face (above_neighbours_Dn;
+        the pattern's slots are 1.24 Dn apart, so 1.5 Dn takes in the ring of nearest
+        units of both layers). A unit above every neighbour (> 0) is proud: the local top
+        of the layer, its upper faces open to the flow, no unit beside it as high.
+    Then, from the kept cases' damage.csv (compare_curves.py's CURVE), how many of the
+    curve's points each unit was displaced at (ended >= displaced_threshold from its settled
+    pose, the damage analysis' own flag) and left its seat at (>= 0.25 Dn, the pull test's
+    mark), and prints the units that did by how far they stood above their neighbours, with
+    the chance that the displaced would fall among the proud units as often if they were
+    drawn at random from the layers (the hypergeometric tail). A body in damage.csv that does
+    not sit where the layer has it (1 mm) is refused: the curve did not run on that layer.
+
+    Cubes only (the stability scene's units): a unit's corners are its centre +- half its
+    size along its own axes.
+
+    Writes OUT/seats.csv (one row per seed and unit) and OUT/summary.json; lengths in m
+    where named _m, in Dn where named _Dn.
+
+Usage
+    python3 studies/seats.py docs/results/stability_one_layer_dn4+docs/results/stability_curve_dn4:2050 \\
+        --layer 1=docs/results/stability_one_layer_dn4/layers/seed-1.toml \\
+        --layer 2=docs/results/stability_one_layer_dn4/layers/seed-2.toml \\
+        --layer 3=docs/results/stability_one_layer_dn4/layers/seed-3.toml \\
+        --layer 4=docs/results/stability_one_layer_dn4/layers/seed-4.toml --out OUT
+"""
+import argparse
+import csv
+import itertools
+import json
+import math
+import os
+import sys
+import tomllib
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from compare_curves import SEAT_LEFT, fail, read_curve  # noqa: E402
+
+NEIGHBOUR_RADIUS = 1.5  # Dn, along the face: the ring of nearest units of both layers
+BINS = [(-math.inf, -0.5), (-0.5, 0.0), (0.0, 0.5), (0.5, math.inf)]  # above_neighbours_Dn
+
+
+def rotation(q):
+    """The rotation matrix of a quaternion [w, x, y, z] (the scene's order), normalised."""
+    w, x, y, z = np.asarray(q, dtype=float) / np.linalg.norm(q)
+    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+                     [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+                     [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
+
+
+def read_layer(path):
+    """Each unit's seat in a settled layer: s and y along the face (m), out of it and above its neighbours (Dn)."""
+    try:
+        with open(path, "rb") as f:
+            scene = tomllib.load(f)
+    except (OSError, tomllib.TOMLDecodeError) as e:
+        fail(f"{path}: not a readable scene ({e})")
+    slopes = [w for w in scene.get("wall", []) if w.get("type") == "slope"]
+    if len(slopes) != 1:
+        fail(f"{path}: wall: needs one wall of type 'slope' (the face the seats are measured from)")
+    units = {u["name"]: u for u in scene.get("unit", [])}
+    bodies = scene.get("body", [])
+    if not bodies:
+        fail(f"{path}: body: none (not a settled layer: a settle writes scene.settled.toml)")
+    for i, b in enumerate(bodies):
+        if units.get(b.get("unit"), {}).get("shape") != "cube":
+            fail(f"{path}: body.{i}.unit: not a cube (seats are measured for cubes)")
+    size = units[bodies[0]["unit"]]["size"]
+    slope = slopes[0]
+    foot = np.array([slope.get("toe_x", 0.0), 0.0, slope.get("floor_z", 0.0)])
+    cot = slope["cot"]
+    normal = np.array([-1.0, 0.0, cot]) / math.hypot(1.0, cot)  # out of the face
+    along = np.array([cot, 0.0, 1.0]) / math.hypot(1.0, cot)  # up the face
+    corners = np.array(list(itertools.product((-0.5, 0.5), repeat=3))) * size
+    seats = []
+    for b in bodies:
+        centre = np.array(b["position"], dtype=float)
+        outermost = max((centre + corners @ rotation(b["orientation"]).T - foot) @ normal)
+        seats.append({"s_m": float((centre - foot) @ along), "y_m": float(centre[1]),
+                      "out_of_face_Dn": float(outermost / size)})
+    for i, seat in enumerate(seats):
+        neighbours = [o["out_of_face_Dn"] for j, o in enumerate(seats) if j != i and
+                      math.hypot(o["s_m"] - seat["s_m"], o["y_m"] - seat["y_m"]) < NEIGHBOUR_RADIUS * size]
+        seat["above_neighbours_Dn"] = seat["out_of_face_Dn"] - max(neighbours) if neighbours else math.inf
+    return seats
+
+
+def count_points(seats, seed, rows, layer_path):
+    """Each seat's points displaced and left at, from the seed's rows of the curve (checked against the layer)."""
+    for seat in seats:
+        seat.update(points=0, points_left_seat=0, points_displaced=0)
+    for r in rows:
+        units = r.get("kept_units")
+        if units is None:
+            fail(f"case {r['case']}: its damage.csv is not kept (cases/<case>/run/damage.csv)")
+        if len(units) != len(seats):
+            fail(f"case {r['case']}: damage.csv has {len(units)} units, the layer {layer_path} {len(seats)}")
+        for u in units:
+            seat = seats[int(u["body"])]
+            if max(abs(float(u["s_m"]) - seat["s_m"]), abs(float(u["y_m"]) - seat["y_m"])) > 1e-3:
+                fail(f"case {r['case']}: body {u['body']} sits at s_m {float(u['s_m']):.4f}, y_m "
+                     f"{float(u['y_m']):.4f} in damage.csv, at {seat['s_m']:.4f}, {seat['y_m']:.4f} in "
+                     f"{layer_path}: the case did not run on this layer")
+            seat["points"] += 1
+            seat["points_left_seat"] += float(u["final_displacement_over_Dn"]) >= SEAT_LEFT
+            seat["points_displaced"] += u["displaced"] == "1"
+    for seat in seats:
+        seat["seed"] = seed
+
+
+def hypergeometric_sf(k, total, marked, drawn):
+    """P(at least k of `drawn` units drawn at random from `total` are among the `marked`)."""
+    ways = math.comb(total, drawn)
+    return sum(math.comb(marked, i) * math.comb(total - marked, drawn - i)
+               for i in range(k, min(marked, drawn) + 1)) / ways
+
+
+def tally(seats, key):
+    """(units, of them proud; units that `key` counts at >= 1 point, of them proud; points counted, proud's; P)."""
+    proud = [s for s in seats if s["above_neighbours_Dn"] > 0]
+    hit = [s for s in seats if s[key] > 0]
+    hit_proud = [s for s in hit if s["above_neighbours_Dn"] > 0]
+    points = sum(s[key] for s in seats)
+    points_proud = sum(s[key] for s in proud)
+    p = hypergeometric_sf(len(hit_proud), len(seats), len(proud), len(hit)) if hit else 1.0
+    return len(seats), len(proud), len(hit), len(hit_proud), points, points_proud, p
+
+
+def bin_label(lo, hi):
+    if lo == -math.inf:
+        return f"below {hi:+.1f} Dn"
+    if hi == math.inf:
+        return f"{lo:+.1f} Dn or more"
+    return f"{lo:+.1f} to {hi:+.1f} Dn"
+
+
+def print_table(seats):
+    print("units by how far they stood above their highest neighbour (outermost corners, out of the face):")
+    for lo, hi in BINS:
+        group = [s for s in seats if lo <= s["above_neighbours_Dn"] < hi]
+        left = sum(1 for s in group if s["points_left_seat"] > 0)
+        displaced = sum(1 for s in group if s["points_displaced"] > 0)
+        print(f"  {bin_label(lo, hi):>18}: {len(group):4d} units; left their seat at a point {left:3d} "
+              f"({100 * left / max(1, len(group)):.1f} %), displaced at a point {displaced:3d} "
+              f"({100 * displaced / max(1, len(group)):.1f} %), unit-points displaced "
+              f"{sum(s['points_displaced'] for s in group)}")
+
+
+def write_outputs(seats, out, figures):
+    os.makedirs(out, exist_ok=True)
+    columns = ["seed", "body", "s_m", "y_m", "out_of_face_Dn", "above_neighbours_Dn", "points",
+               "points_left_seat", "points_displaced"]
+    with open(os.path.join(out, "seats.csv"), "w", newline="") as f:
+        f.write("# each unit's seat on its settled layer, and the curve's points it left it at "
+                "(lengths in m where _m, in Dn where _Dn; counts)\n")
+        writer = csv.DictWriter(f, fieldnames=columns, extrasaction="ignore", lineterminator="\n")
+        writer.writeheader()
+        for s in seats:
+            writer.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in s.items()})
+    with open(os.path.join(out, "summary.json"), "w") as f:
+        json.dump(dict(figures, si_units={"neighbour_radius": "Dn", "counts": "units or unit-points",
+                                           "p_value": "probability"}), f, indent=2)
+        f.write("\n")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("curve", help="kept curve(s), as compare_curves.py's CURVE: FOLDER[:VALUE,...][+...]")
+    parser.add_argument("--layer", action="append", default=[], metavar="SEED=FILE",
+                        help="a seed's settled layer: its cases' RUN/.../settle/scene.settled.toml")
+    parser.add_argument("--out", required=True, help="output folder: seats.csv, summary.json")
+    args = parser.parse_args()
+    rows, _ = read_curve(args.curve)
+    layers = {}
+    for spec in args.layer:
+        seed, eq, path = spec.partition("=")
+        if not eq or not seed.strip().isdigit():
+            fail(f"--layer {spec}: give SEED=FILE (a seed of the curve and its settled layer)")
+        layers[seed.strip()] = path
+    seats = []
+    for seed in sorted({r["seed"] for r in rows}, key=int):
+        if seed not in layers:
+            fail(f"--layer: seed {seed} of {args.curve} has no layer (give --layer {seed}=FILE)")
+        layer = read_layer(layers[seed])
+        count_points(layer, int(seed), [r for r in rows if r["seed"] == seed], layers[seed])
+        seats += [dict(s, body=i) for i, s in enumerate(layer)]
+    print_table(seats)
+    figures = {"neighbour_radius_Dn": NEIGHBOUR_RADIUS, "seat_left_Dn": SEAT_LEFT}
+    for key, name in (("points_displaced", "displaced"), ("points_left_seat", "left_seat")):
+        units, proud, hit, hit_proud, points, points_proud, p = tally(seats, key)
+        verb = "were displaced" if name == "displaced" else "left their seat"
+        print(f"proud units (above every neighbour within {NEIGHBOUR_RADIUS} Dn): {proud} of {units}; "
+              f"of the {hit} units that {verb} at a point, {hit_proud} were proud "
+              f"({points_proud} of {points} unit-points), {hit * proud / units:.1f} at random "
+              f"(P {p:.2g} of so many)")
+        figures.update({"units": units, "proud_units": proud, f"{name}_units": hit,
+                        f"{name}_units_proud": hit_proud, f"{name}_unit_points": points,
+                        f"{name}_unit_points_proud": points_proud, f"{name}_p_value": p})
+    write_outputs(seats, args.out, figures)
+
+
+if __name__ == "__main__":
+    main()
