@@ -187,8 +187,12 @@ def main():
         if not eq or not seed.strip().isdigit():
             fail(f"--layer {spec}: give SEED=FILE (a seed of the curve and its settled layer)")
         layers[seed.strip()] = path
+    seeds = sorted({r["seed"] for r in rows}, key=int)
+    for seed in layers:
+        if seed not in seeds:
+            fail(f"--layer {seed}={layers[seed]}: {args.curve} has no seed {seed}")
     seats = []
-    for seed in sorted({r["seed"] for r in rows}, key=int):
+    for seed in seeds:
         if seed not in layers:
             fail(f"--layer: seed {seed} of {args.curve} has no layer (give --layer {seed}=FILE)")
         layer = read_layer(layers[seed])
