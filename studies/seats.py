@@ -19,6 +19,14 @@ Description
     drawn at random from the layers (the hypergeometric tail). A body in damage.csv that does
     not sit where the layer has it (1 mm) is refused: the curve did not run on that layer.
 
+    Why a proud seat is weak, with --pulled SEED=FOLDER: FOLDER is bench/pull_vs_loads.py's output
+    for a pull test of that seed's layer (bench/run_pull_test.sh) and a coupled run on it, so each
+    pulled unit has its resistance (the pull it held before it moved 0.25 Dn) and the largest
+    swing of the waves' load out of the face, both in its weight on its seat at rest. Their
+    medians for the proud units and the rest, with the two-sided chance of a split as wide if
+    the two were one population (Mann-Whitney's rank sum, normal approximation, ties averaged),
+    tell a seat that holds less from one the waves load more.
+
     Cubes only (the stability scene's units): a unit's corners are its centre +- half its
     size along its own axes.
 
@@ -30,7 +38,8 @@ Usage
         --layer 1=docs/results/stability_one_layer_dn4/layers/seed-1.toml \\
         --layer 2=docs/results/stability_one_layer_dn4/layers/seed-2.toml \\
         --layer 3=docs/results/stability_one_layer_dn4/layers/seed-3.toml \\
-        --layer 4=docs/results/stability_one_layer_dn4/layers/seed-4.toml --out OUT
+        --layer 4=docs/results/stability_one_layer_dn4/layers/seed-4.toml --out OUT \
+        [--pulled 4=PULL_VS_LOADS]
 """
 import argparse
 import csv
@@ -156,10 +165,80 @@ def print_table(seats):
               f"{sum(s['points_displaced'] for s in group)}")
 
 
+def read_pulled(seats, seed, folder):
+    """Each pulled unit's resistance and peak load swing out of the face (unit weights) into its seat."""
+    path = os.path.join(folder, "pull_vs_loads.csv")
+    try:
+        with open(path, newline="") as f:
+            rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
+    except OSError as e:
+        fail(f"--pulled {seed}={folder}: {path}: not readable ({e}; bench/pull_vs_loads.py writes it)")
+    mine = {s["body"]: s for s in seats if s["seed"] == seed}
+    for r in rows:
+        body = int(r["body"])
+        if body not in mine:
+            fail(f"{path}: body {body}: seed {seed}'s layer has {len(mine)} units")
+        # A unit the pull never moved held more than the test's largest pull: it ranks above every other.
+        mine[body]["resistance_weights"] = float(r["resistance_weights"]) if r["resistance_weights"] else math.inf
+        mine[body]["peak_swing_out_weights"] = float(r["peak_swing_out_weights"])
+
+
+def rank_sum_p(a, b):
+    """Two-sided P of Mann-Whitney's U for samples a and b (normal approximation, ties averaged)."""
+    values = sorted(a + b)
+    rank = {}
+    for v in set(values):
+        first = values.index(v)
+        rank[v] = first + (values.count(v) + 1) / 2
+    n1, n2, n = len(a), len(b), len(a) + len(b)
+    u = sum(rank[v] for v in a) - n1 * (n1 + 1) / 2
+    ties = sum(c**3 - c for c in (values.count(v) for v in set(values)))
+    variance = n1 * n2 / 12 * ((n + 1) - ties / (n * (n - 1)))
+    if variance <= 0:
+        return 1.0
+    z = (abs(u - n1 * n2 / 2) - 0.5) / math.sqrt(variance)
+    return min(1.0, math.erfc(max(z, 0.0) / math.sqrt(2)))
+
+
+def quartiles(values):
+    """Lower quartile, median, upper quartile as text: sample values (a unit that held every pull: 'held')."""
+    return [f"{v:.2f}" if math.isfinite(v) else "held" for v in np.percentile(values, [25, 50, 75], method="lower")]
+
+
+def print_pulled(seats, figures):
+    """Proud units against the rest: what they held in the pull test, and what the waves put on them."""
+    pulled = [s for s in seats if "resistance_weights" in s]
+    proud = [s for s in pulled if s["above_neighbours_Dn"] > 0]
+    rest = [s for s in pulled if s["above_neighbours_Dn"] <= 0]
+    if not proud or not rest:
+        print(f"pulled units: {len(proud)} proud, {len(rest)} not: nothing to set side by side")
+        return
+    for key, what in (("resistance_weights", "held in the pull"),
+                      ("peak_swing_out_weights", "largest load swing out of the face")):
+        a, b = [s[key] for s in proud], [s[key] for s in rest]
+        p = rank_sum_p(a, b)
+        qa, qb = quartiles(a), quartiles(b)
+        print(f"{what} (unit weights): proud {qa[1]} (quartiles {qa[0]}-{qa[2]}, {len(a)} units), the rest "
+              f"{qb[1]} ({qb[0]}-{qb[2]}, {len(b)}); P {p:.2g} of a split as wide")
+        medians = [float(np.percentile(v, 50, method="lower")) for v in (a, b)]
+        medians = [m if math.isfinite(m) else None for m in medians]  # null: the median unit held every pull
+        figures.update({f"{key}_median_proud": medians[0], f"{key}_median_rest": medians[1], f"{key}_p_value": p})
+    figures.update({"pulled_units_proud": len(proud), "pulled_units_rest": len(rest)})
+    gone = [s["resistance_weights"] for s in pulled if s["points_displaced"] > 0]
+    stayed = [s["resistance_weights"] for s in pulled if s["points_displaced"] == 0]
+    if gone and stayed:
+        qg, qs = quartiles(gone), quartiles(stayed)
+        p = rank_sum_p(gone, stayed)
+        print(f"held in the pull by the units displaced at a point: {qg[1]} (quartiles {qg[0]}-{qg[2]}, "
+              f"{len(gone)} units), by the rest {qs[1]} ({qs[0]}-{qs[2]}, {len(stayed)}); P {p:.2g} of a split "
+              f"as wide")
+        figures["resistance_weights_displaced_p_value"] = p
+
+
 def write_outputs(seats, out, figures):
     os.makedirs(out, exist_ok=True)
     columns = ["seed", "body", "s_m", "y_m", "out_of_face_Dn", "above_neighbours_Dn", "points",
-               "points_left_seat", "points_displaced"]
+               "points_left_seat", "points_displaced", "resistance_weights", "peak_swing_out_weights"]
     with open(os.path.join(out, "seats.csv"), "w", newline="") as f:
         f.write("# each unit's seat on its settled layer, and the curve's points it left it at "
                 "(lengths in m where _m, in Dn where _Dn; counts)\n")
@@ -169,6 +248,7 @@ def write_outputs(seats, out, figures):
             writer.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in s.items()})
     with open(os.path.join(out, "summary.json"), "w") as f:
         json.dump(dict(figures, si_units={"neighbour_radius": "Dn", "counts": "units or unit-points",
+                                           "weights": "unit weights on the seat at rest (-)",
                                            "p_value": "probability"}), f, indent=2)
         f.write("\n")
 
@@ -178,6 +258,8 @@ def main():
     parser.add_argument("curve", help="kept curve(s), as compare_curves.py's CURVE: FOLDER[:VALUE,...][+...]")
     parser.add_argument("--layer", action="append", default=[], metavar="SEED=FILE",
                         help="a seed's settled layer: its cases' RUN/.../settle/scene.settled.toml")
+    parser.add_argument("--pulled", action="append", default=[], metavar="SEED=FOLDER",
+                        help="bench/pull_vs_loads.py's output for a pull test of the seed's layer")
     parser.add_argument("--out", required=True, help="output folder: seats.csv, summary.json")
     args = parser.parse_args()
     rows, _ = read_curve(args.curve)
@@ -210,6 +292,13 @@ def main():
         figures.update({"units": units, "proud_units": proud, f"{name}_units": hit,
                         f"{name}_units_proud": hit_proud, f"{name}_unit_points": points,
                         f"{name}_unit_points_proud": points_proud, f"{name}_p_value": p})
+    for spec in args.pulled:
+        seed, eq, folder = spec.partition("=")
+        if not eq or seed.strip() not in seeds:
+            fail(f"--pulled {spec}: give SEED=FOLDER, SEED one of the curve's seeds ({', '.join(seeds)})")
+        read_pulled(seats, int(seed), folder)
+    if args.pulled:
+        print_pulled(seats, figures)
     write_outputs(seats, args.out, figures)
 
 

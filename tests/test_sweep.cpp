@@ -1206,6 +1206,30 @@ TEST_F(SweepTest, SeatsTellHowFarEachUnitStandsAboveItsNeighbours) {
     EXPECT_EQ(summary["displaced_unit_points_proud"], 2);
     EXPECT_NEAR(summary["displaced_p_value"].get<double>(), 0.5, 1e-12); // 1 - C(3,2) / C(4,2)
 
+    // With a pull test's resistances and the waves' load swings (bench/pull_vs_loads.py's table): body 0,
+    // proud, held 0.5 weights; the rest 2.0, 2.5 and the whole pull (ranked above every other). Rank sum:
+    // U 0 against 1.5, variance 1 x 3 / 12 x 5, |U - 1.5| - 0.5 = 1: P = erfc(1 / sqrt(1.25) / sqrt(2)) =
+    // 0.37.
+    write(dir_ / "loads" / "pull_vs_loads.csv", "# forces in unit weights\nbody,s_over_Dn,resistance_weights,"
+                                                "stayed_in_pull,seat_weight_N,peak_swing_out_weights\n"
+                                                "0,2.5,0.5,False,1.0,0.3\n1,2.5,2.0,False,1.0,0.3\n"
+                                                "2,2.5,,True,1.0,0.4\n3,3.5,2.5,False,1.0,0.2\n");
+    const Result pulled = run(command + " --pulled 1=" + (dir_ / "loads").string());
+    ASSERT_EQ(pulled.status, 0) << pulled.output;
+    EXPECT_NE(
+        pulled.output.find("held in the pull (unit weights): proud 0.50 (quartiles 0.50-0.50, 1 units), the "
+                           "rest 2.50 (2.00-2.50, 3); P 0.37 of a split as wide"),
+        std::string::npos)
+        << pulled.output;
+    // Displaced at a point: bodies 0 and 1 (0.5, 2.0) against 2 and 3 (the whole pull, 2.5): U 0 against 2,
+    // variance 2 x 2 / 12 x 5, P = erfc(1.5 / sqrt(5 / 3) / sqrt(2)) = 0.25; quartiles as sample values
+    // (lower).
+    EXPECT_NE(
+        pulled.output.find("held in the pull by the units displaced at a point: 0.50 (quartiles 0.50-0.50, 2 "
+                           "units), by the rest 2.50 (2.50-2.50, 2); P 0.25 of a split as wide"),
+        std::string::npos)
+        << pulled.output;
+
     damage("d-1700_seed-1", {0}, 0.002); // 2 mm up the face: another layer
     const Result other = run(command);
     EXPECT_EQ(other.status, 2);
