@@ -133,8 +133,7 @@ def read_folder(folder):
         units = case_units(folder, r)
         r["toe_row_displaced"], r["toe_row_units"] = toe_row(units)
         r["left_seat"] = left_seat(units)
-        r["units_kept"] = len(units) if units else None
-        r["kept_units"] = units  # each unit's row of the kept damage.csv (studies/seats.py reads them)
+        r["kept_units"] = units  # each unit's row of the kept damage.csv (the same seats; studies/seats.py)
     return rows, varied
 
 
@@ -219,7 +218,7 @@ def print_same_seats(points):
             pairs += 1
             left += len(low["left_seat"])
             again += len(low["left_seat"] & high["left_seat"])
-            at_random += len(low["left_seat"]) * len(high["left_seat"]) / high["units_kept"]
+            at_random += len(low["left_seat"]) * len(high["left_seat"]) / len(high["kept_units"])
     if pairs == 0:
         print("  the same seats at rising Ns: no seed ran at two points")
         return
