@@ -38,7 +38,7 @@ Usage
         --layer 1=docs/results/stability_one_layer_dn4/layers/seed-1.toml \\
         --layer 2=docs/results/stability_one_layer_dn4/layers/seed-2.toml \\
         --layer 3=docs/results/stability_one_layer_dn4/layers/seed-3.toml \\
-        --layer 4=docs/results/stability_one_layer_dn4/layers/seed-4.toml --out OUT \
+        --layer 4=docs/results/stability_one_layer_dn4/layers/seed-4.toml --out OUT \\
         [--pulled 4=PULL_VS_LOADS]
 """
 import argparse
@@ -104,14 +104,15 @@ def read_layer(path):
     return seats
 
 
-def count_points(seats, seed, rows, layer_path):
+def count_points(seats, rows, layer_path):
     """Each seat's points displaced and left at, from the seed's rows of the curve (checked against the layer)."""
     for seat in seats:
         seat.update(points=0, points_left_seat=0, points_displaced=0)
     for r in rows:
         units = r.get("kept_units")
-        if units is None:
-            fail(f"case {r['case']}: its damage.csv is not kept (cases/<case>/run/damage.csv)")
+        if units is None or r["left_seat"] is None:
+            fail(f"case {r['case']}: its damage.csv is not kept (cases/<case>/run/damage.csv, with body and "
+                 f"final_displacement_over_Dn)")
         if len(units) != len(seats):
             fail(f"case {r['case']}: damage.csv has {len(units)} units, the layer {layer_path} {len(seats)}")
         for u in units:
@@ -121,10 +122,8 @@ def count_points(seats, seed, rows, layer_path):
                      f"{float(u['y_m']):.4f} in damage.csv, at {seat['s_m']:.4f}, {seat['y_m']:.4f} in "
                      f"{layer_path}: the case did not run on this layer")
             seat["points"] += 1
-            seat["points_left_seat"] += float(u["final_displacement_over_Dn"]) >= SEAT_LEFT
+            seat["points_left_seat"] += u["body"] in r["left_seat"]
             seat["points_displaced"] += u["displaced"] == "1"
-    for seat in seats:
-        seat["seed"] = seed
 
 
 def hypergeometric_sf(k, total, marked, drawn):
@@ -278,8 +277,8 @@ def main():
         if seed not in layers:
             fail(f"--layer: seed {seed} of {args.curve} has no layer (give --layer {seed}=FILE)")
         layer = read_layer(layers[seed])
-        count_points(layer, int(seed), [r for r in rows if r["seed"] == seed], layers[seed])
-        seats += [dict(s, body=i) for i, s in enumerate(layer)]
+        count_points(layer, [r for r in rows if r["seed"] == seed], layers[seed])
+        seats += [dict(s, seed=int(seed), body=i) for i, s in enumerate(layer)]
     print_table(seats)
     figures = {"neighbour_radius_Dn": NEIGHBOUR_RADIUS, "seat_left_Dn": SEAT_LEFT}
     for key, name in (("points_displaced", "displaced"), ("points_left_seat", "left_seat")):
