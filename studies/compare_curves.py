@@ -164,14 +164,19 @@ def left_seat(units):
     return {u["body"] for u in units if float(u["final_displacement_over_Dn"]) >= SEAT_LEFT}
 
 
+def without_displaced(rows, taken):
+    """The rows with taken[i] of row i's displaced units taken out of units_displaced and N_od."""
+    kept = []
+    for r, gone in zip(rows, taken):
+        shown = float(r["units_displaced"])
+        n_od = float(r["N_od"]) * (shown - gone) / shown if shown > 0 else 0.0
+        kept.append(dict(r, units_displaced=str(shown - gone), N_od=str(n_od)))
+    return kept
+
+
 def without_toe_row(rows):
     """The rows with the toe row's displaced units taken out of units_displaced and N_od."""
-    kept = []
-    for r in rows:
-        shown, toe = float(r["units_displaced"]), r["toe_row_displaced"]
-        n_od = float(r["N_od"]) * (shown - toe) / shown if shown > 0 else 0.0
-        kept.append(dict(r, units_displaced=str(shown - toe), N_od=str(n_od)))
-    return kept
+    return without_displaced(rows, [r["toe_row_displaced"] for r in rows])
 
 
 def print_toe_row(points, rows):

@@ -19,6 +19,11 @@ Description
     drawn at random from the layers (the hypergeometric tail). A body in damage.csv that does
     not sit where the layer has it (1 mm) is refused: the curve did not run on that layer.
 
+    The foot as a suspect of its own: the units whose centres lie seaward of the face's foot
+    (x < the slope's toe_x: over the toe, not on the face) set against the rest, proud or
+    not, and the curve's factor on Ns (compare_curves.py's) with their displacements taken
+    out, as a laboratory that counts only the units seated on the face would count.
+
     Why a proud seat is weak, with --pulled SEED=FOLDER: FOLDER is bench/pull_vs_loads.py's output
     for a pull test of that seed's layer (bench/run_pull_test.sh) and a coupled run on it, so each
     pulled unit has its resistance (the pull it held before it moved 0.25 Dn) and the largest
@@ -53,7 +58,7 @@ import tomllib
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from compare_curves import SEAT_LEFT, fail, read_curve  # noqa: E402
+from compare_curves import SEAT_LEFT, fail, print_ns_factor, read_curve, without_displaced  # noqa: E402
 
 NEIGHBOUR_RADIUS = 1.5  # Dn, along the face: the ring of nearest units of both layers
 BINS = [(-math.inf, -0.5), (-0.5, 0.0), (0.0, 0.5), (0.5, math.inf)]  # above_neighbours_Dn
@@ -96,7 +101,7 @@ def read_layer(path):
         centre = np.array(b["position"], dtype=float)
         outermost = max((centre + corners @ rotation(b["orientation"]).T - foot) @ normal)
         seats.append({"s_m": float((centre - foot) @ along), "y_m": float(centre[1]),
-                      "out_of_face_Dn": float(outermost / size)})
+                      "x_from_foot_m": float(centre[0] - foot[0]), "out_of_face_Dn": float(outermost / size)})
     for i, seat in enumerate(seats):
         neighbours = [o["out_of_face_Dn"] for j, o in enumerate(seats) if j != i and
                       math.hypot(o["s_m"] - seat["s_m"], o["y_m"] - seat["y_m"]) < NEIGHBOUR_RADIUS * size]
@@ -162,6 +167,35 @@ def print_table(seats):
               f"({100 * left / max(1, len(group)):.1f} %), displaced at a point {displaced:3d} "
               f"({100 * displaced / max(1, len(group)):.1f} %), unit-points displaced "
               f"{sum(s['points_displaced'] for s in group)}")
+
+
+def print_foot(seats, rows, figures):
+    """Where the displaced sat: seaward of the face's foot or over the face, proud or not; the curve without the first."""
+    print("by where the centre sat (seaward of the face's foot: on the toe step and the berm before it) and "
+          "whether it was proud:")
+    for where, seaward in (("seaward of the foot", True), ("over the face", False)):
+        for kind, proud in (("proud", True), ("not proud", False)):
+            group = [s for s in seats if (s["x_from_foot_m"] < 0) == seaward and (s["above_neighbours_Dn"] > 0) == proud]
+            displaced = sum(1 for s in group if s["points_displaced"] > 0)
+            print(f"  {where:>19}, {kind:>9}: {len(group):4d} units, displaced at a point {displaced:3d} "
+                  f"({100 * displaced / max(1, len(group)):.1f} %), unit-points {sum(s['points_displaced'] for s in group)}")
+    hit = [s for s in seats if s["points_displaced"] > 0]
+    marked = sum(1 for s in seats if s["x_from_foot_m"] < 0)
+    hit_marked = sum(1 for s in hit if s["x_from_foot_m"] < 0)
+    points_marked = sum(s["points_displaced"] for s in seats if s["x_from_foot_m"] < 0)
+    p = hypergeometric_sf(hit_marked, len(seats), marked, len(hit)) if hit else 1.0
+    print(f"units seaward of the foot: {marked} of {len(seats)}; of the {len(hit)} displaced at a point, {hit_marked} "
+          f"({points_marked} of {sum(s['points_displaced'] for s in seats)} unit-points), "
+          f"{len(hit) * marked / len(seats):.1f} at random (P {p:.2g} of so many)")
+    seaward = {(s["seed"], s["body"]) for s in seats if s["x_from_foot_m"] < 0}
+    taken = [sum(1 for u in r["kept_units"] if u["displaced"] == "1" and (int(r["seed"]), int(u["body"])) in seaward)
+             for r in rows]
+    fit = print_ns_factor("the curve, every unit", rows)
+    fit_face = print_ns_factor("the curve without the units seaward of the foot", without_displaced(rows, taken))
+    figures.update({"units_seaward_of_foot": marked, "displaced_units_seaward_of_foot": hit_marked,
+                    "displaced_unit_points_seaward_of_foot": points_marked, "displaced_seaward_of_foot_p_value": p,
+                    "ns_factor": list(fit) if fit else None,
+                    "ns_factor_without_seaward_of_foot": list(fit_face) if fit_face else None})
 
 
 def read_pulled(seats, seed, folder):
@@ -236,7 +270,7 @@ def print_pulled(seats, figures):
 
 def write_outputs(seats, out, figures):
     os.makedirs(out, exist_ok=True)
-    columns = ["seed", "body", "s_m", "y_m", "out_of_face_Dn", "above_neighbours_Dn", "points",
+    columns = ["seed", "body", "s_m", "y_m", "x_from_foot_m", "out_of_face_Dn", "above_neighbours_Dn", "points",
                "points_left_seat", "points_displaced", "resistance_weights", "peak_swing_out_weights"]
     with open(os.path.join(out, "seats.csv"), "w", newline="") as f:
         f.write("# each unit's seat on its settled layer, and the curve's points it left it at "
@@ -291,6 +325,7 @@ def main():
         figures.update({"units": units, "proud_units": proud, f"{name}_units": hit,
                         f"{name}_units_proud": hit_proud, f"{name}_unit_points": points,
                         f"{name}_unit_points_proud": points_proud, f"{name}_p_value": p})
+    print_foot(seats, rows, figures)
     for spec in args.pulled:
         seed, eq, folder = spec.partition("=")
         if not eq or seed.strip() not in seeds:

@@ -1166,17 +1166,18 @@ TEST_F(SweepTest, SeatsTellHowFarEachUnitStandsAboveItsNeighbours) {
     };
     // Body 0 stands 1 Dn above 1 and 2 (0.04 m higher, 1 Dn = 0.04 m along the face from each); body 3,
     // within 1.5 Dn of all three (0.057 m from 1 and 2), stands 0.25 Dn above 1 and 2 but 0.75 Dn below 0:
-    // only 0 is above its highest neighbour, so only 0 is proud.
+    // only 0 is above its highest neighbour, so only 0 is proud. Body 0's centre, 0.02 m up the face and
+    // 0.06 m out of it, lies 0.017 m seaward of the face's foot; 1 and 2 (0.02 m out) 0.006 m landward.
     write(dir_ / "layer.toml", "[[unit]]\nname = \"cube\"\nshape = \"cube\"\nsize = 0.04\n\n[[wall]]\nname = "
                                "\"slope\"\ntype = \"slope\"\ncot = 1.5\nheight = 1.0\nwidth = 1.0\n\n" +
-                                   body(0.1, 0.0, 0.06) + body(0.1, 0.04, 0.02) + body(0.1, -0.04, 0.02) +
-                                   body(0.14, 0.0, 0.03));
+                                   body(0.02, 0.0, 0.06) + body(0.02, 0.04, 0.02) + body(0.02, -0.04, 0.02) +
+                                   body(0.06, 0.0, 0.03));
     write(dir_ / "held" / "results.csv", "case,unit.0.density,seed,status,Ns,N_od,units_displaced,"
                                          "units_displaced_van_der_meer,waves.waves,s_om\n"
-                                         "d-2000_seed-1,2000.0,1,done,3.0,0,2,1.0,27,0.03\n"
-                                         "d-1700_seed-1,1700.0,1,done,4.0,0,1,4.0,27,0.03\n");
+                                         "d-2000_seed-1,2000.0,1,done,3.0,0.4,2,1.0,27,0.03\n"
+                                         "d-1700_seed-1,1700.0,1,done,4.0,0.2,1,4.0,27,0.03\n");
     const auto damage = [&](const std::string &c, const std::set<int> &displaced, double shift) {
-        const double s[] = {0.1, 0.1, 0.1, 0.14}, y[] = {0.0, 0.04, -0.04, 0.0};
+        const double s[] = {0.02, 0.02, 0.02, 0.06}, y[] = {0.0, 0.04, -0.04, 0.0};
         std::string text = "# damage per unit\nbody,unit,s_m,y_m,final_displacement_over_Dn,displaced\n";
         for (int b = 0; b < 4; ++b)
             text += std::to_string(b) + ",cube," + std::to_string(s[b] + shift) + "," + std::to_string(y[b]) +
@@ -1205,6 +1206,21 @@ TEST_F(SweepTest, SeatsTellHowFarEachUnitStandsAboveItsNeighbours) {
     EXPECT_EQ(summary["proud_units"], 1);
     EXPECT_EQ(summary["displaced_unit_points_proud"], 2);
     EXPECT_NEAR(summary["displaced_p_value"].get<double>(), 0.5, 1e-12); // 1 - C(3,2) / C(4,2)
+    // Where they sat: body 0 alone seaward of the foot, displaced at both points; body 1 on the face at one.
+    EXPECT_NE(r.output.find("seaward of the foot,     proud:    1 units, displaced at a point   1 (100.0 %), "
+                            "unit-points 2"),
+              std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("over the face, not proud:    3 units, displaced at a point   1 (33.3 %), "
+                            "unit-points 1"),
+              std::string::npos)
+        << r.output;
+    EXPECT_EQ(summary["units_seaward_of_foot"], 1);
+    EXPECT_EQ(summary["displaced_unit_points_seaward_of_foot"], 2);
+    // Without body 0 the curve has one displaced unit of the three: it needs a higher Ns for the same
+    // count, so its factor on Ns is larger.
+    EXPECT_GT(summary["ns_factor_without_seaward_of_foot"][0].get<double>(),
+              summary["ns_factor"][0].get<double>());
 
     // With a pull test's resistances and the waves' load swings (bench/pull_vs_loads.py's table): body 0,
     // proud, held 0.5 weights; the rest 2.0, 2.5 and the whole pull (ranked above every other). Rank sum:
@@ -1233,7 +1249,7 @@ TEST_F(SweepTest, SeatsTellHowFarEachUnitStandsAboveItsNeighbours) {
     damage("d-1700_seed-1", {0}, 0.002); // 2 mm up the face: another layer
     const Result other = run(command);
     EXPECT_EQ(other.status, 2);
-    EXPECT_NE(other.output.find("armour: error: case d-1700_seed-1: body 0 sits at s_m 0.1020"),
+    EXPECT_NE(other.output.find("armour: error: case d-1700_seed-1: body 0 sits at s_m 0.0220"),
               std::string::npos)
         << other.output;
     EXPECT_NE(other.output.find("the case did not run on this layer"), std::string::npos) << other.output;
