@@ -19,8 +19,8 @@ Description
     drawn at random from the layers (the hypergeometric tail). A body in damage.csv that does
     not sit where the layer has it (1 mm) is refused: the curve did not run on that layer.
 
-    The foot as a suspect of its own: the units whose centres lie seaward of the face's foot
-    (x < the slope's toe_x: over the toe, not on the face) set against the rest, proud or
+    The foot as a suspect of its own: the units at the foot, whose centres lie seaward of the
+    face's foot (x < the slope's toe_x: over the toe, not on the face), set against the rest, proud or
     not, and the curve's factor on Ns (compare_curves.py's) with their displacements taken
     out, as a laboratory that counts only the units seated on the face would count.
 
@@ -169,33 +169,38 @@ def print_table(seats):
               f"{sum(s['points_displaced'] for s in group)}")
 
 
+def at_foot(seat):
+    """Whether a unit's centre lies seaward of the face's foot: over the toe, not on the face."""
+    return seat["x_from_foot_m"] < 0
+
+
 def print_foot(seats, rows, figures):
-    """Where the displaced sat: seaward of the face's foot or over the face, proud or not; the curve without the first."""
-    print("by where the centre sat (seaward of the face's foot: on the toe step and the berm before it) and "
-          "whether it was proud:")
-    for where, seaward in (("seaward of the foot", True), ("over the face", False)):
+    """Where the displaced sat: at the foot or over the face, proud or not; the curve without the foot's."""
+    print("by where the centre sat (at the foot: seaward of the face's foot, over the toe) and whether it was proud:")
+    for where, foot in (("at the foot", True), ("over the face", False)):
         for kind, proud in (("proud", True), ("not proud", False)):
-            group = [s for s in seats if (s["x_from_foot_m"] < 0) == seaward and (s["above_neighbours_Dn"] > 0) == proud]
+            group = [s for s in seats if at_foot(s) == foot and (s["above_neighbours_Dn"] > 0) == proud]
             displaced = sum(1 for s in group if s["points_displaced"] > 0)
-            print(f"  {where:>19}, {kind:>9}: {len(group):4d} units, displaced at a point {displaced:3d} "
-                  f"({100 * displaced / max(1, len(group)):.1f} %), unit-points {sum(s['points_displaced'] for s in group)}")
+            print(f"  {where:>13}, {kind:>9}: {len(group):4d} units, displaced at a point {displaced:3d} "
+                  f"({100 * displaced / max(1, len(group)):.1f} %), unit-points "
+                  f"{sum(s['points_displaced'] for s in group)}")
     hit = [s for s in seats if s["points_displaced"] > 0]
-    marked = sum(1 for s in seats if s["x_from_foot_m"] < 0)
-    hit_marked = sum(1 for s in hit if s["x_from_foot_m"] < 0)
-    points_marked = sum(s["points_displaced"] for s in seats if s["x_from_foot_m"] < 0)
+    marked = sum(1 for s in seats if at_foot(s))
+    hit_marked = sum(1 for s in hit if at_foot(s))
+    points_marked = sum(s["points_displaced"] for s in seats if at_foot(s))
     p = hypergeometric_sf(hit_marked, len(seats), marked, len(hit)) if hit else 1.0
-    print(f"units seaward of the foot: {marked} of {len(seats)}; of the {len(hit)} displaced at a point, {hit_marked} "
+    print(f"units at the foot: {marked} of {len(seats)}; of the {len(hit)} displaced at a point, {hit_marked} "
           f"({points_marked} of {sum(s['points_displaced'] for s in seats)} unit-points), "
           f"{len(hit) * marked / len(seats):.1f} at random (P {p:.2g} of so many)")
-    seaward = {(s["seed"], s["body"]) for s in seats if s["x_from_foot_m"] < 0}
-    taken = [sum(1 for u in r["kept_units"] if u["displaced"] == "1" and (int(r["seed"]), int(u["body"])) in seaward)
+    foot = {(s["seed"], s["body"]) for s in seats if at_foot(s)}
+    taken = [sum(1 for u in r["kept_units"] if u["displaced"] == "1" and (int(r["seed"]), int(u["body"])) in foot)
              for r in rows]
     fit = print_ns_factor("the curve, every unit", rows)
-    fit_face = print_ns_factor("the curve without the units seaward of the foot", without_displaced(rows, taken))
-    figures.update({"units_seaward_of_foot": marked, "displaced_units_seaward_of_foot": hit_marked,
-                    "displaced_unit_points_seaward_of_foot": points_marked, "displaced_seaward_of_foot_p_value": p,
+    fit_face = print_ns_factor("the curve without the units at the foot", without_displaced(rows, taken))
+    figures.update({"units_at_foot": marked, "displaced_units_at_foot": hit_marked,
+                    "displaced_unit_points_at_foot": points_marked, "displaced_at_foot_p_value": p,
                     "ns_factor": list(fit) if fit else None,
-                    "ns_factor_without_seaward_of_foot": list(fit_face) if fit_face else None})
+                    "ns_factor_without_units_at_foot": list(fit_face) if fit_face else None})
 
 
 def read_pulled(seats, seed, folder):
@@ -270,8 +275,8 @@ def print_pulled(seats, figures):
 
 def write_outputs(seats, out, figures):
     os.makedirs(out, exist_ok=True)
-    columns = ["seed", "body", "s_m", "y_m", "x_from_foot_m", "out_of_face_Dn", "above_neighbours_Dn", "points",
-               "points_left_seat", "points_displaced", "resistance_weights", "peak_swing_out_weights"]
+    columns = ["seed", "body", "s_m", "y_m", "x_from_foot_m", "out_of_face_Dn", "above_neighbours_Dn",
+               "points", "points_left_seat", "points_displaced", "resistance_weights", "peak_swing_out_weights"]
     with open(os.path.join(out, "seats.csv"), "w", newline="") as f:
         f.write("# each unit's seat on its settled layer, and the curve's points it left it at "
                 "(lengths in m where _m, in Dn where _Dn; counts)\n")

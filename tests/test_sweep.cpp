@@ -1206,8 +1206,9 @@ TEST_F(SweepTest, SeatsTellHowFarEachUnitStandsAboveItsNeighbours) {
     EXPECT_EQ(summary["proud_units"], 1);
     EXPECT_EQ(summary["displaced_unit_points_proud"], 2);
     EXPECT_NEAR(summary["displaced_p_value"].get<double>(), 0.5, 1e-12); // 1 - C(3,2) / C(4,2)
-    // Where they sat: body 0 alone seaward of the foot, displaced at both points; body 1 on the face at one.
-    EXPECT_NE(r.output.find("seaward of the foot,     proud:    1 units, displaced at a point   1 (100.0 %), "
+    // Where they sat: body 0 alone at the foot (seaward of it), displaced at both points; body 1 on the face
+    // at one.
+    EXPECT_NE(r.output.find("  at the foot,     proud:    1 units, displaced at a point   1 (100.0 %), "
                             "unit-points 2"),
               std::string::npos)
         << r.output;
@@ -1215,11 +1216,11 @@ TEST_F(SweepTest, SeatsTellHowFarEachUnitStandsAboveItsNeighbours) {
                             "unit-points 1"),
               std::string::npos)
         << r.output;
-    EXPECT_EQ(summary["units_seaward_of_foot"], 1);
-    EXPECT_EQ(summary["displaced_unit_points_seaward_of_foot"], 2);
+    EXPECT_EQ(summary["units_at_foot"], 1);
+    EXPECT_EQ(summary["displaced_unit_points_at_foot"], 2);
     // Without body 0 the curve has one displaced unit of the three: it needs a higher Ns for the same
     // count, so its factor on Ns is larger.
-    EXPECT_GT(summary["ns_factor_without_seaward_of_foot"][0].get<double>(),
+    EXPECT_GT(summary["ns_factor_without_units_at_foot"][0].get<double>(),
               summary["ns_factor"][0].get<double>());
 
     // With a pull test's resistances and the waves' load swings (bench/pull_vs_loads.py's table): body 0,
