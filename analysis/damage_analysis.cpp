@@ -142,6 +142,7 @@ class DamageAnalysis : public Analysis {
         const std::vector<std::string> outside = van_der_meer_range(frame_.cot, w.waves, w.s_om);
         summary["units"] = units_.size();
         summary["units_displaced"] = counts.displaced;
+        summary["units_displaced_at_foot"] = counts.displaced_at_foot;
         summary["N_od"] = N_od;
         summary["rocking_units"] = counts.rocking;
         summary["Ns"] = nullable(p.Ns);
@@ -199,22 +200,34 @@ class DamageAnalysis : public Analysis {
 
   private:
     struct Counts {
-        int displaced = 0, rocking = 0; // units
+        int displaced = 0, displaced_at_foot = 0, rocking = 0; // units
     };
+
+    // Whether a settled centre lies seaward of the face's foot: over the toe or
+    // the bed in front of it, not on the face. A laboratory that counts the
+    // units on the face alone leaves these out.
+    bool at_foot(const Eigen::Vector3d &centre) const {
+        const Eigen::Vector3d landward(frame_.along.x(), frame_.along.y(), 0.0);
+        return (centre - frame_.origin).dot(landward) < 0.0;
+    }
 
     // damage.csv's rows: each unit from its settled pose; counts the displaced and the rocking.
     std::string unit_rows(Counts &counts) const {
-        std::string rows = "# damage per unit from its settled pose (SI; displacements in Dn)\n"
-                           "body,unit,s_m,y_m,max_displacement_over_Dn,final_displacement_over_Dn,"
-                           "max_rotation_deg,rocking_events,displaced\n";
+        std::string rows =
+            "# damage per unit from its settled pose (SI; displacements in Dn)\n"
+            "body,unit,s_m,y_m,n_m,at_foot,max_displacement_over_Dn,final_displacement_over_Dn,"
+            "max_rotation_deg,rocking_events,displaced\n";
         for (std::size_t i = 0; i < units_.size(); ++i) {
             const UnitDamageTracker &u = units_[i];
             const bool is_displaced = u.displacement() >= scene_.displaced_threshold;
+            const bool foot = at_foot(u.reference().position);
             counts.displaced += is_displaced ? 1 : 0;
+            counts.displaced_at_foot += is_displaced && foot ? 1 : 0;
             counts.rocking += u.rocking_events() > 0 ? 1 : 0;
             const Eigen::Vector3d at = frame_.local(u.reference().position);
             rows += std::to_string(i) + "," + setup_.units[unit(i)].name + "," + num(at.x()) + "," +
-                    num(at.y()) + "," + num(u.max_displacement()) + "," + num(u.displacement()) + "," +
+                    num(at.y()) + "," + num(at.z()) + "," + (foot ? "1" : "0") + "," +
+                    num(u.max_displacement()) + "," + num(u.displacement()) + "," +
                     num(u.max_rotation_deg()) + "," + std::to_string(u.rocking_events()) + "," +
                     (is_displaced ? "1" : "0") + "\n";
         }

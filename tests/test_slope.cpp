@@ -15,6 +15,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <unistd.h>
 
 using armour::BodyState;
@@ -634,6 +635,61 @@ TEST(Damage, NodCountsTheLayersStripsAndVanDerMeersRangeIsStated) {
         }
         std::filesystem::remove_all(out);
     }
+}
+
+// The units at the foot: a cube whose settled centre lies seaward of the
+// face's foot (0.2 a up the face but 1.5 a out of it: x = a (0.2 cos - 1.5
+// sin) < 0, over the toe) is counted apart from one on the face (2.5 a up,
+// 0.5 a out). Both washed away: 2 displaced, 1 of them at the foot;
+// damage.csv gives each its height out of the face and its flag.
+TEST(Damage, UnitsSeawardOfTheFacesFootAreCountedApart) {
+    CubeSlope c;
+    c.scene.walls[0].width = 1.0;
+    c.scene.analysis = "damage";
+    c.scene.fluid = armour::SceneFluid();
+    armour::SceneUnit unit;
+    unit.name = c.setup.units[0].name;
+    unit.density = 2400.0;
+    c.scene.units.push_back(unit);
+    c.scene.wave_height = 0.28;
+    c.scene.wave_period = 2.0;
+    c.place(0.2 * kA, 0.0, 1.5 * kA);
+    c.place(2.5 * kA, 0.0, 0.5 * kA);
+    c.place(2.5 * kA, 2.0 * kA, 0.5 * kA); // stays
+    const std::filesystem::path out = temporary("armour_test_damage_foot");
+    std::filesystem::remove_all(out);
+    std::filesystem::create_directories(out);
+    const auto analysis = armour::make_analysis({c.scene, c.setup, out.string(), ""});
+    std::vector<BodyState> now = c.states;
+    analysis->sample(0.0, now);
+    for (const std::size_t k : {0u, 1u})
+        now[k].pose.position += 10.0 * c.frame.across;
+    analysis->sample(1.0, now);
+    nlohmann::json summary = nlohmann::json::object();
+    analysis->write(summary);
+    EXPECT_EQ(summary["units_displaced"].get<int>(), 2);
+    EXPECT_EQ(summary["units_displaced_at_foot"].get<int>(), 1);
+
+    std::ifstream csv(out / "damage.csv");
+    std::vector<std::vector<std::string>> rows;
+    for (std::string line; std::getline(csv, line);) {
+        if (line.empty() || line[0] == '#')
+            continue;
+        std::vector<std::string> cells;
+        std::stringstream in(line);
+        for (std::string cell; std::getline(in, cell, ',');)
+            cells.push_back(cell);
+        rows.push_back(cells);
+    }
+    ASSERT_EQ(rows.size(), 4u); // header, three units
+    EXPECT_EQ(rows[0][4], "n_m");
+    EXPECT_EQ(rows[0][5], "at_foot");
+    EXPECT_NEAR(std::stod(rows[1][4]), 1.5 * kA, 1e-9);
+    EXPECT_EQ(rows[1][5], "1");
+    EXPECT_NEAR(std::stod(rows[2][4]), 0.5 * kA, 1e-9);
+    EXPECT_EQ(rows[2][5], "0");
+    EXPECT_EQ(rows[3][5], "0");
+    std::filesystem::remove_all(out);
 }
 
 // A layer of two sizes, or of two densities, has no one Dn for N_od's strips
