@@ -22,9 +22,11 @@ Description
     Where the kept cases' damage.csv are there (cases/<case>/run/damage.csv,
     as keep_results.py keeps them), how many of the displaced sat in the toe
     row: seated below the foot of the face (s_m < 0), on the berm in front of
-    it, where the layer has no unit below it to lean on. The counts and the
-    factor on Ns are given again without them, so what the damage owes to the
-    toe is told from what it owes to the face. And whether the same seats
+    it, where the layer has no unit below it to lean on; and, where damage.csv
+    flags them (`at_foot`), how many sat at the foot: every unit seated
+    seaward of the face's foot, the toe row and the units piled over it. The
+    counts and the factor on Ns are given again without each, so what the
+    damage owes to the toe is told from what it owes to the face. And whether the same seats
     leave at rising Ns: per seed, the units that ended 0.25 Dn or more from
     their settled pose at one point and again at the next point up, against
     the count if the next point's were drawn at random (on a curve whose points
@@ -132,6 +134,7 @@ def read_folder(folder):
     for r in rows:
         units = case_units(folder, r)
         r["toe_row_displaced"], r["toe_row_units"] = toe_row(units)
+        r["at_foot_displaced"], r["at_foot_units"] = at_foot(units)
         r["left_seat"] = left_seat(units)
         r["kept_units"] = units  # each unit's row of the kept damage.csv (the same seats; studies/seats.py)
     return rows, varied
@@ -157,6 +160,15 @@ def toe_row(units):
     return sum(1 for u in toe if u["displaced"] == "1"), len(toe)
 
 
+def at_foot(units):
+    """(displaced, units) of a case's units seated seaward of the face's foot (damage.csv's at_foot); Nones if
+    not kept or written before the damage analysis flagged them."""
+    if units is None or "at_foot" not in units[0]:
+        return None, None
+    foot = [u for u in units if u["at_foot"] == "1"]
+    return sum(1 for u in foot if u["displaced"] == "1"), len(foot)
+
+
 def left_seat(units):
     """The bodies of a case that ended SEAT_LEFT Dn or more from their settled pose; None if not kept."""
     if units is None or not {"body", "final_displacement_over_Dn"} <= set(units[0]):
@@ -180,23 +192,34 @@ def without_toe_row(rows):
 
 
 def print_toe_row(points, rows):
-    """How many of the displaced sat in the toe row, per point; the counts and the factor without them."""
+    """How many of the displaced sat in the toe row, and at the foot, per point; the counts and the factor
+    without them."""
     if any(r["toe_row_displaced"] is None for r in rows):
         print("  toe row: not known (the cases' damage.csv are not kept beside results.csv)")
         return
-    per_point = ", ".join(f"{sum(r['toe_row_displaced'] for r in g)} of "
+    print_part(points, rows, "toe_row", "the toe row (seated below the face's foot)", "the face")
+    if all(r["at_foot_displaced"] is not None for r in rows):
+        print_part(points, rows, "at_foot", "the foot (seated seaward of the face's foot, damage.csv's at_foot)",
+                   "the face")
+
+
+def print_part(points, rows, key, name, rest):
+    """How many of the displaced sat in a part of the layer (the rows' KEY_displaced of KEY_units), per point;
+    the counts and the factor on Ns without them."""
+    per_point = ", ".join(f"{sum(r[key + '_displaced'] for r in g)} of "
                           f"{sum(int(float(r['units_displaced'])) for r in g)}" for g in points)
     shown = sum(int(float(r["units_displaced"])) for r in rows)
-    toe = sum(r["toe_row_displaced"] for r in rows)
-    toe_units = sum(r["toe_row_units"] for r in rows)
-    face_units = sum(int(float(r["units"])) for r in rows) - toe_units if "units" in rows[0] else None
+    part = sum(r[key + "_displaced"] for r in rows)
+    part_units = sum(r[key + "_units"] for r in rows)
+    rest_units = sum(int(float(r["units"])) for r in rows) - part_units if "units" in rows[0] else None
     expected = sum(float(r["units_displaced_van_der_meer"]) for r in rows)
-    print(f"  from the toe row (seated below the face's foot): {toe} of {shown} (by point in rising Ns: {per_point}); "
-          f"without them {shown - toe} / {expected:.1f} (P {poisson_cdf(shown - toe, expected):.2g})")
-    if face_units and toe_units:
-        print(f"  displaced per unit: the toe row {toe} of {toe_units} ({100 * toe / toe_units:.1f} %), "
-              f"the face {shown - toe} of {face_units} ({100 * (shown - toe) / face_units:.1f} %)")
-    print_ns_factor("without the toe row", without_toe_row(rows))
+    print(f"  from {name}: {part} of {shown} (by point in rising Ns: {per_point}); "
+          f"without them {shown - part} / {expected:.1f} (P {poisson_cdf(shown - part, expected):.2g})")
+    if rest_units and part_units:
+        print(f"  displaced per unit: {name.split(' (')[0]} {part} of {part_units} ({100 * part / part_units:.1f} %), "
+              f"{rest} {shown - part} of {rest_units} ({100 * (shown - part) / rest_units:.1f} %)")
+    print_ns_factor(f"without {name.split(' (')[0]}",
+                    without_displaced(rows, [r[key + "_displaced"] for r in rows]))
 
 
 def print_same_seats(points):

@@ -893,7 +893,7 @@ TEST_F(SweepTest, ReportDrawsDamageAgainstVanDerMeerAndHudson) {
 // units displaced per point and in all against Van der Meer's expected count,
 // with the Poisson chance of so few, and their spread about it and within the
 // points; where the cases' damage.csv are kept, how many of the displaced sat in
-// the toe row (s_m < 0) and the counts without them; a chart; one curve joined
+// the toe row (s_m < 0) and at the foot (at_foot) and the counts without them; a chart; one curve joined
 // from two studies' points; bad input is one error line.
 TEST_F(SweepTest, ComparedCurvesCountEachCurvesUnitsAgainstVanDerMeer) {
     const std::string header = "case,unit.0.density,seed,status,Ns,N_od,units_displaced,"
@@ -906,14 +906,15 @@ TEST_F(SweepTest, ComparedCurvesCountEachCurvesUnitsAgainstVanDerMeer) {
           "d-1700_seed-1,1700.0,1,done,4.0,0.16,1,4.0,27,0.03,3\n"
           "d-1700_seed-2,1700.0,2,failed,,,,,,,\n");
     // Three units a case, one of them in the toe row (below the face's foot): the toe unit left
-    // in d-2000_seed-2, a face unit in d-1700_seed-1.
-    const std::string units = "# damage per unit\nbody,unit,s_m,y_m,displaced\n";
+    // in d-2000_seed-2, a face unit in d-1700_seed-1. Both sat at the foot (seaward of the face's
+    // foot, damage.csv's at_foot), the third not.
+    const std::string units = "# damage per unit\nbody,unit,s_m,y_m,at_foot,displaced\n";
     write(dir_ / "a" / "cases" / "d-2000_seed-1" / "run" / "damage.csv",
-          units + "0,cube,-0.02,0,0\n1,cube,0.1,0,0\n2,cube,0.2,0,0\n");
+          units + "0,cube,-0.02,0,1,0\n1,cube,0.1,0,1,0\n2,cube,0.2,0,0,0\n");
     write(dir_ / "a" / "cases" / "d-2000_seed-2" / "run" / "damage.csv",
-          units + "0,cube,-0.02,0,1\n1,cube,0.1,0,0\n2,cube,0.2,0,0\n");
+          units + "0,cube,-0.02,0,1,1\n1,cube,0.1,0,1,0\n2,cube,0.2,0,0,0\n");
     write(dir_ / "a" / "cases" / "d-1700_seed-1" / "run" / "damage.csv",
-          units + "0,cube,-0.02,0,0\n1,cube,0.1,0,1\n2,cube,0.2,0,0\n");
+          units + "0,cube,-0.02,0,1,0\n1,cube,0.1,0,1,1\n2,cube,0.2,0,0,0\n");
     write(dir_ / "b" / "results.csv", header + "d-2000_seed-1,2000.0,1,done,2.5,0,0,0.5,27,0.03\n"
                                                "d-1700_seed-1,1700.0,1,done,4.0,0.64,4,4.0,27,0.03\n");
     const std::string script = "/usr/bin/python3 " + kSource + "/studies/compare_curves.py ";
@@ -990,6 +991,19 @@ TEST_F(SweepTest, ComparedCurvesCountEachCurvesUnitsAgainstVanDerMeer) {
               std::string::npos)
         << r.output;
     EXPECT_NE(r.output.find("toe row: not known (the cases' damage.csv are not kept beside results.csv)"),
+              std::string::npos)
+        << r.output;
+    // A's foot (at_foot): both its displaced units; without them 0 of 5.0, P(X = 0 | 5) = e^-5 = 0.0067;
+    // per unit 2 of the 6 at the foot, 0 of the 3 on the face; with none left, no factor.
+    EXPECT_NE(
+        r.output.find("from the foot (seated seaward of the face's foot, damage.csv's at_foot): 2 of 2 (by "
+                      "point in rising Ns: 1 of 1, 1 of 1); without them 0 / 5.0 (P 0.0067)"),
+        std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("displaced per unit: the foot 2 of 6 (33.3 %), the face 0 of 3 (0.0 %)"),
+              std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("without the foot: no unit displaced: the factor on Ns is not bounded"),
               std::string::npos)
         << r.output;
 
