@@ -67,6 +67,23 @@ struct CubeSlope {
     }
 };
 
+// A 1 m wide slope of 2400 kg/m^3 cubes for the damage analysis, under waves
+// 0.28 m high of `wave_period` s; its records a coupled run's, the first of
+// them the settled pose.
+CubeSlope damage_slope(double wave_period) {
+    CubeSlope c;
+    c.scene.walls[0].width = 1.0;
+    c.scene.analysis = "damage";
+    c.scene.fluid = armour::SceneFluid();
+    armour::SceneUnit unit;
+    unit.name = c.setup.units[0].name;
+    unit.density = 2400.0;
+    c.scene.units.push_back(unit);
+    c.scene.wave_height = 0.28;
+    c.scene.wave_period = wave_period;
+    return c;
+}
+
 } // namespace
 
 TEST(SlopeProfile, BallRestsOnAFaceAnEdgeAndAVertex) {
@@ -511,16 +528,7 @@ TEST(Damage, WavesActFromTheFrontsArrivalAtTheToe) {
 // the ball's overhang on both edges: S = 1 - 2 ((a - r) r + pi r^2 / 4) / a^2
 // = 0.527 (r = a / 4).
 TEST(Damage, SyntheticTrajectoriesGiveTheirKnownFigures) {
-    CubeSlope c;
-    c.scene.walls[0].width = 1.0;
-    c.scene.analysis = "damage";
-    c.scene.fluid = armour::SceneFluid(); // a coupled record: its first step is the settled pose
-    armour::SceneUnit unit;
-    unit.name = c.setup.units[0].name;
-    unit.density = 2400.0;
-    c.scene.units.push_back(unit);
-    c.scene.wave_height = 0.28;
-    c.scene.wave_period = 2.0;
+    CubeSlope c = damage_slope(2.0);
     c.layer(4, 5, kA, 0.5 * kA);
     const std::filesystem::path out = temporary("armour_test_damage");
     std::filesystem::remove_all(out);
@@ -588,16 +596,7 @@ TEST(Damage, SyntheticTrajectoriesGiveTheirKnownFigures) {
 // range (s_om 0.18 on a 1:2 slope) says which limits it is outside.
 TEST(Damage, NodCountsTheLayersStripsAndVanDerMeersRangeIsStated) {
     for (const int columns : {2, 4}) {
-        CubeSlope c;
-        c.scene.walls[0].width = 1.0;
-        c.scene.analysis = "damage";
-        c.scene.fluid = armour::SceneFluid();
-        armour::SceneUnit unit;
-        unit.name = c.setup.units[0].name;
-        unit.density = 2400.0;
-        c.scene.units.push_back(unit);
-        c.scene.wave_height = 0.28;
-        c.scene.wave_period = columns == 2 ? 2.0 : 1.0;
+        CubeSlope c = damage_slope(columns == 2 ? 2.0 : 1.0);
         if (columns == 4) {
             c.scene.walls[0].cot = 2.0;
             c.frame = *armour::slope_frame(c.scene);
@@ -643,16 +642,7 @@ TEST(Damage, NodCountsTheLayersStripsAndVanDerMeersRangeIsStated) {
 // 0.5 a out). Both washed away: 2 displaced, 1 of them at the foot;
 // damage.csv gives each its height out of the face and its flag.
 TEST(Damage, UnitsSeawardOfTheFacesFootAreCountedApart) {
-    CubeSlope c;
-    c.scene.walls[0].width = 1.0;
-    c.scene.analysis = "damage";
-    c.scene.fluid = armour::SceneFluid();
-    armour::SceneUnit unit;
-    unit.name = c.setup.units[0].name;
-    unit.density = 2400.0;
-    c.scene.units.push_back(unit);
-    c.scene.wave_height = 0.28;
-    c.scene.wave_period = 2.0;
+    CubeSlope c = damage_slope(2.0);
     c.place(0.2 * kA, 0.0, 1.5 * kA);
     c.place(2.5 * kA, 0.0, 0.5 * kA);
     c.place(2.5 * kA, 2.0 * kA, 0.5 * kA); // stays
