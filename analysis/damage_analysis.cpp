@@ -180,9 +180,11 @@ class DamageAnalysis : public Analysis {
         write_file(path("damage_history.csv"), "# units displaced (>= displaced_threshold Dn) against time\n"
                                                "time_s,units_displaced,N_od,max_displacement_over_Dn\n" +
                                                    history_);
-        std::string line = std::to_string(counts.displaced) + " of " + std::to_string(units_.size()) +
-                           " units displaced, N_od " + num(N_od) + ", " + std::to_string(counts.rocking) +
-                           " rocking";
+        std::string line =
+            std::to_string(counts.displaced) + " of " + std::to_string(units_.size()) + " units displaced";
+        if (counts.displaced_at_foot > 0)
+            line += " (" + std::to_string(counts.displaced_at_foot) + " at the foot)";
+        line += ", N_od " + num(N_od) + ", " + std::to_string(counts.rocking) + " rocking";
         if (!outside.empty() && p.vdm_ns) {
             line += "; outside Van der Meer's tested range:";
             for (const std::string &o : outside)

@@ -656,9 +656,10 @@ TEST(Damage, UnitsSeawardOfTheFacesFootAreCountedApart) {
         now[k].pose.position += 10.0 * c.frame.across;
     analysis->sample(1.0, now);
     nlohmann::json summary = nlohmann::json::object();
-    analysis->write(summary);
+    const std::string result = analysis->write(summary);
     EXPECT_EQ(summary["units_displaced"].get<int>(), 2);
     EXPECT_EQ(summary["units_displaced_at_foot"].get<int>(), 1);
+    EXPECT_EQ(result.rfind("2 of 3 units displaced (1 at the foot), N_od ", 0), 0u) << result;
 
     std::ifstream csv(out / "damage.csv");
     std::vector<std::vector<std::string>> rows;
