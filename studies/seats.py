@@ -24,6 +24,12 @@ Description
     not, and the curve's factor on Ns (compare_curves.py's) with their displacements taken
     out, as a laboratory that counts only the units seated on the face would count.
 
+    Where proud seats come from, with --placed SEED=FILE: FILE is the seed's layer as placed,
+    before the settle (studies/dry_scene.py of the settled layer with --run RUN/.../settle
+    --time 0: the settle's first record). Each seat's slide down the face in the settle
+    (settle_down_face_Dn), the units by it against how many came out proud and were displaced,
+    and the units at the foot placed there against those the settle slid there.
+
     Why a proud seat is weak, with --pulled SEED=FOLDER: FOLDER is bench/pull_vs_loads.py's output
     for a pull test of that seed's layer (bench/run_pull_test.sh) and a coupled run on it, so each
     pulled unit has its resistance (the pull it held before it moved 0.25 Dn) and the largest
@@ -44,6 +50,7 @@ Usage
         --layer 2=docs/results/stability_one_layer_dn4/layers/seed-2.toml \\
         --layer 3=docs/results/stability_one_layer_dn4/layers/seed-3.toml \\
         --layer 4=docs/results/stability_one_layer_dn4/layers/seed-4.toml --out OUT \\
+        [--placed 1=docs/results/stability_one_layer_dn4/layers/seed-1.placed.toml ...] \\
         [--pulled 4=PULL_VS_LOADS]
 """
 import argparse
@@ -62,6 +69,7 @@ from compare_curves import SEAT_LEFT, fail, print_ns_factor, read_curve, without
 
 NEIGHBOUR_RADIUS = 1.5  # Dn, along the face: the ring of nearest units of both layers
 BINS = [(-math.inf, -0.5), (-0.5, 0.0), (0.0, 0.5), (0.5, math.inf)]  # above_neighbours_Dn
+SETTLE_BINS = [(-math.inf, 1.0), (1.0, 2.0), (2.0, math.inf)]  # settle_down_face_Dn
 
 
 def rotation(q):
@@ -100,7 +108,7 @@ def read_layer(path):
     for b in bodies:
         centre = np.array(b["position"], dtype=float)
         outermost = max((centre + corners @ rotation(b["orientation"]).T - foot) @ normal)
-        seats.append({"s_m": float((centre - foot) @ along), "y_m": float(centre[1]),
+        seats.append({"s_m": float((centre - foot) @ along), "y_m": float(centre[1]), "size_m": size,
                       "x_from_foot_m": float(centre[0] - foot[0]), "out_of_face_Dn": float(outermost / size)})
     for i, seat in enumerate(seats):
         neighbours = [o["out_of_face_Dn"] for j, o in enumerate(seats) if j != i and
@@ -203,6 +211,51 @@ def print_foot(seats, rows, figures):
                     "ns_factor_without_units_at_foot": list(fit_face) if fit_face else None})
 
 
+def read_placed(seats, seed, path):
+    """Each seat's slide down the face in the settle, from the seed's layer as placed (before the settle)."""
+    placed = read_layer(path)
+    mine = [s for s in seats if s["seed"] == seed]
+    if len(placed) != len(mine):
+        fail(f"--placed {seed}={path}: {len(placed)} bodies, the seed's settled layer {len(mine)}")
+    for seat, before in zip(mine, placed):
+        seat["settle_down_face_Dn"] = (before["s_m"] - seat["s_m"]) / seat["size_m"]
+        seat["placed_at_foot"] = at_foot(before)
+
+
+def print_placed(seats, figures):
+    """The units by how far the settle slid them down the face: how many came out proud, how many were displaced."""
+    placed = [s for s in seats if "settle_down_face_Dn" in s]
+    print(f"units by how far the settle slid them down the face (placed pose to settled seat; {len(placed)} units):")
+    rows = []
+    for lo, hi in SETTLE_BINS:
+        group = [s for s in placed if lo <= s["settle_down_face_Dn"] < hi]
+        proud = sum(1 for s in group if s["above_neighbours_Dn"] > 0)
+        displaced = sum(1 for s in group if s["points_displaced"] > 0)
+        print(f"  {bin_label(lo, hi):>18}: {len(group):4d} units, proud {proud:3d} "
+              f"({100 * proud / max(1, len(group)):.1f} %), displaced at a point {displaced:3d} "
+              f"({100 * displaced / max(1, len(group)):.1f} %), unit-points "
+              f"{sum(s['points_displaced'] for s in group)}")
+        rows.append({"from_Dn": lo if math.isfinite(lo) else None, "to_Dn": hi if math.isfinite(hi) else None,
+                     "units": len(group), "proud": proud, "displaced_units": displaced})
+    far = [s for s in placed if s["settle_down_face_Dn"] >= SETTLE_BINS[-1][0]]
+    proud = [s for s in placed if s["above_neighbours_Dn"] > 0]
+    hit = [s for s in placed if s["points_displaced"] > 0]
+    for name, group in (("proud", proud), ("displaced at a point", hit)):
+        k = sum(1 for s in group if s["settle_down_face_Dn"] >= SETTLE_BINS[-1][0])
+        p = hypergeometric_sf(k, len(placed), len(far), len(group)) if group else 1.0
+        print(f"  slid {SETTLE_BINS[-1][0]:g} Dn or more: {k} of the {len(group)} {name}, "
+              f"{len(group) * len(far) / len(placed):.1f} at random (P {p:.2g} of so many)")
+        figures[f"settle_slid_far_{name.split()[0]}"] = k
+        figures[f"settle_slid_far_{name.split()[0]}_p_value"] = p
+    foot = [s for s in placed if at_foot(s)]
+    for name, was in (("placed there", True), ("slid there in the settle", False)):
+        group = [s for s in foot if s["placed_at_foot"] == was]
+        print(f"  at the foot, {name}: {len(group)} units, proud "
+              f"{sum(1 for s in group if s['above_neighbours_Dn'] > 0)}, displaced at a point "
+              f"{sum(1 for s in group if s['points_displaced'] > 0)}")
+    figures["settle_slide_bins"] = rows
+
+
 def read_pulled(seats, seed, folder):
     """Each pulled unit's resistance and peak load swing out of the face (unit weights) into its seat."""
     path = os.path.join(folder, "pull_vs_loads.csv")
@@ -276,7 +329,7 @@ def print_pulled(seats, figures):
 def write_outputs(seats, out, figures):
     os.makedirs(out, exist_ok=True)
     columns = ["seed", "body", "s_m", "y_m", "x_from_foot_m", "out_of_face_Dn", "above_neighbours_Dn",
-               "points", "points_left_seat", "points_displaced", "resistance_weights", "peak_swing_out_weights"]
+               "settle_down_face_Dn", "points", "points_left_seat", "points_displaced", "resistance_weights", "peak_swing_out_weights"]
     with open(os.path.join(out, "seats.csv"), "w", newline="") as f:
         f.write("# each unit's seat on its settled layer, and the curve's points it left it at "
                 "(lengths in m where _m, in Dn where _Dn; counts)\n")
@@ -296,6 +349,9 @@ def main():
     parser.add_argument("curve", help="kept curve(s), as compare_curves.py's CURVE: FOLDER[:VALUE,...][+...]")
     parser.add_argument("--layer", action="append", default=[], metavar="SEED=FILE",
                         help="a seed's settled layer: its cases' RUN/.../settle/scene.settled.toml")
+    parser.add_argument("--placed", action="append", default=[], metavar="SEED=FILE",
+                        help="a seed's layer as placed, before the settle: studies/dry_scene.py of its "
+                        "settled layer with --run RUN/.../settle --time 0")
     parser.add_argument("--pulled", action="append", default=[], metavar="SEED=FOLDER",
                         help="bench/pull_vs_loads.py's output for a pull test of the seed's layer")
     parser.add_argument("--out", required=True, help="output folder: seats.csv, summary.json")
@@ -331,6 +387,13 @@ def main():
                         f"{name}_units_proud": hit_proud, f"{name}_unit_points": points,
                         f"{name}_unit_points_proud": points_proud, f"{name}_p_value": p})
     print_foot(seats, rows, figures)
+    for spec in args.placed:
+        seed, eq, path = spec.partition("=")
+        if not eq or seed.strip() not in seeds:
+            fail(f"--placed {spec}: give SEED=FILE, SEED one of the curve's seeds ({', '.join(seeds)})")
+        read_placed(seats, int(seed), path)
+    if args.placed:
+        print_placed(seats, figures)
     for spec in args.pulled:
         seed, eq, folder = spec.partition("=")
         if not eq or seed.strip() not in seeds:

@@ -1182,10 +1182,11 @@ TEST_F(SweepTest, SeatsTellHowFarEachUnitStandsAboveItsNeighbours) {
     // within 1.5 Dn of all three (0.057 m from 1 and 2), stands 0.25 Dn above 1 and 2 but 0.75 Dn below 0:
     // only 0 is above its highest neighbour, so only 0 is proud. Body 0's centre, 0.02 m up the face and
     // 0.06 m out of it, lies 0.017 m seaward of the face's foot; 1 and 2 (0.02 m out) 0.006 m landward.
-    write(dir_ / "layer.toml", "[[unit]]\nname = \"cube\"\nshape = \"cube\"\nsize = 0.04\n\n[[wall]]\nname = "
-                               "\"slope\"\ntype = \"slope\"\ncot = 1.5\nheight = 1.0\nwidth = 1.0\n\n" +
-                                   body(0.02, 0.0, 0.06) + body(0.02, 0.04, 0.02) + body(0.02, -0.04, 0.02) +
-                                   body(0.06, 0.0, 0.03));
+    const std::string unit_and_slope =
+        "[[unit]]\nname = \"cube\"\nshape = \"cube\"\nsize = 0.04\n\n[[wall]]\n"
+        "name = \"slope\"\ntype = \"slope\"\ncot = 1.5\nheight = 1.0\nwidth = 1.0\n\n";
+    write(dir_ / "layer.toml", unit_and_slope + body(0.02, 0.0, 0.06) + body(0.02, 0.04, 0.02) +
+                                   body(0.02, -0.04, 0.02) + body(0.06, 0.0, 0.03));
     write(dir_ / "held" / "results.csv", "case,unit.0.density,seed,status,Ns,N_od,units_displaced,"
                                          "units_displaced_van_der_meer,waves.waves,s_om\n"
                                          "d-2000_seed-1,2000.0,1,done,3.0,0.4,2,1.0,27,0.03\n"
@@ -1260,6 +1261,37 @@ TEST_F(SweepTest, SeatsTellHowFarEachUnitStandsAboveItsNeighbours) {
                            "units), by the rest 2.50 (2.50-2.50, 2); P 0.25 of a split as wide"),
         std::string::npos)
         << pulled.output;
+
+    // The layer as placed, before the settle: body 0 placed 0.1 m (2.5 Dn) further up the face, on it
+    // (x 0.067 m), the others where they settled. So the one unit that slid 2 Dn or more is the proud
+    // one (P 1 / 4 at random) and slid to the foot.
+    write(dir_ / "placed.toml", unit_and_slope + body(0.12, 0.0, 0.06) + body(0.02, 0.04, 0.02) +
+                                    body(0.02, -0.04, 0.02) + body(0.06, 0.0, 0.03));
+    const Result placed = run(command + " --placed 1=" + (dir_ / "placed.toml").string());
+    ASSERT_EQ(placed.status, 0) << placed.output;
+    EXPECT_NE(placed.output.find("below +1.0 Dn:    3 units, proud   0 (0.0 %), displaced at a point   1 "
+                                 "(33.3 %), unit-points 1"),
+              std::string::npos)
+        << placed.output;
+    EXPECT_NE(placed.output.find("+2.0 Dn or more:    1 units, proud   1 (100.0 %), displaced at a point   1 "
+                                 "(100.0 %), unit-points 2"),
+              std::string::npos)
+        << placed.output;
+    EXPECT_NE(placed.output.find("slid 2 Dn or more: 1 of the 1 proud, 0.2 at random (P 0.25 of so many)"),
+              std::string::npos)
+        << placed.output;
+    EXPECT_NE(
+        placed.output.find("at the foot, slid there in the settle: 1 units, proud 1, displaced at a point 1"),
+        std::string::npos)
+        << placed.output;
+    write(dir_ / "three.toml",
+          unit_and_slope + body(0.12, 0.0, 0.06) + body(0.02, 0.04, 0.02) + body(0.02, -0.04, 0.02));
+    const Result short_layer = run(command + " --placed 1=" + (dir_ / "three.toml").string());
+    EXPECT_EQ(short_layer.status, 2);
+    EXPECT_NE(short_layer.output.find("armour: error: --placed 1=" + (dir_ / "three.toml").string() +
+                                      ": 3 bodies, the seed's settled layer 4"),
+              std::string::npos)
+        << short_layer.output;
 
     damage("d-1700_seed-1", {0}, 0.002); // 2 mm up the face: another layer
     const Result other = run(command);
