@@ -24,6 +24,9 @@ Description
     not, and the curve's factor on Ns (compare_curves.py's) with their displacements taken
     out, as a laboratory that counts only the units seated on the face would count.
 
+    Without a curve, the layers alone, before any waves: each seed's proud units and units at
+    the foot (a settle's layer judged before a wave is run on it).
+
     Where proud seats come from, with --placed SEED=FILE: FILE is the seed's layer as placed,
     before the settle (studies/dry_scene.py of the settled layer with --run RUN/.../settle
     --time 0: the settle's first record). Each seat's slide down the face in the settle
@@ -52,6 +55,7 @@ Usage
         --layer 4=docs/results/stability_one_layer_dn4/layers/seed-4.toml --out OUT \\
         [--placed 1=docs/results/stability_one_layer_dn4/layers/seed-1.placed.toml ...] \\
         [--pulled 4=PULL_VS_LOADS]
+    python3 studies/seats.py --layer 1=LAYER.toml [--placed 1=PLACED.toml] --out OUT
 """
 import argparse
 import csv
@@ -222,25 +226,29 @@ def read_placed(seats, seed, path):
         seat["placed_at_foot"] = at_foot(before)
 
 
-def print_placed(seats, figures):
-    """The units by how far the settle slid them down the face: how many came out proud, how many were displaced."""
+def print_placed(seats, figures, damage):
+    """The units by how far the settle slid them down the face: how many came out proud and, with a curve
+    (`damage`), how many were displaced."""
     placed = [s for s in seats if "settle_down_face_Dn" in s]
+    hit = [s for s in placed if damage and s["points_displaced"] > 0]
     print(f"units by how far the settle slid them down the face (placed pose to settled seat; {len(placed)} units):")
     rows = []
     for lo, hi in SETTLE_BINS:
         group = [s for s in placed if lo <= s["settle_down_face_Dn"] < hi]
         proud = sum(1 for s in group if s["above_neighbours_Dn"] > 0)
-        displaced = sum(1 for s in group if s["points_displaced"] > 0)
-        print(f"  {bin_label(lo, hi):>18}: {len(group):4d} units, proud {proud:3d} "
-              f"({100 * proud / max(1, len(group)):.1f} %), displaced at a point {displaced:3d} "
-              f"({100 * displaced / max(1, len(group)):.1f} %), unit-points "
-              f"{sum(s['points_displaced'] for s in group)}")
-        rows.append({"from_Dn": lo if math.isfinite(lo) else None, "to_Dn": hi if math.isfinite(hi) else None,
-                     "units": len(group), "proud": proud, "displaced_units": displaced})
+        line = f"  {bin_label(lo, hi):>18}: {len(group):4d} units, proud {proud:3d} ({100 * proud / max(1, len(group)):.1f} %)"
+        row = {"from_Dn": lo if math.isfinite(lo) else None, "to_Dn": hi if math.isfinite(hi) else None,
+               "units": len(group), "proud": proud}
+        if damage:
+            displaced = sum(1 for s in group if s in hit)
+            line += (f", displaced at a point {displaced:3d} ({100 * displaced / max(1, len(group)):.1f} %), "
+                     f"unit-points {sum(s['points_displaced'] for s in group)}")
+            row["displaced_units"] = displaced
+        print(line)
+        rows.append(row)
     far = [s for s in placed if s["settle_down_face_Dn"] >= SETTLE_BINS[-1][0]]
     proud = [s for s in placed if s["above_neighbours_Dn"] > 0]
-    hit = [s for s in placed if s["points_displaced"] > 0]
-    for name, group in (("proud", proud), ("displaced at a point", hit)):
+    for name, group in (("proud", proud), ("displaced at a point", hit))[:2 if damage else 1]:
         k = sum(1 for s in group if s["settle_down_face_Dn"] >= SETTLE_BINS[-1][0])
         p = hypergeometric_sf(k, len(placed), len(far), len(group)) if group else 1.0
         print(f"  slid {SETTLE_BINS[-1][0]:g} Dn or more: {k} of the {len(group)} {name}, "
@@ -251,8 +259,8 @@ def print_placed(seats, figures):
     for name, was in (("placed there", True), ("slid there in the settle", False)):
         group = [s for s in foot if s["placed_at_foot"] == was]
         print(f"  at the foot, {name}: {len(group)} units, proud "
-              f"{sum(1 for s in group if s['above_neighbours_Dn'] > 0)}, displaced at a point "
-              f"{sum(1 for s in group if s['points_displaced'] > 0)}")
+              f"{sum(1 for s in group if s['above_neighbours_Dn'] > 0)}"
+              + (f", displaced at a point {sum(1 for s in group if s in hit)}" if damage else ""))
     figures["settle_slide_bins"] = rows
 
 
@@ -344,38 +352,22 @@ def write_outputs(seats, out, figures):
         f.write("\n")
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("curve", help="kept curve(s), as compare_curves.py's CURVE: FOLDER[:VALUE,...][+...]")
-    parser.add_argument("--layer", action="append", default=[], metavar="SEED=FILE",
-                        help="a seed's settled layer: its cases' RUN/.../settle/scene.settled.toml")
-    parser.add_argument("--placed", action="append", default=[], metavar="SEED=FILE",
-                        help="a seed's layer as placed, before the settle: studies/dry_scene.py of its "
-                        "settled layer with --run RUN/.../settle --time 0")
-    parser.add_argument("--pulled", action="append", default=[], metavar="SEED=FOLDER",
-                        help="bench/pull_vs_loads.py's output for a pull test of the seed's layer")
-    parser.add_argument("--out", required=True, help="output folder: seats.csv, summary.json")
-    args = parser.parse_args()
-    rows, _ = read_curve(args.curve)
-    layers = {}
-    for spec in args.layer:
-        seed, eq, path = spec.partition("=")
-        if not eq or not seed.strip().isdigit():
-            fail(f"--layer {spec}: give SEED=FILE (a seed of the curve and its settled layer)")
-        layers[seed.strip()] = path
-    seeds = sorted({r["seed"] for r in rows}, key=int)
-    for seed in layers:
-        if seed not in seeds:
-            fail(f"--layer {seed}={layers[seed]}: {args.curve} has no seed {seed}")
-    seats = []
-    for seed in seeds:
-        if seed not in layers:
-            fail(f"--layer: seed {seed} of {args.curve} has no layer (give --layer {seed}=FILE)")
-        layer = read_layer(layers[seed])
-        count_points(layer, [r for r in rows if r["seed"] == seed], layers[seed])
-        seats += [dict(s, seed=int(seed), body=i) for i, s in enumerate(layer)]
+def print_layers(seats, figures):
+    """A layer's seats before any waves: how many units stand proud, and how many sit at the foot."""
+    for seed in sorted({s["seed"] for s in seats}):
+        mine = [s for s in seats if s["seed"] == seed]
+        proud = sum(1 for s in mine if s["above_neighbours_Dn"] > 0)
+        print(f"seed {seed}: {proud} of {len(mine)} units proud (above every neighbour within {NEIGHBOUR_RADIUS} "
+              f"Dn, {100 * proud / len(mine):.1f} %), {sum(1 for s in mine if at_foot(s))} at the foot")
+    proud = sum(1 for s in seats if s["above_neighbours_Dn"] > 0)
+    print(f"all: {proud} of {len(seats)} units proud ({100 * proud / len(seats):.1f} %), "
+          f"{sum(1 for s in seats if at_foot(s))} at the foot")
+    figures.update({"units": len(seats), "proud_units": proud, "units_at_foot": sum(1 for s in seats if at_foot(s))})
+
+
+def print_curve(seats, rows, figures):
+    """The seats against the curve's damage: by height above the neighbours, proud or not, at the foot or not."""
     print_table(seats)
-    figures = {"neighbour_radius_Dn": NEIGHBOUR_RADIUS, "seat_left_Dn": SEAT_LEFT}
     for key, name in (("points_displaced", "displaced"), ("points_left_seat", "left_seat")):
         units, proud, hit, hit_proud, points, points_proud, p = tally(seats, key)
         verb = "were displaced" if name == "displaced" else "left their seat"
@@ -387,17 +379,59 @@ def main():
                         f"{name}_units_proud": hit_proud, f"{name}_unit_points": points,
                         f"{name}_unit_points_proud": points_proud, f"{name}_p_value": p})
     print_foot(seats, rows, figures)
-    for spec in args.placed:
-        seed, eq, path = spec.partition("=")
+
+
+def seed_specs(specs, option, seeds, what):
+    """{seed: value} of SEED=VALUE options, each seed one of `seeds`."""
+    given = {}
+    for spec in specs:
+        seed, eq, value = spec.partition("=")
         if not eq or seed.strip() not in seeds:
-            fail(f"--placed {spec}: give SEED=FILE, SEED one of the curve's seeds ({', '.join(seeds)})")
+            fail(f"{option} {spec}: give SEED={what}, SEED one of the seeds ({', '.join(seeds)})")
+        given[seed.strip()] = value
+    return given
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("curve", nargs="?", help="kept curve(s), as compare_curves.py's CURVE: "
+                        "FOLDER[:VALUE,...][+...]; without one, the layers' seats alone")
+    parser.add_argument("--layer", action="append", default=[], metavar="SEED=FILE",
+                        help="a seed's settled layer: its cases' RUN/.../settle/scene.settled.toml")
+    parser.add_argument("--placed", action="append", default=[], metavar="SEED=FILE",
+                        help="a seed's layer as placed, before the settle: studies/dry_scene.py of its "
+                        "settled layer with --run RUN/.../settle --time 0")
+    parser.add_argument("--pulled", action="append", default=[], metavar="SEED=FOLDER",
+                        help="bench/pull_vs_loads.py's output for a pull test of the seed's layer")
+    parser.add_argument("--out", required=True, help="output folder: seats.csv, summary.json")
+    args = parser.parse_args()
+    rows = read_curve(args.curve)[0] if args.curve else []
+    for spec in args.layer:
+        if not spec.partition("=")[0].strip().isdigit() or "=" not in spec:
+            fail(f"--layer {spec}: give SEED=FILE (a seed and its settled layer)")
+    layer_seeds = sorted({spec.partition("=")[0].strip() for spec in args.layer}, key=int)
+    seeds = sorted({r["seed"] for r in rows}, key=int) if rows else layer_seeds
+    if not seeds:
+        fail("--layer: none given (give --layer SEED=FILE for each seed)")
+    layers = seed_specs(args.layer, "--layer", seeds, "FILE")
+    seats = []
+    for seed in seeds:
+        if seed not in layers:
+            fail(f"--layer: seed {seed} of {args.curve} has no layer (give --layer {seed}=FILE)")
+        layer = read_layer(layers[seed])
+        if rows:
+            count_points(layer, [r for r in rows if r["seed"] == seed], layers[seed])
+        seats += [dict(s, seed=int(seed), body=i) for i, s in enumerate(layer)]
+    figures = {"neighbour_radius_Dn": NEIGHBOUR_RADIUS, "seat_left_Dn": SEAT_LEFT}
+    if rows:
+        print_curve(seats, rows, figures)
+    else:
+        print_layers(seats, figures)
+    for seed, path in seed_specs(args.placed, "--placed", seeds, "FILE").items():
         read_placed(seats, int(seed), path)
     if args.placed:
-        print_placed(seats, figures)
-    for spec in args.pulled:
-        seed, eq, folder = spec.partition("=")
-        if not eq or seed.strip() not in seeds:
-            fail(f"--pulled {spec}: give SEED=FOLDER, SEED one of the curve's seeds ({', '.join(seeds)})")
+        print_placed(seats, figures, damage=bool(rows))
+    for seed, folder in seed_specs(args.pulled, "--pulled", seeds, "FOLDER").items():
         read_pulled(seats, int(seed), folder)
     if args.pulled:
         print_pulled(seats, figures)

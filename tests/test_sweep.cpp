@@ -1284,6 +1284,19 @@ TEST_F(SweepTest, SeatsTellHowFarEachUnitStandsAboveItsNeighbours) {
         placed.output.find("at the foot, slid there in the settle: 1 units, proud 1, displaced at a point 1"),
         std::string::npos)
         << placed.output;
+    // The layer alone, before any waves (no curve): its proud units and its slide, no damage.
+    const Result alone =
+        run("/usr/bin/python3 " + kSource + "/studies/seats.py --layer 1=" + (dir_ / "layer.toml").string() +
+            " --placed 1=" + (dir_ / "placed.toml").string() + " --out " + (dir_ / "alone").string());
+    ASSERT_EQ(alone.status, 0) << alone.output;
+    EXPECT_NE(
+        alone.output.find("seed 1: 1 of 4 units proud (above every neighbour within 1.5 Dn, 25.0 %), 1 at "
+                          "the foot"),
+        std::string::npos)
+        << alone.output;
+    EXPECT_NE(alone.output.find("+2.0 Dn or more:    1 units, proud   1 (100.0 %)\n"), std::string::npos)
+        << alone.output;
+    EXPECT_EQ(alone.output.find("displaced"), std::string::npos) << alone.output;
     write(dir_ / "three.toml",
           unit_and_slope + body(0.12, 0.0, 0.06) + body(0.02, 0.04, 0.02) + body(0.02, -0.04, 0.02));
     const Result short_layer = run(command + " --placed 1=" + (dir_ / "three.toml").string());
