@@ -26,11 +26,11 @@ Description
     flags them (`at_foot`), how many sat at the foot: every unit seated
     seaward of the face's foot, the toe row and the units piled over it. The
     counts and the factor on Ns are given again without each, so what the
-    damage owes to the toe is told from what it owes to the face. And whether the same seats
-    leave at rising Ns: per seed, the units that ended 0.25 Dn or more from
-    their settled pose at one point and again at the next point up, against
-    the count if the next point's were drawn at random (on a curve whose points
-    share their layers, a body is one seat at every point).
+    damage owes to the toe is told from what it owes to the face. And whether
+    the same seats leave at rising Ns: per seed, the units that ended 0.25 Dn
+    or more from their settled pose at one point and again at the next point
+    up, against the count if the next point's were drawn at random (on a
+    curve whose points share their layers, a body is one seat at every point).
 
     Then the gap as one number: the factor f such that the curve's counts are
     Van der Meer's at Ns / f (each run's expected count from the formula at its
@@ -197,13 +197,12 @@ def print_toe_row(points, rows):
     if any(r["toe_row_displaced"] is None for r in rows):
         print("  toe row: not known (the cases' damage.csv are not kept beside results.csv)")
         return
-    print_part(points, rows, "toe_row", "the toe row (seated below the face's foot)", "the face")
+    print_part(points, rows, "toe_row", "the toe row (seated below the face's foot)")
     if all(r["at_foot_displaced"] is not None for r in rows):
-        print_part(points, rows, "at_foot", "the foot (seated seaward of the face's foot, damage.csv's at_foot)",
-                   "the face")
+        print_part(points, rows, "at_foot", "the foot (seated seaward of the face's foot, damage.csv's at_foot)")
 
 
-def print_part(points, rows, key, name, rest):
+def print_part(points, rows, key, name):
     """How many of the displaced sat in a part of the layer (the rows' KEY_displaced of KEY_units), per point;
     the counts and the factor on Ns without them."""
     per_point = ", ".join(f"{sum(r[key + '_displaced'] for r in g)} of "
@@ -217,7 +216,7 @@ def print_part(points, rows, key, name, rest):
           f"without them {shown - part} / {expected:.1f} (P {poisson_cdf(shown - part, expected):.2g})")
     if rest_units and part_units:
         print(f"  displaced per unit: {name.split(' (')[0]} {part} of {part_units} ({100 * part / part_units:.1f} %), "
-              f"{rest} {shown - part} of {rest_units} ({100 * (shown - part) / rest_units:.1f} %)")
+              f"the face {shown - part} of {rest_units} ({100 * (shown - part) / rest_units:.1f} %)")
     print_ns_factor(f"without {name.split(' (')[0]}",
                     without_displaced(rows, [r[key + "_displaced"] for r in rows]))
 
