@@ -236,7 +236,8 @@ def print_placed(seats, figures, damage):
     for lo, hi in SETTLE_BINS:
         group = [s for s in placed if lo <= s["settle_down_face_Dn"] < hi]
         proud = sum(1 for s in group if s["above_neighbours_Dn"] > 0)
-        line = f"  {bin_label(lo, hi):>18}: {len(group):4d} units, proud {proud:3d} ({100 * proud / max(1, len(group)):.1f} %)"
+        line = (f"  {bin_label(lo, hi):>18}: {len(group):4d} units, proud {proud:3d} "
+                f"({100 * proud / max(1, len(group)):.1f} %)")
         row = {"from_Dn": lo if math.isfinite(lo) else None, "to_Dn": hi if math.isfinite(hi) else None,
                "units": len(group), "proud": proud}
         if damage:
@@ -337,7 +338,8 @@ def print_pulled(seats, figures):
 def write_outputs(seats, out, figures):
     os.makedirs(out, exist_ok=True)
     columns = ["seed", "body", "s_m", "y_m", "x_from_foot_m", "out_of_face_Dn", "above_neighbours_Dn",
-               "settle_down_face_Dn", "points", "points_left_seat", "points_displaced", "resistance_weights", "peak_swing_out_weights"]
+               "settle_down_face_Dn", "points", "points_left_seat", "points_displaced", "resistance_weights",
+               "peak_swing_out_weights"]
     with open(os.path.join(out, "seats.csv"), "w", newline="") as f:
         f.write("# each unit's seat on its settled layer, and the curve's points it left it at "
                 "(lengths in m where _m, in Dn where _Dn; counts)\n")
