@@ -20,9 +20,9 @@ Description
     not sit where the layer has it (1 mm) is refused: the curve did not run on that layer.
 
     The foot as a suspect of its own: the units at the foot, whose centres lie seaward of the
-    face's foot (x < the slope's toe_x: over the toe, not on the face), set against the rest, proud or
-    not, and the curve's factor on Ns (compare_curves.py's) with their displacements taken
-    out, as a laboratory that counts only the units seated on the face would count.
+    face's foot (x < the slope's toe_x: over the toe, not on the face), set against the rest,
+    proud or not, and the curve's factor on Ns (compare_curves.py's) with their displacements
+    taken out, as a laboratory that counts only the units seated on the face would count.
 
     Without a curve, the layers alone, before any waves: each seed's proud units and units at
     the foot (a settle's layer judged before a wave is run on it).
@@ -231,6 +231,7 @@ def print_placed(seats, figures, damage):
     (`damage`), how many were displaced."""
     placed = [s for s in seats if "settle_down_face_Dn" in s]
     hit = [s for s in placed if damage and s["points_displaced"] > 0]
+    hit_ids = {(s["seed"], s["body"]) for s in hit}
     print(f"units by how far the settle slid them down the face (placed pose to settled seat; {len(placed)} units):")
     rows = []
     for lo, hi in SETTLE_BINS:
@@ -241,7 +242,7 @@ def print_placed(seats, figures, damage):
         row = {"from_Dn": lo if math.isfinite(lo) else None, "to_Dn": hi if math.isfinite(hi) else None,
                "units": len(group), "proud": proud}
         if damage:
-            displaced = sum(1 for s in group if s in hit)
+            displaced = sum(1 for s in group if (s["seed"], s["body"]) in hit_ids)
             line += (f", displaced at a point {displaced:3d} ({100 * displaced / max(1, len(group)):.1f} %), "
                      f"unit-points {sum(s['points_displaced'] for s in group)}")
             row["displaced_units"] = displaced
@@ -261,7 +262,8 @@ def print_placed(seats, figures, damage):
         group = [s for s in foot if s["placed_at_foot"] == was]
         print(f"  at the foot, {name}: {len(group)} units, proud "
               f"{sum(1 for s in group if s['above_neighbours_Dn'] > 0)}"
-              + (f", displaced at a point {sum(1 for s in group if s in hit)}" if damage else ""))
+              + (f", displaced at a point {sum(1 for s in group if (s['seed'], s['body']) in hit_ids)}"
+                 if damage else ""))
     figures["settle_slide_bins"] = rows
 
 
