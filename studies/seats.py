@@ -231,7 +231,6 @@ def print_placed(seats, figures, damage):
     (`damage`), how many were displaced."""
     placed = [s for s in seats if "settle_down_face_Dn" in s]
     hit = [s for s in placed if damage and s["points_displaced"] > 0]
-    hit_ids = {(s["seed"], s["body"]) for s in hit}
     print(f"units by how far the settle slid them down the face (placed pose to settled seat; {len(placed)} units):")
     rows = []
     for lo, hi in SETTLE_BINS:
@@ -242,7 +241,7 @@ def print_placed(seats, figures, damage):
         row = {"from_Dn": lo if math.isfinite(lo) else None, "to_Dn": hi if math.isfinite(hi) else None,
                "units": len(group), "proud": proud}
         if damage:
-            displaced = sum(1 for s in group if (s["seed"], s["body"]) in hit_ids)
+            displaced = sum(1 for s in group if s["points_displaced"] > 0)
             line += (f", displaced at a point {displaced:3d} ({100 * displaced / max(1, len(group)):.1f} %), "
                      f"unit-points {sum(s['points_displaced'] for s in group)}")
             row["displaced_units"] = displaced
@@ -262,7 +261,7 @@ def print_placed(seats, figures, damage):
         group = [s for s in foot if s["placed_at_foot"] == was]
         print(f"  at the foot, {name}: {len(group)} units, proud "
               f"{sum(1 for s in group if s['above_neighbours_Dn'] > 0)}"
-              + (f", displaced at a point {sum(1 for s in group if (s['seed'], s['body']) in hit_ids)}"
+              + (f", displaced at a point {sum(1 for s in group if s['points_displaced'] > 0)}"
                  if damage else ""))
     figures["settle_slide_bins"] = rows
 
