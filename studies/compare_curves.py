@@ -152,12 +152,16 @@ def case_units(folder, row):
     return units
 
 
+def displaced_among(part):
+    """(displaced, units) of a part of a case's units."""
+    return sum(1 for u in part if u["displaced"] == "1"), len(part)
+
+
 def toe_row(units):
     """(displaced, units) of a case's units seated below the face's foot (s_m < 0); Nones if not kept."""
     if units is None:
         return None, None
-    toe = [u for u in units if float(u["s_m"]) < 0]
-    return sum(1 for u in toe if u["displaced"] == "1"), len(toe)
+    return displaced_among([u for u in units if float(u["s_m"]) < 0])
 
 
 def at_foot(units):
@@ -165,8 +169,7 @@ def at_foot(units):
     not kept or written before the damage analysis flagged them."""
     if units is None or "at_foot" not in units[0]:
         return None, None
-    foot = [u for u in units if u["at_foot"] == "1"]
-    return sum(1 for u in foot if u["displaced"] == "1"), len(foot)
+    return displaced_among([u for u in units if u["at_foot"] == "1"])
 
 
 def left_seat(units):
