@@ -83,6 +83,26 @@ std::vector<std::size_t> shuffled_within_layers(const std::vector<Slot> &slots, 
     return order;
 }
 
+// Placement "seated": layer by layer and row by row from the toe up, each
+// row's slots in a random order, so that a unit slid down the face from its
+// slot meets the rows below it already in place.
+std::vector<std::size_t> toe_up_within_rows(const std::vector<Slot> &slots, std::mt19937_64 &rng) {
+    std::vector<std::size_t> order(slots.size());
+    for (std::size_t i = 0; i < order.size(); ++i)
+        order[i] = i;
+    for (std::size_t from = 0; from < order.size();) {
+        std::size_t to = from;
+        while (to < order.size() && slots[to].layer == slots[from].layer && slots[to].row == slots[from].row)
+            ++to;
+        for (std::size_t i = to - from; i > 1; --i)
+            std::swap(order[from + i - 1],
+                      order[from + std::min(i - 1, static_cast<std::size_t>(uniform01(rng) *
+                                                                            static_cast<double>(i)))]);
+        from = to;
+    }
+    return order;
+}
+
 // Sets the units of one pattern slot by slot, each where it clears the face
 // and the units placed before it. The random draws come in a fixed order (the
 // slots' shuffle, then per draw a rotation and the two offsets): a seed gives
@@ -92,7 +112,7 @@ class RandomPlacer {
     RandomPlacer(const ScenePattern &p, const PatternGrid &grid, int unit, const UnitTemplate &unit_template,
                  const Collider &collider, double reach, double Dn, const std::vector<Wall> &walls)
         : p_(p), grid_(grid), slope_(*grid.slope), unit_(unit), template_(unit_template), collider_(collider),
-          reach_(reach), Dn_(Dn), walls_(walls), rng_(p.seed),
+          reach_(reach), Dn_(Dn), walls_(walls), rng_(p.seed), seated_(p.placement == "seated"),
           play_(0.5 * std::max(0.0, grid.spacing - grid.size)),
           step_top_(slope_.floor_z + slope_.toe_height) {
         if (collider.spheres)
@@ -105,15 +125,17 @@ class RandomPlacer {
 
     std::vector<BodyInit> place_all(const std::string &key) {
         const std::vector<Slot> slots = grid_slots(p_);
-        const std::vector<std::size_t> order = shuffled_within_layers(slots, rng_);
+        const std::vector<std::size_t> order =
+            seated_ ? toe_up_within_rows(slots, rng_) : shuffled_within_layers(slots, rng_);
         std::vector<BodyInit> bodies(slots.size()); // in the grid's order (layer, row, column)
         for (const std::size_t k : order) {
             const Slot &slot = slots[k];
             double top = 0.0;
             if (!place(slot, bodies[k], top)) {
-                const std::string where =
-                    key + "placement': \"random\": the unit of layer " + std::to_string(slot.layer + 1) +
-                    ", row " + std::to_string(slot.row + 1) + ", column " + std::to_string(slot.col + 1);
+                const std::string where = key + "placement': \"" + p_.placement + "\": the unit of layer " +
+                                          std::to_string(slot.layer + 1) + ", row " +
+                                          std::to_string(slot.row + 1) + ", column " +
+                                          std::to_string(slot.col + 1);
                 throw InputError(
                     where + ": each of " + std::to_string(kDraws) +
                     " random poses cuts a wall or leaves run.domain_min/domain_max; raise spacing, "
@@ -156,9 +178,11 @@ class RandomPlacer {
                            -0.5 * slope_.width + e.left + p_.gap, 0.5 * slope_.width - e.right - p_.gap);
             const double s = grid_.first + (slot.row + (slot.layer % 2) * 0.5) * grid_.spacing + ds;
             BodyInit b;
-            const double n = set_on_face(q, s, y, e.below, b);
-            if (!inside_domain(b) || body_wall_penetration(b, template_, collider_, walls_).first > 0.0)
+            double n = set_on_face(q, s, y, e.below, b);
+            if (!fits(b))
                 continue;
+            if (seated_)
+                n = slide_down(q, s, y, e.below, b, n);
             ++choices;
             if (n - e.below - p_.gap < least) {
                 least = n - e.below - p_.gap;
@@ -167,6 +191,32 @@ class RandomPlacer {
             }
         }
         return choices > 0;
+    }
+
+    bool fits(const BodyInit &b) const {
+        return inside_domain(b) && body_wall_penetration(b, template_, collider_, walls_).first <= 0.0;
+    }
+
+    // Placement "seated": the pose `b` (at s up the face, height n out of
+    // it) slid down the face a tenth of Dn at a time, each time set where it
+    // clears the face and the units placed so far, for as long as its centre
+    // goes lower: it stops in the first trough, where a unit let down the
+    // face would come to rest (at most kMaxSlide Dn from its slot). What the
+    // settle would do to the loose pile is done here unit by unit, on the
+    // rows below already in place. Returns the height out of the face (m).
+    static constexpr double kMaxSlide = 5.0;
+
+    double slide_down(const Eigen::Quaterniond &q, double s, double y, double below, BodyInit &b,
+                      double n) const {
+        for (int step = 1; step <= static_cast<int>(10.0 * kMaxSlide); ++step) {
+            BodyInit lower;
+            const double m = set_on_face(q, s - 0.1 * step * Dn_, y, below, lower);
+            if (lower.pose.position.z() >= b.pose.position.z() - 1e-6 * Dn_ || !fits(lower))
+                break;
+            b = lower;
+            n = m;
+        }
+        return n;
     }
 
     BodyInit pose(const Eigen::Quaterniond &q, double up, double across, double out) const {
@@ -262,6 +312,7 @@ class RandomPlacer {
     const double reach_, Dn_;
     const std::vector<Wall> &walls_;
     std::mt19937_64 rng_;
+    const bool seated_;     // placement "seated": toe up, each unit slid down into its trough
     const double play_;     // m: how far a unit may move off its slot's centre, along and across
     const double step_top_; // m, z: the toe step's top
     std::vector<Part> parts_;

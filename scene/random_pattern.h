@@ -1,8 +1,10 @@
 // A [[pattern]] with placement = "random": the grid's slots, each unit turned
 // uniformly at random and moved a little within its slot, then set at the
 // lowest height where it clears the slope and the units placed before it
-// (docs/scenes.md, docs/stability.md). Internal to the scene library
-// (scene_setup.cpp).
+// (docs/scenes.md, docs/stability.md). With placement = "seated" the slots
+// are taken from the toe up, row by row, and each unit is then slid down the
+// face into the first trough, as a placer lets a unit down onto the rows
+// below. Internal to the scene library (scene_setup.cpp).
 #pragma once
 
 #include "collider.h"
@@ -26,7 +28,7 @@ struct PatternGrid {
 };
 
 // The poses of pattern `p` (its unit `unit`, collided as `collider`, no part
-// farther than `reach` (m) from its centre) with placement "random", clear
+// farther than `reach` (m) from its centre) with placement "random" or "seated", clear
 // of `walls` and of each other. Throws InputError, its message `key` (the
 // scene file and the pattern's key up to its last part: "FILE: key
 // 'pattern.0.") + "placement': ...", when a slot holds no pose after many

@@ -114,8 +114,8 @@ struct ScenePattern {
     double gap = 0.01;            // m
     double packing_density = 0.0; // units per Dn^2 of slope, all layers (> 0: sets spacing)
     int layers = 1;               // stacked; every other one shifted half a spacing (scene_keys.cpp)
-    std::string placement = "grid"; // grid | random
-    std::uint64_t seed = 1;         // random placement: the same seed gives the same poses
+    std::string placement = "grid"; // grid | random | seated
+    std::uint64_t seed = 1;         // random and seated placement: the same seed gives the same poses
 };
 
 // A coupled fluid run (interFoam through the armourCoupling plugin): the

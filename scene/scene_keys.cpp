@@ -294,9 +294,11 @@ const std::vector<Key<ScenePattern>> &pattern_keys() {
             "turned uniformly at random, moved up to half the free space between grid neighbours "
             "(spacing - its size) along and across the slope, and set where it clears by gap the slope, "
             "its walls and every unit placed before it (the least lifted of 8 such poses); the pile is "
-            "loose until a settle (docs/stability.md)")
-            .one_of({"grid", "random"}),
-        key("seed", &P::seed, "", "placement \"random\": the same seed gives the same poses")
+            "loose until a settle (docs/stability.md); seated: as random, but from the toe up, row by row, "
+            "and each unit then slid down the face a tenth of Dn at a time while its centre goes lower, "
+            "into the first trough (at most 5 Dn)")
+            .one_of({"grid", "random", "seated"}),
+        key("seed", &P::seed, "", "placement \"random\" or \"seated\": the same seed gives the same poses")
             .in(Range::at_least(0)),
     };
     return keys;

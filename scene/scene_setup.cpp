@@ -405,7 +405,7 @@ void pattern_units(const Scene &scene, std::size_t k, const Placement &place, Sc
         if (body_wall_penetration(pose(first, 0.0, low + p.gap), setup.units[unit], collider, setup.walls)
                 .first <= 0.0)
             break;
-    if (p.placement == "random") {
+    if (p.placement == "random" || p.placement == "seated") {
         PatternGrid grid;
         grid.slope = slope;
         grid.origin = Eigen::Vector3d(slope->toe_x, 0.0, slope->floor_z);

@@ -194,6 +194,68 @@ TEST(RandomPlacement, ASlotNoTurnedUnitFitsIsRefusedNamingTheKey) {
     }
 }
 
+// Placement "seated" takes the slots from the toe up and slides each unit
+// down the face into the first trough, as a placer lets a unit down onto the
+// rows below: the same seed gives the same poses; every unit still clears the
+// others and the walls; and the pile stands closer to the face and lower down
+// it than the random placement of the same seed (whose loose pile the settle
+// slides a median 1.6 Dn down the face: docs/results/stability_one_layer_dn4).
+TEST(SeatedPlacement, UnitsClearEverythingAndSitLowerThanTheRandomPile) {
+    const armour::SlopeFrame frame = *armour::slope_frame(stability_scene({}));
+    const auto seated = [](std::uint64_t seed) {
+        return armour::build_scene(stability_scene({"pattern.0.placement=\"seated\"",
+                                                    "pattern.0.seed=" + std::to_string(seed)}),
+                                   ARMOUR_TEST_CACHE, false);
+    };
+    const armour::SceneSetup again = seated(1);
+    for (const std::uint64_t seed : {1ull, 2ull, 17ull}) {
+        const armour::SceneSetup setup = seated(seed), loose = random_setup(seed);
+        ASSERT_EQ(setup.bodies.size(), static_cast<std::size_t>(kUnits)) << seed;
+        double closest = HUGE_VAL, nearest_wall = HUGE_VAL;
+        for (std::size_t i = 0; i < setup.bodies.size(); ++i) {
+            nearest_wall = std::min(nearest_wall, wall_gap(setup, setup.bodies[i]));
+            for (std::size_t j = i + 1; j < setup.bodies.size(); ++j)
+                closest = std::min(closest, sphere_gap(setup, setup.bodies[i], setup.bodies[j]));
+            if (seed == 1) {
+                EXPECT_EQ(setup.bodies[i].pose.position, again.bodies[i].pose.position) << i;
+                EXPECT_EQ(setup.bodies[i].pose.orientation.coeffs(), again.bodies[i].pose.orientation.coeffs())
+                    << i;
+            }
+        }
+        EXPECT_GE(closest, kGap - 1e-9) << seed;
+        EXPECT_GE(nearest_wall, 0.0) << seed;
+        // Dn: the mean centre out of the face and up it, seated and random.
+        double out = 0.0, up = 0.0, loose_out = 0.0, loose_up = 0.0;
+        for (std::size_t i = 0; i < setup.bodies.size(); ++i) {
+            const Eigen::Vector3d a = frame.local(setup.bodies[i].pose.position),
+                                  b = frame.local(loose.bodies[i].pose.position);
+            out += a.z() / (kDn * kUnits);
+            up += a.x() / (kDn * kUnits);
+            loose_out += b.z() / (kDn * kUnits);
+            loose_up += b.x() / (kDn * kUnits);
+        }
+        std::printf("seed %llu: closest units %.3g mm, wall %.3g mm; mean centre out of the face %.2f Dn "
+                    "(random %.2f), up it %.2f Dn (random %.2f)\n",
+                    static_cast<unsigned long long>(seed), 1e3 * closest, 1e3 * nearest_wall, out, loose_out, up,
+                    loose_up);
+        EXPECT_LT(out, loose_out) << seed;
+        EXPECT_LT(up, loose_up) << seed;
+    }
+}
+
+TEST(SeatedPlacement, ASlotNoTurnedUnitFitsIsRefusedNamingThePlacement) {
+    try {
+        armour::build_scene(stability_scene({"wall.0.width=0.0425", "pattern.0.columns=1",
+                                             "pattern.0.placement=\"seated\""}),
+                            ARMOUR_TEST_CACHE, false);
+        FAIL() << "a turned cube was placed in a slope 1.06 Dn wide";
+    } catch (const armour::InputError &e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("key 'pattern.0.placement': \"seated\": the unit of layer 1, row 1"), std::string::npos)
+            << what;
+    }
+}
+
 // An exact-shape engine (Bullet) collides the exact cube: placed against
 // it, 2 rows (18 cubes), they pass build_scene's own check (no surface point
 // of one deeper than 0.01 Dn inside another) and every corner of every cube
