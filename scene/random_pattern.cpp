@@ -63,16 +63,19 @@ std::vector<Slot> grid_slots(const ScenePattern &p) {
     return slots;
 }
 
-// Layer by layer, each layer's slots in a random order (in the grid's order,
-// each unit would lean the same way on the one placed before it):
-// Fisher-Yates within each layer's slots [from, to).
-std::vector<std::size_t> shuffled_within_layers(const std::vector<Slot> &slots, std::mt19937_64 &rng) {
+// The slots' order: each run of slots that `together` keeps together (in
+// the grid's order, a layer's slots or a row's are adjacent) in a random
+// order, Fisher-Yates within [from, to). In the grid's order each unit would
+// lean the same way on the one placed before it.
+template <class Together>
+std::vector<std::size_t> shuffled_within(const std::vector<Slot> &slots, std::mt19937_64 &rng,
+                                         Together together) {
     std::vector<std::size_t> order(slots.size());
     for (std::size_t i = 0; i < order.size(); ++i)
         order[i] = i;
     for (std::size_t from = 0; from < order.size();) {
         std::size_t to = from;
-        while (to < order.size() && slots[to].layer == slots[from].layer)
+        while (to < order.size() && together(slots[to], slots[from]))
             ++to;
         for (std::size_t i = to - from; i > 1; --i)
             std::swap(order[from + i - 1],
@@ -83,24 +86,15 @@ std::vector<std::size_t> shuffled_within_layers(const std::vector<Slot> &slots, 
     return order;
 }
 
+// Placement "random": layer by layer, each layer's slots in a random order.
 // Placement "seated": layer by layer and row by row from the toe up, each
 // row's slots in a random order, so that a unit slid down the face from its
 // slot meets the rows below it already in place.
-std::vector<std::size_t> toe_up_within_rows(const std::vector<Slot> &slots, std::mt19937_64 &rng) {
-    std::vector<std::size_t> order(slots.size());
-    for (std::size_t i = 0; i < order.size(); ++i)
-        order[i] = i;
-    for (std::size_t from = 0; from < order.size();) {
-        std::size_t to = from;
-        while (to < order.size() && slots[to].layer == slots[from].layer && slots[to].row == slots[from].row)
-            ++to;
-        for (std::size_t i = to - from; i > 1; --i)
-            std::swap(order[from + i - 1],
-                      order[from + std::min(i - 1, static_cast<std::size_t>(uniform01(rng) *
-                                                                            static_cast<double>(i)))]);
-        from = to;
-    }
-    return order;
+std::vector<std::size_t> placing_order(const std::vector<Slot> &slots, bool seated, std::mt19937_64 &rng) {
+    if (seated)
+        return shuffled_within(
+            slots, rng, [](const Slot &a, const Slot &b) { return a.layer == b.layer && a.row == b.row; });
+    return shuffled_within(slots, rng, [](const Slot &a, const Slot &b) { return a.layer == b.layer; });
 }
 
 // Sets the units of one pattern slot by slot, each where it clears the face
@@ -125,8 +119,7 @@ class RandomPlacer {
 
     std::vector<BodyInit> place_all(const std::string &key) {
         const std::vector<Slot> slots = grid_slots(p_);
-        const std::vector<std::size_t> order =
-            seated_ ? toe_up_within_rows(slots, rng_) : shuffled_within_layers(slots, rng_);
+        const std::vector<std::size_t> order = placing_order(slots, seated_, rng_);
         std::vector<BodyInit> bodies(slots.size()); // in the grid's order (layer, row, column)
         for (const std::size_t k : order) {
             const Slot &slot = slots[k];

@@ -20,6 +20,7 @@
 #include <optional>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -67,6 +68,18 @@ double wall_gap(const armour::SceneSetup &setup, const armour::BodyInit &b) {
             }
     }
     return gap;
+}
+
+// m: the smallest gap between any two units' clump spheres, and between any
+// unit's and a wall.
+std::pair<double, double> closest_gaps(const armour::SceneSetup &setup) {
+    double closest = HUGE_VAL, nearest_wall = HUGE_VAL;
+    for (std::size_t i = 0; i < setup.bodies.size(); ++i) {
+        nearest_wall = std::min(nearest_wall, wall_gap(setup, setup.bodies[i]));
+        for (std::size_t j = i + 1; j < setup.bodies.size(); ++j)
+            closest = std::min(closest, sphere_gap(setup, setup.bodies[i], setup.bodies[j]));
+    }
+    return {closest, nearest_wall};
 }
 
 // rad: the angle between the slope's normal and the nearest of the cube's
@@ -119,12 +132,7 @@ TEST(RandomPlacement, UnitsClearEachOtherAndTheWalls) {
     for (const std::uint64_t seed : {1ull, 2ull, 17ull, 4000000007ull}) {
         const armour::SceneSetup setup = random_setup(seed);
         ASSERT_EQ(setup.bodies.size(), static_cast<std::size_t>(kUnits)) << seed;
-        double closest = HUGE_VAL, nearest_wall = HUGE_VAL;
-        for (std::size_t i = 0; i < setup.bodies.size(); ++i) {
-            nearest_wall = std::min(nearest_wall, wall_gap(setup, setup.bodies[i]));
-            for (std::size_t j = i + 1; j < setup.bodies.size(); ++j)
-                closest = std::min(closest, sphere_gap(setup, setup.bodies[i], setup.bodies[j]));
-        }
+        const auto [closest, nearest_wall] = closest_gaps(setup);
         std::printf("seed %llu: closest units %.3g mm apart, closest wall %.3g mm\n",
                     static_cast<unsigned long long>(seed), 1e3 * closest, 1e3 * nearest_wall);
         EXPECT_GE(closest, kGap - 1e-9) << seed;
@@ -203,24 +211,19 @@ TEST(RandomPlacement, ASlotNoTurnedUnitFitsIsRefusedNamingTheKey) {
 TEST(SeatedPlacement, UnitsClearEverythingAndSitLowerThanTheRandomPile) {
     const armour::SlopeFrame frame = *armour::slope_frame(stability_scene({}));
     const auto seated = [](std::uint64_t seed) {
-        return armour::build_scene(stability_scene({"pattern.0.placement=\"seated\"",
-                                                    "pattern.0.seed=" + std::to_string(seed)}),
-                                   ARMOUR_TEST_CACHE, false);
+        return armour::build_scene(
+            stability_scene({"pattern.0.placement=\"seated\"", "pattern.0.seed=" + std::to_string(seed)}),
+            ARMOUR_TEST_CACHE, false);
     };
     const armour::SceneSetup again = seated(1);
     for (const std::uint64_t seed : {1ull, 2ull, 17ull}) {
         const armour::SceneSetup setup = seated(seed), loose = random_setup(seed);
         ASSERT_EQ(setup.bodies.size(), static_cast<std::size_t>(kUnits)) << seed;
-        double closest = HUGE_VAL, nearest_wall = HUGE_VAL;
-        for (std::size_t i = 0; i < setup.bodies.size(); ++i) {
-            nearest_wall = std::min(nearest_wall, wall_gap(setup, setup.bodies[i]));
-            for (std::size_t j = i + 1; j < setup.bodies.size(); ++j)
-                closest = std::min(closest, sphere_gap(setup, setup.bodies[i], setup.bodies[j]));
-            if (seed == 1) {
-                EXPECT_EQ(setup.bodies[i].pose.position, again.bodies[i].pose.position) << i;
-                EXPECT_EQ(setup.bodies[i].pose.orientation.coeffs(), again.bodies[i].pose.orientation.coeffs())
-                    << i;
-            }
+        const auto [closest, nearest_wall] = closest_gaps(setup);
+        for (std::size_t i = 0; seed == 1 && i < setup.bodies.size(); ++i) {
+            EXPECT_EQ(setup.bodies[i].pose.position, again.bodies[i].pose.position) << i;
+            EXPECT_EQ(setup.bodies[i].pose.orientation.coeffs(), again.bodies[i].pose.orientation.coeffs())
+                << i;
         }
         EXPECT_GE(closest, kGap - 1e-9) << seed;
         EXPECT_GE(nearest_wall, 0.0) << seed;
@@ -236,8 +239,8 @@ TEST(SeatedPlacement, UnitsClearEverythingAndSitLowerThanTheRandomPile) {
         }
         std::printf("seed %llu: closest units %.3g mm, wall %.3g mm; mean centre out of the face %.2f Dn "
                     "(random %.2f), up it %.2f Dn (random %.2f)\n",
-                    static_cast<unsigned long long>(seed), 1e3 * closest, 1e3 * nearest_wall, out, loose_out, up,
-                    loose_up);
+                    static_cast<unsigned long long>(seed), 1e3 * closest, 1e3 * nearest_wall, out, loose_out,
+                    up, loose_up);
         EXPECT_LT(out, loose_out) << seed;
         EXPECT_LT(up, loose_up) << seed;
     }
@@ -245,13 +248,14 @@ TEST(SeatedPlacement, UnitsClearEverythingAndSitLowerThanTheRandomPile) {
 
 TEST(SeatedPlacement, ASlotNoTurnedUnitFitsIsRefusedNamingThePlacement) {
     try {
-        armour::build_scene(stability_scene({"wall.0.width=0.0425", "pattern.0.columns=1",
-                                             "pattern.0.placement=\"seated\""}),
-                            ARMOUR_TEST_CACHE, false);
+        armour::build_scene(
+            stability_scene({"wall.0.width=0.0425", "pattern.0.columns=1", "pattern.0.placement=\"seated\""}),
+            ARMOUR_TEST_CACHE, false);
         FAIL() << "a turned cube was placed in a slope 1.06 Dn wide";
     } catch (const armour::InputError &e) {
         const std::string what = e.what();
-        EXPECT_NE(what.find("key 'pattern.0.placement': \"seated\": the unit of layer 1, row 1"), std::string::npos)
+        EXPECT_NE(what.find("key 'pattern.0.placement': \"seated\": the unit of layer 1, row 1"),
+                  std::string::npos)
             << what;
     }
 }
