@@ -660,7 +660,8 @@ TEST_F(SceneFile, UnknownReferences) {
     ASSERT_NE(at, std::string::npos);
     const std::string p5 = write(std::string(full).replace(at, 20, "placement = \"hexagonal\""));
     expect_error(p5, static_cast<int>(std::count(full.begin(), full.begin() + at, '\n')) + 1,
-                 "pattern.0.placement", "must be one of \"grid\", \"random\" (got \"hexagonal\")");
+                 "pattern.0.placement",
+                 "must be one of \"grid\", \"random\", \"seated\" (got \"hexagonal\")");
     const std::string path = write(full);
     const std::string typo = error_of(path, {"pattern.0.placement=\"randon\""});
     EXPECT_EQ(typo.rfind("--set: key 'pattern.0.placement': must be one of", 0), 0u) << typo;
