@@ -205,14 +205,6 @@ class DamageAnalysis : public Analysis {
         int displaced = 0, displaced_at_foot = 0, rocking = 0; // units
     };
 
-    // Whether a settled centre lies seaward of the face's foot: over the toe or
-    // the bed in front of it, not on the face. A laboratory that counts the
-    // units on the face alone leaves these out.
-    bool at_foot(const Eigen::Vector3d &centre) const {
-        const Eigen::Vector3d landward(frame_.along.x(), frame_.along.y(), 0.0);
-        return (centre - frame_.origin).dot(landward) < 0.0;
-    }
-
     // damage.csv's rows: each unit from its settled pose; counts the displaced and the rocking.
     std::string unit_rows(Counts &counts) const {
         std::string rows =
@@ -222,7 +214,7 @@ class DamageAnalysis : public Analysis {
         for (std::size_t i = 0; i < units_.size(); ++i) {
             const UnitDamageTracker &u = units_[i];
             const bool is_displaced = u.displacement() >= scene_.displaced_threshold;
-            const bool foot = at_foot(u.reference().position);
+            const bool foot = frame_.seaward_of_foot(u.reference().position);
             counts.displaced += is_displaced ? 1 : 0;
             counts.displaced_at_foot += is_displaced && foot ? 1 : 0;
             counts.rocking += u.rocking_events() > 0 ? 1 : 0;
@@ -248,12 +240,12 @@ class DamageAnalysis : public Analysis {
         const ArmourProfile before = armour_profile(frame_, setup_, reference, region_);
         const double S = eroded_area(before, armour_profile(frame_, setup_, last_, region_)) / (Dn() * Dn());
         const LayerFigures f = layer_figures(setup_, region_, before, scene_.layers);
-        settled_layer = {{"units_on_slope", f.units},
-                         {"packing_density", f.packing_density},
-                         {"porosity", f.porosity},
-                         {"layer_thickness", f.thickness},
-                         {"layer_coefficient", f.layer_coefficient}};
-        add_rock_manual_verdict(rock_manual_verdict(scene_, setup_, f), settled_layer, summary);
+        const LayerVerdict verdict = rock_manual_verdict(scene_, setup_, f);
+        settled_layer = layer_record(f, verdict);
+        settled_layer["units_at_foot"] = std::count_if(units_.begin(), units_.end(), [&](const auto &u) {
+            return frame_.seaward_of_foot(u.reference().position);
+        });
+        warn_if_outside_rock_manual(verdict, summary);
         return S;
     }
 
@@ -308,11 +300,7 @@ class DamageAnalysis : public Analysis {
     // The layer against the Rock Manual's band (rock_manual_layer.h). A
     // coupled run warned before its waves (check_coupled_scene); a dry run
     // forms its layer as it runs, so it warns here.
-    void add_rock_manual_verdict(const LayerVerdict &v, json &layer, json &summary) const {
-        layer["outside_rock_manual"] = v.judged ? json(v.outside) : json(nullptr);
-        layer["outside_reason"] = v.outside ? json(v.reason) : json(nullptr);
-        layer["rock_manual_band"] = {{"porosity", {v.band.porosity_min, v.band.porosity_max}},
-                                     {"packing_density", {v.band.packing_min, v.band.packing_max}}};
+    void warn_if_outside_rock_manual(const LayerVerdict &v, json &summary) const {
         if (v.outside && !scene_.fluid) {
             const std::string warning = rock_manual_warning(v);
             summary["warnings"].push_back("damage: " + warning);

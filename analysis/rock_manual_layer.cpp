@@ -1,6 +1,9 @@
 #include "rock_manual_layer.h"
 
+#include <algorithm>
 #include <cstdio>
+#include <nlohmann/json.hpp>
+#include <optional>
 
 namespace armour {
 
@@ -37,17 +40,56 @@ LayerVerdict rock_manual_verdict(const Scene &scene, const SceneSetup &setup, co
     return v;
 }
 
-std::string settled_layer_warning(const Scene &scene, const SceneSetup &setup,
-                                  const std::vector<BodyState> &states) {
+namespace {
+
+// The figures of the layer the bodies at `states` form on the scene's first
+// slope wall; none without a slope wall or units on its face.
+std::optional<LayerFigures> layer_on_slope(const Scene &scene, const SceneSetup &setup,
+                                           const std::vector<BodyState> &states) {
     const std::optional<SlopeFrame> frame = slope_frame(scene);
     if (!frame || states.empty())
-        return "";
+        return std::nullopt;
     const LayerRegion region = layer_region(*frame, setup, states);
     if (region.bodies.empty())
-        return "";
+        return std::nullopt;
     const ArmourProfile profile = armour_profile(*frame, setup, states, region);
-    return rock_manual_warning(
-        rock_manual_verdict(scene, setup, layer_figures(setup, region, profile, scene.layers)));
+    return layer_figures(setup, region, profile, scene.layers);
+}
+
+} // namespace
+
+std::string settled_layer_warning(const Scene &scene, const SceneSetup &setup,
+                                  const std::vector<BodyState> &states) {
+    const std::optional<LayerFigures> layer = layer_on_slope(scene, setup, states);
+    return layer ? rock_manual_warning(rock_manual_verdict(scene, setup, *layer)) : "";
+}
+
+nlohmann::json layer_record(const LayerFigures &f, const LayerVerdict &v) {
+    using nlohmann::json;
+    return {{"units_on_slope", f.units},
+            {"packing_density", f.packing_density},
+            {"porosity", f.porosity},
+            {"layer_thickness", f.thickness},
+            {"layer_coefficient", f.layer_coefficient},
+            {"outside_rock_manual", v.judged ? json(v.outside) : json(nullptr)},
+            {"outside_reason", v.outside ? json(v.reason) : json(nullptr)},
+            {"rock_manual_band",
+             {{"porosity", {v.band.porosity_min, v.band.porosity_max}},
+              {"packing_density", {v.band.packing_min, v.band.packing_max}}}}};
+}
+
+nlohmann::json settled_layer_record(const Scene &scene, const SceneSetup &setup,
+                                    const std::vector<BodyState> &states) {
+    const std::optional<LayerFigures> layer = layer_on_slope(scene, setup, states);
+    if (!layer)
+        return nullptr;
+    nlohmann::json record = layer_record(*layer, rock_manual_verdict(scene, setup, *layer));
+    const SlopeFrame frame = *slope_frame(scene);
+    record["units_at_foot"] = std::count_if(states.begin(), states.end(), [&](const BodyState &s) {
+        return frame.seaward_of_foot(s.pose.position);
+    });
+    record["units"] = states.size();
+    return record;
 }
 
 std::string rock_manual_warning(const LayerVerdict &v) {

@@ -18,6 +18,7 @@
 // Usage
 //     const LayerVerdict v = rock_manual_verdict(scene, setup, figures);
 //     if (v.judged && v.outside) warn(v.reason);
+//     summary["settled_layer"] = settled_layer_record(scene, setup, states);
 #pragma once
 
 #include "rigid_body_engine.h"
@@ -25,6 +26,7 @@
 #include "scene_setup.h"
 #include "slope_profile.h"
 
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
 
@@ -51,5 +53,17 @@ std::string rock_manual_warning(const LayerVerdict &verdict);
 // held against the band: rock_manual_warning.
 std::string settled_layer_warning(const Scene &scene, const SceneSetup &setup,
                                   const std::vector<BodyState> &states);
+
+// A layer's figures and verdict as summary.json records them (its
+// "settled_layer"): units_on_slope, packing_density (units per Dn^2),
+// porosity, layer_thickness (m), layer_coefficient, outside_rock_manual
+// (null when not judged), outside_reason and rock_manual_band.
+nlohmann::json layer_record(const LayerFigures &layer, const LayerVerdict &verdict);
+// The record of the layer the bodies at `states` form on the scene's first
+// slope wall (as the damage analysis measures the layer the waves meet),
+// with the units in all and those whose centres lie seaward of the face's
+// foot (units_at_foot); null without a slope wall or units on its face.
+nlohmann::json settled_layer_record(const Scene &scene, const SceneSetup &setup,
+                                    const std::vector<BodyState> &states);
 
 } // namespace armour

@@ -11,6 +11,11 @@ Eigen::Vector3d SlopeFrame::local(const Eigen::Vector3d &world) const {
     return {d.dot(along), d.dot(across), d.dot(normal)};
 }
 
+bool SlopeFrame::seaward_of_foot(const Eigen::Vector3d &world) const {
+    const Eigen::Vector3d landward(along.x(), along.y(), 0.0);
+    return (world - origin).dot(landward) < 0.0;
+}
+
 std::optional<SlopeFrame> slope_frame(const Scene &scene) {
     for (const SceneWall &w : scene.walls) {
         if (w.type != "slope")

@@ -42,6 +42,10 @@ struct SlopeFrame {
     double width = 0.0;                                        // m, across (y)
     double cot = 1.5;                                          // -
     Eigen::Vector3d local(const Eigen::Vector3d &world) const; // (s, y, n)
+    // Whether a point lies seaward of the face's foot (over the toe or the
+    // bed in front of it, not over the face): a laboratory that counts the
+    // units on the face alone leaves out those whose centres lie there.
+    bool seaward_of_foot(const Eigen::Vector3d &world) const;
 };
 
 // The scene's first "slope" wall; nullopt when it has none.

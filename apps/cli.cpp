@@ -119,6 +119,13 @@ CLI::App *add_run_command(CLI::App &app, RunRequest &run, std::string &run_engin
     run_cmd->add_flag("--dry-run", run.dry_run,
                       "Check everything the run checks before it starts (scene, --set, units, engine, fluid "
                       "case and tools, --out, --resume) and print its plan; write nothing to --out");
+    run_cmd->add_flag(
+        "--settle-only", run.settle_only,
+        "Scenes that settle their units first (fluid.settle_time > 0 s): settle them and stop, "
+        "without the fluid case: --out/settle/scene.settled.toml (the layer; `armour run` runs "
+        "the waves on it) and summary.json with the layer's packing (units per Dn^2), porosity, "
+        "thickness (m) and k_t against the Rock Manual's band, and the units seaward of the "
+        "face's foot (docs/stability.md)");
     return run_cmd;
 }
 

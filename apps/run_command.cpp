@@ -324,6 +324,8 @@ std::vector<std::string> check_scene_runs(const Scene &scene, const std::string 
 int run_scene(const RunRequest &r) {
     const Scene scene = load_scene(r.scene, r.overrides);
     refuse_replacing_stopped_run(r);
+    if (r.settle_only)
+        return settle_only(r, scene);
     if (!scene.series.empty())
         return run_series(r, scene);
     if (r.dry_run)

@@ -17,6 +17,7 @@ struct RunRequest {
     bool resume = false;                // continue DIR from its last checkpoint (docs/checkpoints.md)
     bool restart = false;               // replace a run DIR holds that stopped before its end
     bool dry_run = false;               // every check of a run, a plan on stdout, nothing written to DIR
+    bool settle_only = false;           // the settle a coupled run starts with, and its layer's figures
 };
 
 // Returns the exit status (0 on success); throws InputError before anything

@@ -48,6 +48,10 @@ Scene settled_scene(const Scene &scene, std::vector<SceneBody> bodies);
 Scene settle_before_coupling(const RunRequest &r, OutputFolder &folder, const Scene &scene, SceneSetup &setup,
                              nlohmann::json &report);
 
+// `armour run --settle-only`: the settle alone (settle_before_coupling) and
+// OUT/summary.json with the settled layer's figures; returns the exit status.
+int settle_only(const RunRequest &r, const Scene &scene);
+
 // A run whose checkpoints all fall at or after its end: one warning.
 void warn_if_no_checkpoint(const Scene &scene);
 // fluid.settle_friction, settle_density or settle_engine without a settle: one

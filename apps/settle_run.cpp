@@ -5,12 +5,14 @@
 
 #include "engine_registry.h"
 #include "output_folder.h"
+#include "rock_manual_layer.h"
 #include "scene_keys.h"
 #include "scene_setup.h"
 #include "scene_text.h"
 
 #include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -310,6 +312,78 @@ Scene settle_before_coupling(const RunRequest &r, OutputFolder &folder, const Sc
                          " s a unit still moved at " + figure_text(speed) +
                          " m/s and the settled pose is refused (" + e.what() + "); raise fluid.settle_time");
     }
+}
+
+// `armour run --settle-only`: a layer is looked at in minutes before hours
+// of waves are spent on it. The settle is the one a coupled run makes (its
+// OUT/settle, rerunnable with the waves as `armour run
+// OUT/settle/scene.settled.toml`); the fluid case is neither checked nor
+// built (a coupled run checks the settled layer against its mesh when it
+// starts). summary.json: the settle's report and the layer the waves would
+// meet, measured as the damage analysis measures it.
+int settle_only(const RunRequest &r, const Scene &scene) {
+    for (const auto &[given, name] :
+         {std::pair{r.resume, "--resume"}, {r.restart, "--restart"}, {r.np != 0, "--np"}})
+        if (given)
+            throw InputError(std::string("--settle-only: not with ") + name +
+                             " (a settle is not resumed, and runs in the DEM alone on one rank)");
+    if (!scene.fluid || scene.fluid->settle_time <= 0.0)
+        throw InputError(r.scene + ": key 'fluid.settle_time': --settle-only needs a scene with [fluid] that "
+                                   "settles its units before the waves (fluid.settle_time > 0 s)");
+    const auto start = std::chrono::steady_clock::now();
+    if (r.dry_run) { // the settle's checks (units, placement, settle keys, --out), nothing written
+        const fs::path out = OutputFolder::check_writable(r.out, "armour run");
+        const SceneSetup setup = build_scene(scene, r.cache.empty() ? default_cache_dir() : r.cache, true);
+        const Scene dry = settle_scene(scene, setup);
+        warn_if_settle_hands_clumps_to_hulls(scene);
+        std::printf("plan: settle %zu units for %g s (fluid.settle_time) in %s under still water at %g m, "
+                    "then stop: %s and the layer's figures in %s; no fluid case\n",
+                    setup.bodies.size(), scene.fluid->settle_time, dry.engine.c_str(),
+                    scene.fluid->water_level, (out / "settle" / "scene.settled.toml").c_str(),
+                    (out / "summary.json").c_str());
+        return 0;
+    }
+    OutputFolder folder(r.out, "armour run", OutputFolder::Mode::streaming); // refused before any work
+    SceneSetup setup = build_scene(scene, r.cache.empty() ? default_cache_dir() : r.cache, true);
+    warn_if_settle_hands_clumps_to_hulls(scene);
+    folder.open();
+    json report;
+    const Scene settled = settle_before_coupling(r, folder, scene, setup, report);
+    std::vector<BodyState> states(setup.bodies.size());
+    for (std::size_t i = 0; i < states.size(); ++i)
+        states[i].pose = setup.bodies[i].pose;
+    json summary = {{"command", "run"},
+                    {"settle_only", true},
+                    {"scene", scene.name},
+                    {"units", states.size()},
+                    {"settle", report},
+                    {"settled_layer", settled_layer_record(settled, setup, states)},
+                    {"warnings", json::array()},
+                    {"files", {{"settled_scene", "settle/scene.settled.toml"}, {"settle", "settle"}}},
+                    {"si_units",
+                     {{"packing_density", "units per Dn^2"},
+                      {"layer_thickness", "m"},
+                      {"lengths", "m"},
+                      {"speed", "m/s"},
+                      {"wall_seconds", "s"}}}};
+    summary["settle"]["scene"] = "settle/scene.settled.toml";
+    if (const std::string w = unsettled_warning(report); !w.empty())
+        summary["warnings"].push_back(w);
+    if (const std::string w = settled_layer_warning(settled, setup, states); !w.empty()) {
+        std::fprintf(stderr, "armour: warning: %s\n", w.c_str());
+        summary["warnings"].push_back(w);
+    }
+    const json &layer = summary["settled_layer"];
+    summary["wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    write_text_file(folder.claim("summary.json"), summary.dump(2) + "\n");
+    if (layer.is_object())
+        std::printf("run: settled layer: %d of %zu units in it (%d seaward of the face's foot), packing %.3g "
+                    "units/Dn^2, porosity %.3g, k_t %.3g -> %s\n",
+                    layer["units_on_slope"].get<int>(), states.size(), layer["units_at_foot"].get<int>(),
+                    layer["packing_density"].get<double>(), layer["porosity"].get<double>(),
+                    layer["layer_coefficient"].get<double>(),
+                    (folder.target() / "settle" / "scene.settled.toml").c_str());
+    return 0;
 }
 
 } // namespace armour

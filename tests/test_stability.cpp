@@ -542,4 +542,69 @@ TEST(StabilityCubes, ASettleDensityHoldsOneLayerForEveryUnitDensity) {
             fs::remove_all(r->dir);
 }
 
+// `armour run --settle-only` (docs/stability.md): the settle alone, without
+// the fluid case, leaves the layer a coupled run of the same scene starts
+// from, pose for pose, and measures it as that run's damage analysis does.
+TEST(StabilityCubes, SettleOnlyLeavesTheLayerACoupledRunStartsFrom) {
+    // The settle runs the DEM in chunks of run.output_interval, and a pile
+    // settling is chaotic: the two runs share it.
+    const std::string layer_seed = "--set pattern.0.seed=2 --set run.output_interval=0.01 ";
+    const SceneRun settle = run_stability("settle_only", layer_seed + "--settle-only");
+    const SceneRun coupled =
+        run_stability("settle_then_waves", layer_seed + "--set waves.Hs=0.001 --set run.duration=0.01");
+    ASSERT_EQ(settle.status, 0) << settle.output;
+    ASSERT_EQ(coupled.status, 0) << coupled.output;
+    EXPECT_FALSE(fs::exists(settle.out / "case")) << "the settle alone builds no fluid case";
+    EXPECT_FALSE(fs::exists(settle.out / "bodies.h5"));
+    // The same poses, to the last digit (the scenes differ in the run's keys).
+    const auto bodies = [](const fs::path &out) {
+        const std::string text = settled_layer_text(out);
+        const auto from = text.find("[[body]]");
+        return from == std::string::npos ? "" : text.substr(from, text.find("[[porous]]") - from);
+    };
+    EXPECT_FALSE(bodies(settle.out).empty());
+    EXPECT_EQ(bodies(settle.out), bodies(coupled.out));
+    // The same figures: the damage analysis reads the poses back from the
+    // engine (the last digit may differ).
+    const json &alone = settle.summary["settled_layer"], &waves = coupled.summary["damage"]["settled_layer"];
+    ASSERT_TRUE(alone.is_object() && waves.is_object()) << settle.summary.dump(2);
+    for (const char *key : {"packing_density", "porosity", "layer_thickness", "layer_coefficient"})
+        EXPECT_NEAR(alone[key].get<double>(), waves[key].get<double>(), 1e-9 * waves[key].get<double>())
+            << key;
+    EXPECT_EQ(alone["units_on_slope"], waves["units_on_slope"]);
+    EXPECT_EQ(alone["outside_rock_manual"], waves["outside_rock_manual"]);
+    EXPECT_EQ(alone["units_at_foot"], waves["units_at_foot"]);
+    EXPECT_EQ(alone["units"].get<int>(), 45);
+    // The units seaward of the face's foot are the damage analysis' at_foot
+    // units (damage.csv).
+    std::vector<std::string> header;
+    const auto rows = csv_rows(coupled.out / "damage.csv", header);
+    double at_foot = 0.0;
+    const auto column = std::find(header.begin(), header.end(), "at_foot") - header.begin();
+    for (const auto &row : rows)
+        at_foot += row.at(static_cast<std::size_t>(column));
+    EXPECT_EQ(alone["units_at_foot"].get<int>(), static_cast<int>(at_foot));
+    EXPECT_EQ(settle.summary["settle"]["scene"], "settle/scene.settled.toml");
+    EXPECT_GT(settle.summary["wall_seconds"].get<double>(), 0.0);
+    if (!HasFailure())
+        for (const SceneRun *r : {&settle, &coupled})
+            fs::remove_all(r->dir);
+}
+
+// A scene that does not settle, or a settle asked to resume: refused in one
+// line naming the key or option, nothing written.
+TEST(StabilityCubes, SettleOnlyWithoutASettleIsRefused) {
+    for (const std::string sets : {"--settle-only --set fluid.settle_time=0", "--settle-only --resume"}) {
+        const SceneRun r = run_stability("settle_refused", sets);
+        EXPECT_EQ(r.status, 2) << r.output;
+        EXPECT_EQ(r.output.rfind("armour: error: ", 0), 0u) << r.output;
+        EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+        EXPECT_NE(r.output.find(sets.find("resume") != std::string::npos ? "--resume" : "fluid.settle_time"),
+                  std::string::npos)
+            << r.output;
+        EXPECT_FALSE(fs::exists(r.out));
+        fs::remove_all(r.dir);
+    }
+}
+
 } // namespace
