@@ -107,7 +107,7 @@ class RandomPlacer {
                  const Collider &collider, double reach, double Dn, const std::vector<Wall> &walls)
         : p_(p), grid_(grid), slope_(*grid.slope), unit_(unit), template_(unit_template), collider_(collider),
           reach_(reach), Dn_(Dn), walls_(walls), rng_(p.seed), seated_(p.placement == "seated"),
-          play_(0.5 * std::max(0.0, grid.spacing - grid.size)),
+          clear_of_toe_(p.clear_of_toe.value_or(false)), play_(0.5 * std::max(0.0, grid.spacing - grid.size)),
           step_top_(slope_.floor_z + slope_.toe_height) {
         if (collider.spheres)
             for (const auto &sphere : unit_template.clump)
@@ -131,8 +131,9 @@ class RandomPlacer {
                                           std::to_string(slot.col + 1);
                 throw InputError(
                     where + ": each of " + std::to_string(kDraws) +
-                    " random poses cuts a wall or leaves run.domain_min/domain_max; raise spacing, "
-                    "or use fewer rows, columns or layers");
+                    " random poses cuts a wall or leaves run.domain_min/domain_max" +
+                    (clear_of_toe_ ? " or sets its centre seaward of the toe (clear_of_toe)" : "") +
+                    "; raise spacing, or use fewer rows, columns or layers");
             }
             placed_.push_back(&bodies[k]);
             top_.push_back(top);
@@ -176,6 +177,8 @@ class RandomPlacer {
                 continue;
             if (seated_)
                 n = slide_down(q, s, y, e.below, b, n);
+            if (clear_of_toe_ && b.pose.position.x() < slope_.toe_x) // still, after set_on_face's shifts
+                continue;
             ++choices;
             if (n - e.below - p_.gap < least) {
                 least = n - e.below - p_.gap;
@@ -232,10 +235,12 @@ class RandomPlacer {
     // The pose `b` turned by q at s up the face and y across, lifted clear
     // (lift) and moved up the slope off the toe step's face; returns its
     // height out of the face (m). What of the unit lies below the step's top
-    // moves landward of its face by gap, at most 4 times.
+    // moves landward of its face by gap (with clear_of_toe, its centre
+    // landward of the foot), at most 4 times (16 with clear_of_toe: each
+    // shift up lifts the unit onto the units below, seaward again).
     double set_on_face(const Eigen::Quaterniond &q, double s, double y, double below, BodyInit &b) const {
         double n = 0.0;
-        for (int shift = 0; shift < 4; ++shift) {
+        for (int shift = 0; shift < (clear_of_toe_ ? 16 : 4); ++shift) {
             n = lift(q, s, y, below, b);
             double short_of = 0.0; // m in x
             for (const auto &[c, radius] : parts_) {
@@ -243,6 +248,11 @@ class RandomPlacer {
                 if (slope_.toe_height > 0.0 && w.z() - radius < step_top_ + p_.gap)
                     short_of = std::max(short_of, slope_.toe_x + radius + p_.gap - w.x());
             }
+            // clear_of_toe: a unit lifted out of the lowest rows would stand
+            // seaward over the toe (the face's normal leans seaward); a
+            // placer sets it higher up the face instead.
+            if (clear_of_toe_)
+                short_of = std::max(short_of, slope_.toe_x - b.pose.position.x());
             if (short_of <= 0.0)
                 break;
             s += short_of / grid_.along.x() + 0.001 * Dn_;
@@ -305,9 +315,10 @@ class RandomPlacer {
     const double reach_, Dn_;
     const std::vector<Wall> &walls_;
     std::mt19937_64 rng_;
-    const bool seated_;     // placement "seated": toe up, each unit slid down into its trough
-    const double play_;     // m: how far a unit may move off its slot's centre, along and across
-    const double step_top_; // m, z: the toe step's top
+    const bool seated_;       // placement "seated": toe up, each unit slid down into its trough
+    const bool clear_of_toe_; // no centre seaward of the face's foot
+    const double play_;       // m: how far a unit may move off its slot's centre, along and across
+    const double step_top_;   // m, z: the toe step's top
     std::vector<Part> parts_;
     std::vector<const BodyInit *> placed_;
     std::vector<double> top_; // m: each placed unit's highest point above the face

@@ -116,6 +116,10 @@ struct ScenePattern {
     int layers = 1;               // stacked; every other one shifted half a spacing (scene_keys.cpp)
     std::string placement = "grid"; // grid | random | seated
     std::uint64_t seed = 1;         // random and seated placement: the same seed gives the same poses
+    // random and seated: true sets no unit's centre seaward of the slope's
+    // foot (toe_x); unset (as every layer kept before it) or false lets it.
+    // Unset is not written, so a scene without it keeps its text and hash.
+    std::optional<bool> clear_of_toe;
 };
 
 // A coupled fluid run (interFoam through the armourCoupling plugin): the

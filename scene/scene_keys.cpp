@@ -300,6 +300,10 @@ const std::vector<Key<ScenePattern>> &pattern_keys() {
             .one_of({"grid", "random", "seated"}),
         key("seed", &P::seed, "", "placement \"random\" or \"seated\": the same seed gives the same poses")
             .in(Range::at_least(0)),
+        key("clear_of_toe", &P::clear_of_toe, "",
+            "placement \"random\" or \"seated\": true sets every unit with its centre landward of the slope "
+            "wall's foot (toe_x), none over the toe in front of it, as a placer starts the layer on the toe; "
+            "unset or false, the pile's lowest units may stand out over it (docs/stability.md)"),
     };
     return keys;
 }

@@ -258,6 +258,10 @@ void read_placements(const Table &root, Scene &s) {
         if (wall->type != "slope")
             t.fail("wall", "wall " + toml_string(p.wall) + " is of type " + toml_string(wall->type) +
                                "; a pattern needs a \"slope\" wall");
+        if (p.clear_of_toe.value_or(false) && p.placement == "grid")
+            t.fail("clear_of_toe",
+                   "is for placement \"random\" or \"seated\" (a grid faces the slope from its "
+                   "first row up)");
         s.patterns.push_back(p);
     }
     // An empty wave flume ([waves] regular or irregular) is a scene too.

@@ -246,6 +246,42 @@ TEST(SeatedPlacement, UnitsClearEverythingAndSitLowerThanTheRandomPile) {
     }
 }
 
+// pattern.0.clear_of_toe: the random pile lifts its lowest units out of
+// the face, whose normal leans seaward, and sets some of their centres over
+// the toe in front of the face's foot (the study's layers: 6-9 of 99); with
+// the key each such unit is set higher up the face instead: no centre
+// seaward of the foot, on the scene's toe step and on one 2 Dn high, every
+// unit still clear of the others and the walls, while the same seeds without
+// it set some there (the check can fail).
+TEST(RandomPlacement, ClearOfToeSetsNoCentreSeawardOfTheFoot) {
+    const armour::SlopeFrame frame = *armour::slope_frame(stability_scene({}));
+    const auto seaward = [&](const armour::SceneSetup &setup) {
+        return std::count_if(setup.bodies.begin(), setup.bodies.end(), [&](const armour::BodyInit &b) {
+            return frame.seaward_of_foot(b.pose.position);
+        });
+    };
+    long loose_seaward = 0;
+    for (const std::string toe : {"0.04", "0.08"})
+        for (const std::uint64_t seed : {1ull, 2ull, 17ull}) {
+            const armour::SceneSetup clear =
+                random_setup(seed, {"pattern.0.clear_of_toe=true", "wall.0.toe_height=" + toe});
+            ASSERT_EQ(clear.bodies.size(), static_cast<std::size_t>(kUnits)) << seed;
+            EXPECT_EQ(seaward(clear), 0) << seed << " toe " << toe;
+            const auto [closest, nearest_wall] = closest_gaps(clear);
+            EXPECT_GE(closest, kGap - 1e-9) << seed;
+            EXPECT_GE(nearest_wall, 0.0) << seed;
+            loose_seaward += seaward(random_setup(seed, {"wall.0.toe_height=" + toe}));
+        }
+    EXPECT_GT(loose_seaward, 0);
+    // A grid faces the slope from its first row up: the key is refused there.
+    try {
+        stability_scene({"pattern.0.placement=\"grid\"", "pattern.0.clear_of_toe=true"});
+        ADD_FAILURE() << "clear_of_toe with a grid was read";
+    } catch (const armour::InputError &e) {
+        EXPECT_NE(std::string(e.what()).find("key 'pattern.0.clear_of_toe'"), std::string::npos) << e.what();
+    }
+}
+
 TEST(SeatedPlacement, ASlotNoTurnedUnitFitsIsRefusedNamingThePlacement) {
     try {
         armour::build_scene(
