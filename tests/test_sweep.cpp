@@ -75,6 +75,8 @@ std::vector<Row> read_csv(const fs::path &path) {
     std::vector<std::string> header;
     std::vector<Row> rows;
     for (std::string line; std::getline(in, line);) {
+        if (line.rfind("#", 0) == 0) // a comment line (damage.csv's units)
+            continue;
         std::vector<std::string> cells;
         std::stringstream s(line);
         for (std::string cell; std::getline(s, cell, ',');)
@@ -111,6 +113,17 @@ class SweepTest : public ::testing::Test {
         const fs::path file = dir_ / "tilt.toml";
         write(file, "scene = \"" + kSource + "/scenes/tilt_cube.toml\"\n" + extra +
                         "[vary]\n\"material.0.friction\" = [0.3, 0.5]\n\"unit.0.spheres\" = [20, 50]\n");
+        return file;
+    }
+
+    // The shipped stability scene CI-sized (5 rows), its settle cut to 1 s, at
+    // three densities of one seed: three layers for `--settle-only`.
+    fs::path layers_sweep() {
+        const fs::path file = dir_ / "layers.toml";
+        write(file, "scene = \"" + kSource +
+                        "/scenes/stability_cubes.toml\"\nseeds = [2]\nseed_key = [\"pattern.0.seed\"]\n"
+                        "[vary]\n\"unit.0.density\" = [1845, 2050, 2475]\n"
+                        "[set]\n\"pattern.0.rows\" = 5\n\"fluid.settle_time\" = 1.0\n");
         return file;
     }
 
@@ -291,6 +304,141 @@ TEST_F(SweepTest, ASeriesSweepVariesTheStepsSeedsAndTheLayersSeed) {
     EXPECT_EQ(bad.status, 2) << bad.output;
     EXPECT_NE(bad.output.find("series.2.seed"), std::string::npos) << bad.output;
     EXPECT_FALSE(fs::exists(dir_ / "out"));
+}
+
+// `--settle-only`: each case is `armour run --settle-only` of its scene (the
+// layer its waves would meet, pose for pose), results.csv holds the layers'
+// figures, the same command again skips the settled cases, and a sweep with
+// waves into the same folder is refused (a settled case is no run with waves).
+TEST_F(SweepTest, SettleOnlySweepSettlesEachCasesLayerAlone) {
+    const fs::path sweep = layers_sweep(), out = dir_ / "out";
+    const std::string command = kArmour + " sweep " + sweep.string() + " --out " + out.string();
+    const Result r = run(command + " --settle-only --jobs 2");
+    ASSERT_EQ(r.status, 0) << r.output;
+    const std::vector<Row> rows = read_csv(out / "results.csv");
+    ASSERT_EQ(rows.size(), 3u) << read_text(out / "results.csv");
+    for (const Row &row : rows) {
+        EXPECT_EQ(row.at("status"), "done");
+        // A settled double layer of cubes (the Rock Manual's band: 0.35-0.55).
+        const double porosity = std::stod(row.at("settled_layer.porosity"));
+        EXPECT_GT(porosity, 0.35) << row.at("case");
+        EXPECT_LT(porosity, 0.55) << row.at("case");
+        EXPECT_GT(std::stod(row.at("settled_layer.packing_density")), 0.9) << row.at("case");
+        EXPECT_GE(std::stoi(row.at("settled_layer.units_at_foot")), 0) << row.at("case");
+        const fs::path run_dir = out / "cases" / row.at("case") / "run";
+        EXPECT_FALSE(fs::exists(run_dir / "case")) << "a settle alone builds no fluid case";
+        EXPECT_FALSE(fs::exists(run_dir / "bodies.h5"));
+    }
+    // The report's table heads with the layers' figures (no damage analysis ran).
+    EXPECT_NE(read_text(out / "report.md").find("| settled_layer.porosity | settled_layer.packing_density |"),
+              std::string::npos)
+        << read_text(out / "report.md");
+    // The case is the command a user runs on its scene: the same layer to the last digit.
+    const fs::path case_dir = out / "cases" / "density-1845_seed-2";
+    const Result alone = run(kArmour + " run " + (case_dir / "scene.toml").string() + " --out " +
+                             (dir_ / "alone").string() + " --settle-only");
+    ASSERT_EQ(alone.status, 0) << alone.output;
+    const auto bodies = [](const fs::path &run_dir) {
+        const std::string text = read_text(run_dir / "settle" / "scene.settled.toml");
+        const auto from = text.find("[[body]]");
+        return from == std::string::npos ? std::string() : text.substr(from, text.find("[[porous]]") - from);
+    };
+    EXPECT_FALSE(bodies(dir_ / "alone").empty());
+    EXPECT_EQ(bodies(case_dir / "run"), bodies(dir_ / "alone"));
+    EXPECT_NE(bodies(case_dir / "run"), bodies(out / "cases" / "density-2050_seed-2" / "run"))
+        << "each density settles its own layer";
+    const Result again = run(command + " --settle-only");
+    EXPECT_EQ(again.status, 0) << again.output;
+    EXPECT_NE(again.output.find("0 to run, 3 done before"), std::string::npos) << again.output;
+    // Waves into the settles' folder, or settles beside kept wave runs: refused, nothing touched.
+    const std::string before = read_text(out / "results.csv");
+    for (const std::string &bad : {command, command + " --settle-only --kept " + out.string()}) {
+        const Result refused = run(bad);
+        EXPECT_EQ(refused.status, 2) << refused.output;
+        EXPECT_EQ(refused.output.rfind("armour: error: ", 0), 0u) << refused.output;
+        EXPECT_EQ(std::count(refused.output.begin(), refused.output.end(), '\n'), 1) << refused.output;
+        EXPECT_NE(refused.output.find("--settle-only"), std::string::npos) << refused.output;
+    }
+    EXPECT_EQ(read_text(out / "results.csv"), before);
+    EXPECT_TRUE(fs::exists(case_dir / "run" / "settle" / "scene.settled.toml"));
+    // A scene that does not settle: refused before anything runs, naming the case and key.
+    const Result no_settle = run(kArmour + " sweep " + tilt_sweep().string() + " --out " +
+                                 (dir_ / "tilt").string() + " --settle-only");
+    EXPECT_EQ(no_settle.status, 2) << no_settle.output;
+    EXPECT_EQ(std::count(no_settle.output.begin(), no_settle.output.end(), '\n'), 1) << no_settle.output;
+    EXPECT_NE(no_settle.output.find("fluid.settle_time"), std::string::npos) << no_settle.output;
+    EXPECT_FALSE(fs::exists(dir_ / "tilt"));
+}
+
+// studies/settled_layers.py on a settle-only sweep: each layer's proud units
+// are seats.py's, the densities paired seed by seed against --against's, and
+// with --curve a kept curve's cases joined to the layers they ran on: with
+// each case's displaced units set to its layer's proud units (expected 1
+// each), the rank correlation of the two is 1; a case whose body sits 5 mm
+// from the layer's seat is refused.
+TEST_F(SweepTest, SettledLayersCountEachLayersWeakSeatsAndJoinACurve) {
+    const fs::path sweep = layers_sweep(), out = dir_ / "out";
+    const Result r = run(kArmour + " sweep " + sweep.string() + " --out " + out.string() + " --settle-only");
+    ASSERT_EQ(r.status, 0) << r.output;
+    const std::string python = "/usr/bin/python3 " + kSource + "/studies/";
+    // Each layer's seats as seats.py measures them, and a kept curve made of them.
+    std::map<std::string, int> proud;
+    std::string results =
+        "case,unit.0.density,seed,status,Ns,N_od,units_displaced,units_displaced_van_der_meer,"
+        "waves.waves,s_om\n";
+    for (const std::string density : {"1845", "2050", "2475"}) {
+        const std::string id = "density-" + density + "_seed-2";
+        const fs::path seats = dir_ / ("seats-" + density);
+        const Result s = run(python + "seats.py --layer 2=" +
+                             (out / "cases" / id / "run" / "settle" / "scene.settled.toml").string() +
+                             " --out " + seats.string());
+        ASSERT_EQ(s.status, 0) << s.output;
+        std::string damage = "# damage per unit\nbody,unit,s_m,y_m,final_displacement_over_Dn,displaced\n";
+        const std::vector<Row> seat_rows = read_csv(seats / "seats.csv");
+        ASSERT_EQ(seat_rows.size(), 45u);
+        for (const Row &seat : seat_rows) {
+            proud[density] += std::stod(seat.at("above_neighbours_Dn")) > 0.0;
+            damage += seat.at("body") + ",cube," + seat.at("s_m") + "," + seat.at("y_m") + ",0.01,0\n";
+        }
+        write(dir_ / "curve" / "cases" / id / "run" / "damage.csv", damage);
+        results +=
+            id + "," + density + ".0,2,done,3.0,0.5," + std::to_string(proud[density]) + ",1.0,26,0.03\n";
+    }
+    write(dir_ / "curve" / "results.csv", results);
+    const std::string script = python + "settled_layers.py " + out.string() + " --against 2050 --curve " +
+                               (dir_ / "curve").string() + " --out " + (dir_ / "sl").string();
+    const Result sl = run(script);
+    ASSERT_EQ(sl.status, 0) << sl.output;
+    const std::vector<Row> sweep_rows = read_csv(out / "results.csv");
+    std::map<std::string, double> porosity;
+    for (const Row &row : sweep_rows)
+        porosity[row.at("unit.0.density").substr(0, 4)] = std::stod(row.at("settled_layer.porosity"));
+    const std::vector<Row> layers = read_csv(dir_ / "sl" / "layers.csv");
+    ASSERT_EQ(layers.size(), 3u) << sl.output;
+    for (const Row &layer : layers) {
+        const std::string density = layer.at("case").substr(8, 4);
+        EXPECT_EQ(std::stoi(layer.at("proud_units")), proud[density]) << layer.at("case");
+        EXPECT_NEAR(std::stod(layer.at("porosity")), porosity[density], 1e-5) << layer.at("case");
+    }
+    const json summary = json::parse(read_text(dir_ / "sl" / "summary.json"));
+    EXPECT_NEAR(summary["paired"]["1845"]["porosity"]["mean_difference"].get<double>(),
+                porosity["1845"] - porosity["2050"], 1e-5);
+    ASSERT_FALSE(proud["1845"] == proud["2050"] && proud["2050"] == proud["2475"])
+        << "three layers as proud as each other: no rank to correlate";
+    EXPECT_NEAR(summary["curve"]["correlations"]["proud_units"]["spearman"].get<double>(), 1.0, 1e-12);
+    // A case that did not run on the layer settled again.
+    {
+        const fs::path damage = dir_ / "curve" / "cases" / "density-2475_seed-2" / "run" / "damage.csv";
+        std::string text = read_text(damage);
+        const std::size_t row = text.find("\n0,cube,") + 8;
+        const std::size_t comma = text.find(',', row);
+        text.replace(row, comma - row, std::to_string(std::stod(text.substr(row, comma - row)) + 0.005));
+        write(damage, text);
+    }
+    const Result moved = run(script);
+    EXPECT_EQ(moved.status, 2) << moved.output;
+    EXPECT_NE(moved.output.find("armour: error: "), std::string::npos) << moved.output;
+    EXPECT_NE(moved.output.find("density-2475_seed-2"), std::string::npos) << moved.output;
 }
 
 // A case's scene hash is of the resolved scene's keys, not of where the scene

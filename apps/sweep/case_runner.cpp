@@ -335,13 +335,19 @@ int run_case(const fs::path &case_dir, const std::string &armour_exe) {
     record_attempt(case_dir, r, plan, start);
     std::vector<std::string> args = {armour_exe, "run", (case_dir / "scene.toml").string(), "--out",
                                      (case_dir / "run").string()};
-    if (const int np = plan.value("np", 0); np > 0) {
-        args.push_back("--np");
-        args.push_back(std::to_string(np));
+    if (plan.value("settle_only", false)) {
+        // A settle alone: one rank, nothing to resume; its OutputFolder replaces what an earlier
+        // attempt left in run/ (armour's own folder).
+        args.emplace_back("--settle-only");
+    } else {
+        if (const int np = plan.value("np", 0); np > 0) {
+            args.push_back("--np");
+            args.push_back(std::to_string(np));
+        }
+        // Without a checkpoint (or a series' steps) of the same scene the run starts again, replacing
+        // whatever an earlier attempt left in run/.
+        args.emplace_back(start.checkpoint || start.series ? "--resume" : "--restart");
     }
-    // Without a checkpoint (or a series' steps) of the same scene the run starts again, replacing
-    // whatever an earlier attempt left in run/.
-    args.emplace_back(start.checkpoint || start.series ? "--resume" : "--restart");
     std::signal(SIGTERM, on_stop);
     std::signal(SIGINT, on_stop);
     std::signal(SIGHUP, on_stop);

@@ -19,6 +19,7 @@
 
 #include "sweep_table.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -28,9 +29,15 @@ namespace armour {
 struct SweepContext {
     std::filesystem::path out;
     SweepPlan plan;
-    std::string armour_exe; // absolute path of the armour executable
-    std::string executor;   // "local" | "slurm"
+    std::string armour_exe;   // absolute path of the armour executable
+    std::string executor;     // "local" | "slurm"
+    bool settle_only = false; // each case runs its settle alone (armour run --settle-only)
 };
+
+// The MPI ranks a case runs on: [run] np, one for a settle alone.
+inline int ranks_per_case(const SweepContext &ctx) {
+    return ctx.settle_only ? 1 : std::max(1, ctx.plan.spec.np);
+}
 
 // Reads the cases' folders, writes the tables and returns them.
 SweepTable refresh_tables(const SweepContext &ctx, const std::set<std::string> &skipped);

@@ -109,7 +109,7 @@ std::string slurm_script(const SweepContext &ctx, std::size_t tasks) {
     if (s.max_concurrent > 0)
         o << "%" << s.max_concurrent;
     o << "\n#SBATCH --output=" << (slurm / "task-%a.out").string() << "\n"
-      << "#SBATCH --ntasks=" << std::max(1, ctx.plan.spec.np) << "\n"
+      << "#SBATCH --ntasks=" << ranks_per_case(ctx) << "\n"
       << "#SBATCH --cpus-per-task=" << std::max(1, s.cpus_per_case) << "\n";
     if (!s.partition.empty())
         o << "#SBATCH --partition=" << s.partition << "\n";

@@ -44,9 +44,13 @@ struct SweepCase {
 struct SweepPlan {
     SweepSpec spec;
     std::vector<std::string> columns; // the varied keys: [vary] in order, then new [[case]] keys
-    std::string analysis;             // the scene's analysis kind
+    std::string analysis;             // the scene's analysis kind (kSettleOnly: none, settles alone)
     std::vector<SweepCase> cases;
 };
+
+// SweepPlan::analysis of a sweep whose cases settle their layers alone
+// (--settle-only): no analysis runs, the layers' figures head the tables.
+inline constexpr const char *kSettleOnly = "settle";
 
 SweepPlan plan_sweep(const SweepSpec &spec);
 

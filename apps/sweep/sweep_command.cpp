@@ -112,6 +112,7 @@ json plan_json(const SweepContext &ctx) {
             {"np", ctx.plan.spec.np},
             {"timeout", ctx.plan.spec.timeout},
             {"armour", ctx.armour_exe},
+            {"settle_only", ctx.settle_only},
             {"cases", cases}};
 }
 
@@ -130,6 +131,7 @@ SweepContext read_context(const fs::path &out) {
     ctx.plan.spec.seeds = j.value("seeds", std::vector<std::int64_t>{});
     ctx.plan.analysis = j.value("analysis", "");
     ctx.plan.columns = j.value("varied", std::vector<std::string>{});
+    ctx.settle_only = j.value("settle_only", false);
     for (const auto &c : j["cases"]) {
         SweepCase sc;
         sc.id = c.value("case", "");
@@ -260,7 +262,7 @@ SweepActions decide_actions(const SweepPlan &plan, const SweepTable &before,
 // Each case to run as `armour run` checks it before it writes (placement,
 // engine step, fluid case, waves): beyond the scene reader, a case refused
 // at its start on a cluster costs a queue, and a local sweep's hours.
-void check_cases_run(const SweepPlan &plan, const std::vector<std::size_t> &to_run) {
+void check_cases_run(const SweepPlan &plan, const std::vector<std::size_t> &to_run, bool settle_only) {
     const bool terminal = ::isatty(STDERR_FILENO) != 0;
     for (std::size_t k = 0; k < to_run.size(); ++k) {
         const SweepCase &c = plan.cases[to_run[k]];
@@ -269,6 +271,10 @@ void check_cases_run(const SweepPlan &plan, const std::vector<std::size_t> &to_r
                          c.id.c_str());
         try {
             const Scene scene = load_scene(plan.spec.scene, c.overrides);
+            if (settle_only && (!scene.fluid || scene.fluid->settle_time <= 0.0))
+                throw InputError(
+                    "key 'fluid.settle_time': --settle-only needs a scene that settles its units "
+                    "before the waves (fluid.settle_time > 0 s)");
             check_scene_runs(scene, default_cache_dir(), plan.spec.np);
         } catch (const InputError &e) {
             if (terminal)
@@ -284,9 +290,11 @@ void check_cases_run(const SweepPlan &plan, const std::vector<std::size_t> &to_r
 // comments for its copy in DIR/sweep.toml: a kept copy then says by itself
 // how its cases were made (empty when the file was run as written).
 std::string command_line_note(const SweepRequest &r) {
-    if (r.seeds.empty() && r.overrides.empty())
+    if (r.seeds.empty() && r.overrides.empty() && !r.settle_only)
         return "";
     std::string line = "# armour sweep ran this file with";
+    if (r.settle_only)
+        line += " --settle-only";
     if (!r.seeds.empty()) {
         line += " --seeds ";
         for (std::size_t i = 0; i < r.seeds.size(); ++i)
@@ -294,7 +302,8 @@ std::string command_line_note(const SweepRequest &r) {
     }
     for (const std::string &kv : r.overrides)
         line += " --set '" + kv + "'";
-    return "\n" + line + "\n# (--seeds in place of the file's seeds; --set after its [set], in every case)\n";
+    return "\n" + line + "\n# (" + (r.settle_only ? "--settle-only: each case's settle alone; " : "") +
+           "--seeds in place of the file's seeds; --set after its [set], in every case)\n";
 }
 
 // The sweep's own files in DIR (its marker first), the sweep file as run
@@ -333,6 +342,7 @@ void write_sweep_folder(const SweepContext &ctx, const std::string &sweep_file, 
                                                 {"resume_hash", c.resume_hash},
                                                 {"duration", c.duration},
                                                 {"np", ctx.plan.spec.np},
+                                                {"settle_only", ctx.settle_only},
                                                 {"timeout", ctx.plan.spec.timeout},
                                                 {"si_units", {{"timeout", "s"}, {"duration", "s"}}}}
                                                    .dump(2) +
@@ -380,6 +390,11 @@ CLI::App *add_sweep_command(CLI::App &app, SweepRequest &r) {
         ->delimiter(',')
         ->allow_extra_args(false) // one comma-separated word: the sweep file after it stays the sweep file
         ->check(integer_at_least(0));
+    cmd->add_flag("--settle-only", r.settle_only,
+                  "Run each case's settle alone (`armour run --settle-only`: the layer its waves would "
+                  "meet, no fluid case; scenes with fluid.settle_time > 0 s): results.csv gains the "
+                  "layers' figures (settled_layer.porosity, .packing_density in units per Dn^2, "
+                  ".units_at_foot, ...); --out then holds settles only");
     cmd->add_option("--collect", r.collect,
                     "Gather the results of a sweep submitted earlier into DIR (waits for "
                     "its Slurm job to end)");
@@ -404,6 +419,9 @@ void check_sweep_options(const SweepRequest &r) {
             throw InputError("--seeds: seed " + std::to_string(r.seeds[i]) + " given twice");
     if (r.no_wait && r.executor != "slurm")
         throw InputError("--no-wait: only with --executor slurm");
+    if (r.settle_only && !r.kept.empty())
+        throw InputError("--kept: not with --settle-only (a kept folder holds runs with waves; a settle "
+                         "takes a minute: run it again)");
     if (r.jobs > 0 && r.executor == "slurm") // else it would be ignored without a word
         throw InputError(
             "--jobs: only with --executor local (a Slurm array runs [slurm] max_concurrent cases "
@@ -423,6 +441,20 @@ void check_slurm_out(const fs::path &out, bool dry_run) {
                          out.string() + "`");
 }
 
+// A sweep's --out holds settles alone or runs with waves, never both: a
+// settled case would otherwise count as done for a sweep with waves (the
+// same scene), and the reverse.
+void check_same_kind(const fs::path &out, bool settle_only) {
+    std::ifstream in(out / "sweep.json");
+    const json j = in ? json::parse(in, nullptr, false) : json();
+    if (!j.is_object() || j.value("settle_only", false) == settle_only)
+        return;
+    throw InputError("--out " + out.string() +
+                     (settle_only ? ": holds a sweep with waves; --settle-only needs a folder of its own"
+                                  : ": holds a sweep's settles alone (--settle-only); a sweep with waves "
+                                    "needs a folder of its own (or add --settle-only to go on with it)"));
+}
+
 } // namespace
 
 int run_sweep(const SweepRequest &r) {
@@ -434,9 +466,9 @@ int run_sweep(const SweepRequest &r) {
     }
     if (!r.collect.empty()) {
         if (!r.sweep_file.empty() || !r.out.empty() || !r.overrides.empty() || !r.kept.empty() ||
-            !r.cases.empty() || !r.seeds.empty())
+            !r.cases.empty() || !r.seeds.empty() || r.settle_only)
             throw InputError("--collect: takes the sweep's folder alone (no SWEEP.toml, no --out, no --set, "
-                             "no --kept, no --cases, no --seeds)");
+                             "no --kept, no --cases, no --seeds, no --settle-only)");
         return collect(r);
     }
     check_sweep_options(r);
@@ -451,10 +483,14 @@ int run_sweep(const SweepRequest &r) {
     ctx.out = fs::absolute(r.out).lexically_normal();
     ctx.executor = r.executor;
     ctx.armour_exe = self_exe();
+    ctx.settle_only = r.settle_only;
+    if (r.settle_only) // a settle runs no analysis: the tables head with its layer's figures
+        ctx.plan.analysis = kSettleOnly;
     const OutputFolder folder(ctx.out, "armour sweep",
                               OutputFolder::Mode::streaming); // refuses foreign folders
     if (r.executor == "slurm")
         check_slurm_out(ctx.out, r.dry_run);
+    check_same_kind(ctx.out, r.settle_only);
 
     const SweepTable before = read_sweep_table(ctx.out, ctx.plan);
     const std::set<std::size_t> from_kept =
@@ -462,7 +498,7 @@ int run_sweep(const SweepRequest &r) {
     const SweepActions actions = decide_actions(ctx.plan, before, from_kept, selected, r.retry_failed);
     const std::vector<std::size_t> &to_run = actions.to_run;
     const std::set<std::string> &skipped = actions.skipped;
-    check_cases_run(ctx.plan, to_run);
+    check_cases_run(ctx.plan, to_run, r.settle_only);
     if (r.dry_run) {
         std::printf("sweep: %zu cases of %s, all checked; %zu would run:\n%s", ctx.plan.cases.size(),
                     ctx.plan.spec.scene.c_str(), to_run.size(), actions.listing.c_str());
@@ -487,7 +523,7 @@ int run_sweep(const SweepRequest &r) {
 
     if (r.executor == "local") {
         const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-        const int jobs = r.jobs > 0 ? r.jobs : std::max(1, cores / std::max(1, ctx.plan.spec.np));
+        const int jobs = r.jobs > 0 ? r.jobs : std::max(1, cores / ranks_per_case(ctx));
         run_local(ctx, to_run, jobs, skipped);
         return finish(ctx, skipped, selected);
     }

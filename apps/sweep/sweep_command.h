@@ -1,5 +1,5 @@
 // `armour sweep SWEEP.toml --out DIR [--set KEY=VALUE]... [--executor local|slurm] [--jobs N]
-//  [--dry-run] [--retry-failed] [--no-wait] [--kept KEPT] [--cases ID,...]` and
+//  [--dry-run] [--retry-failed] [--no-wait] [--kept KEPT] [--cases ID,...] [--settle-only]` and
 //  `armour sweep --collect DIR`.
 //
 // Description
@@ -15,7 +15,10 @@
 //     are, for a later sweep into the same DIR): a long study taken a few
 //     cases a sitting, in the order its user needs them. --set overrides a
 //     scene key for every case after the sweep file's [set] (a shorter
-//     run.duration for a trial).
+//     run.duration for a trial). --settle-only runs each case's settle alone
+//     (`armour run --settle-only`: the layer its waves would meet, about a
+//     minute a case): many seeds' layers judged before hours of waves; its
+//     DIR holds settles only (a sweep with waves into it is refused).
 //
 // Usage
 //     SweepRequest r;  r.sweep_file = "studies/tilt_friction.toml";  r.out = "tilt-sweep";
@@ -46,6 +49,7 @@ struct SweepRequest {
     std::vector<std::int64_t> seeds; // --seeds: in place of the sweep file's seeds; empty: the file's
     std::string collect;             // DIR: gather a sweep submitted earlier
     std::string run_case;            // internal: run one case folder (what each executor starts)
+    bool settle_only = false;        // --settle-only: each case `armour run --settle-only`
 };
 
 // Adds the `sweep` subcommand to `app`, filling `request`.

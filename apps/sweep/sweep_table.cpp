@@ -31,10 +31,12 @@ json numbers_of(const json &summary) {
             figures["run_wall_seconds"] = value;
     // A run that measures its waves keeps them in an object (N, s_om, the
     // incident height): the stability chart needs them as numbers.
-    if (summary.contains("waves") && summary["waves"].is_object())
-        for (const auto &[key, value] : summary["waves"].items())
-            if (value.is_number())
-                figures["waves." + key] = value;
+    // and a settle's layer (armour run --settle-only) its packing, porosity, k_t.
+    for (const char *object : {"waves", "settled_layer"})
+        if (summary.contains(object) && summary[object].is_object())
+            for (const auto &[key, value] : summary[object].items())
+                if (value.is_number())
+                    figures[std::string(object) + "." + key] = value;
     return figures;
 }
 
@@ -101,6 +103,13 @@ std::vector<std::string> figure_columns(const SweepPlan &plan, const SweepTable 
                 add(k);
                 break;
             }
+    // Settle-only sweeps (armour sweep --settle-only): the layers' figures.
+    if (plan.analysis == kSettleOnly)
+        for (const char *k : {"settled_layer.porosity", "settled_layer.packing_density",
+                              "settled_layer.layer_coefficient", "settled_layer.units_at_foot"}) {
+            headline.push_back(k);
+            add(k);
+        }
     for (const auto &row : table.rows)
         for (const auto &[k, v] : row.figures.items())
             add(k);
