@@ -14,9 +14,10 @@ Description
     coefficient k_t (the settle's summary), units at the foot, proud units, proud units low on
     the face (centre within LOW_ON_FACE of the foot along the face, where every unit the Dn/4
     curves displaced sat) and proud units at the foot. Per group: the mean and its 95 % interval
-    over the seeds (Student's t). Per other group: the mean difference from the --against group
-    over the seeds both hold (one seed: one placed pile, settled two ways) with its 95 %
-    interval, and the two-sided sign-test P of the per-seed differences.
+    over the seeds (Student's t, as the sweep's report takes it). Per other group: the mean
+    difference from the --against group over the seeds both hold (one seed: one placed pile,
+    settled two ways) with its 95 % interval, and the two-sided sign-test P of the per-seed
+    differences.
 
     With --curve FOLDER (a kept curve, compare_curves.py's: results.csv and each case's
     damage.csv, run on each case's own settle, as RUN's cases are): each case of the curve that
@@ -45,14 +46,13 @@ import re
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from compare_curves import fail, read_curve  # noqa: E402
+from compare_curves import fail, mean_interval, poisson_cdf, read_curve  # noqa: E402
 from seats import count_points, hypergeometric_sf, read_layer  # noqa: E402
 
 LOW_ON_FACE = 0.27  # m along the face from its foot: every unit the Dn/4 curves displaced sat below
 FIGURES = ["porosity", "packing_density", "layer_coefficient", "units_at_foot", "proud_units",
            "proud_units_low", "proud_units_at_foot"]
-T95 = {1: 12.71, 2: 4.30, 3: 3.18, 4: 2.78, 5: 2.57, 6: 2.45, 7: 2.36, 8: 2.31, 9: 2.26, 10: 2.23,
-       11: 2.20, 12: 2.18, 13: 2.16, 14: 2.14, 15: 2.13, 16: 2.12, 17: 2.11, 18: 2.10, 19: 2.09}
+
 
 
 def read_json(path, why):
@@ -102,16 +102,6 @@ def read_sweep(folder):
     return list(groups.items()), seats, " x ".join(plan.get("varied", [])) or "layers"
 
 
-def mean_interval(values):
-    """(mean, half-width of its 95 % interval) over realisations; no interval from one."""
-    n = len(values)
-    mean = sum(values) / n
-    if n < 2:
-        return mean, math.nan
-    sd = math.sqrt(sum((v - mean) ** 2 for v in values) / (n - 1))
-    return mean, T95.get(n - 1, 1.96) * sd / math.sqrt(n)
-
-
 def finite(x):
     """x for JSON: None where it is not a number (an interval from one realisation)."""
     return None if isinstance(x, float) and not math.isfinite(x) else x
@@ -143,7 +133,7 @@ def chart(groups, varied, path):
             values = [layer[key] for layer in layers.values()]
             ax.plot([i + (j % 5 - 2) * 0.05 for j in range(len(values))], values, "o", alpha=0.6)
             mean, half = mean_interval(values)
-            ax.errorbar(i + 0.3, mean, yerr=0 if math.isnan(half) else half, fmt="ks", capsize=4)
+            ax.errorbar(i + 0.3, mean, yerr=half, fmt="ks", capsize=4)
         ax.set_xticks(range(len(groups)), [label for label, _ in groups])
         ax.set_title(title)
         ax.set_xlabel(varied)
@@ -194,8 +184,7 @@ def permutation_p(x, y, rho, trials=20000):
 def poisson_mid_p(count, mean):
     """Where a count lies in Poisson(mean): P(X < count) + P(X = count) / 2 (0.5 on average under the mean)."""
     k = int(round(count))
-    below = sum(math.exp(-mean) * mean ** i / math.factorial(i) for i in range(k))
-    return below + 0.5 * math.exp(-mean) * mean ** k / math.factorial(k)
+    return 0.5 * ((poisson_cdf(k - 1, mean) if k > 0 else 0.0) + poisson_cdf(k, mean))
 
 
 def against_curve(curve, seats_by_case, layers_by_case, summary):
