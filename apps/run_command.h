@@ -32,6 +32,11 @@ int run_scene(const RunRequest &request);
 // any runs. Throws InputError; returns the warnings.
 std::vector<std::string> check_scene_runs(const Scene &scene, const std::string &cache_dir, int np);
 
+// Why `--settle-only` cannot run this scene ("key 'fluid.settle_time': ..."),
+// or "" when it settles its units before the waves. `armour run` and
+// `armour sweep --settle-only` refuse with it.
+std::string settle_only_refusal(const Scene &scene);
+
 // The scene's keys with those a resume may change (run.duration, the
 // checkpoint interval, the Courant limits, the ranks; docs/checkpoints.md)
 // set to fixed values: a run of one scene goes on from a checkpoint of

@@ -321,15 +321,21 @@ Scene settle_before_coupling(const RunRequest &r, OutputFolder &folder, const Sc
 // built (a coupled run checks the settled layer against its mesh when it
 // starts). summary.json: the settle's report and the layer the waves would
 // meet, measured as the damage analysis measures it.
+std::string settle_only_refusal(const Scene &scene) {
+    return scene.fluid && scene.fluid->settle_time > 0.0
+               ? std::string()
+               : "key 'fluid.settle_time': --settle-only needs a scene with [fluid] that settles its units "
+                 "before the waves (fluid.settle_time > 0 s)";
+}
+
 int settle_only(const RunRequest &r, const Scene &scene) {
     for (const auto &[given, name] :
          {std::pair{r.resume, "--resume"}, {r.restart, "--restart"}, {r.np != 0, "--np"}})
         if (given)
             throw InputError(std::string("--settle-only: not with ") + name +
                              " (a settle is not resumed, and runs in the DEM alone on one rank)");
-    if (!scene.fluid || scene.fluid->settle_time <= 0.0)
-        throw InputError(r.scene + ": key 'fluid.settle_time': --settle-only needs a scene with [fluid] that "
-                                   "settles its units before the waves (fluid.settle_time > 0 s)");
+    if (const std::string why = settle_only_refusal(scene); !why.empty())
+        throw InputError(r.scene + ": " + why);
     const auto start = std::chrono::steady_clock::now();
     if (r.dry_run) { // the settle's checks (units, placement, settle keys, --out), nothing written
         const fs::path out = OutputFolder::check_writable(r.out, "armour run");

@@ -47,12 +47,21 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from compare_curves import fail, mean_interval, poisson_cdf, read_curve  # noqa: E402
-from seats import count_points, hypergeometric_sf, read_layer  # noqa: E402
+from seats import at_foot, count_points, hypergeometric_sf, read_layer  # noqa: E402
 
 LOW_ON_FACE = 0.27  # m along the face from its foot: every unit the Dn/4 curves displaced sat below
 FIGURES = ["porosity", "packing_density", "layer_coefficient", "units_at_foot", "proud_units",
            "proud_units_low", "proud_units_at_foot"]
 
+
+def proud(seat):
+    """Whether a unit's outermost corner stands above every neighbour's (seats.py's measure)."""
+    return seat["above_neighbours_Dn"] > 0
+
+
+def numeric(text):
+    """Whether a group label (a value of the varied key) is a number."""
+    return re.fullmatch(r"-?[0-9.]+", str(text)) is not None
 
 
 def read_json(path, why):
@@ -71,13 +80,13 @@ def layer_figures(run):
         fail(f"{run}/summary.json: not an `armour run --settle-only` summary (no settled_layer)")
     layer = summary["settled_layer"]
     seats = read_layer(os.path.join(run, "settle", "scene.settled.toml"))
-    proud = [s for s in seats if s["above_neighbours_Dn"] > 0]
+    tops = [s for s in seats if proud(s)]
     return {"porosity": layer["porosity"], "packing_density": layer["packing_density"],
             "layer_coefficient": layer["layer_coefficient"], "units": len(seats),
-            "units_at_foot": sum(1 for s in seats if s["x_from_foot_m"] < 0),
-            "proud_units": len(proud),
-            "proud_units_low": sum(1 for s in proud if s["s_m"] < LOW_ON_FACE),
-            "proud_units_at_foot": sum(1 for s in proud if s["x_from_foot_m"] < 0)}, seats
+            "units_at_foot": sum(1 for s in seats if at_foot(s)),
+            "proud_units": len(tops),
+            "proud_units_low": sum(1 for s in tops if s["s_m"] < LOW_ON_FACE),
+            "proud_units_at_foot": sum(1 for s in tops if at_foot(s))}, seats
 
 
 def read_sweep(folder):
@@ -91,8 +100,7 @@ def read_sweep(folder):
         if not os.path.isfile(os.path.join(run, "summary.json")):
             continue  # not done (yet): the groups hold the seeds done
         values = case.get("values", [])
-        label = ",".join(f"{float(v):g}" if re.fullmatch(r"-?[0-9.]+", str(v)) else str(v)
-                         for v in values) if values else "all"
+        label = ",".join(f"{float(v):g}" if numeric(v) else str(v) for v in values) if values else "all"
         figures, case_seats = layer_figures(run)
         seed = case.get("seed")
         groups.setdefault(label, {})[seed] = dict(figures, case=case["case"], group=label)
@@ -103,7 +111,7 @@ def read_sweep(folder):
 
 
 def finite(x):
-    """x for JSON: None where it is not a number (an interval from one realisation)."""
+    """x for JSON: None where it is not a number (no seeds in common, a constant figure's rank correlation)."""
     return None if isinstance(x, float) and not math.isfinite(x) else x
 
 
@@ -187,7 +195,7 @@ def poisson_mid_p(count, mean):
     return 0.5 * ((poisson_cdf(k - 1, mean) if k > 0 else 0.0) + poisson_cdf(k, mean))
 
 
-def against_curve(curve, seats_by_case, layers_by_case, summary):
+def against_curve(curve, labels, seats_by_case, layers_by_case, summary):
     """Each curve case RUN settled again: its layer checked, displaced against expected, the correlations."""
     rows, _ = read_curve(curve)
     joined = []
@@ -199,16 +207,15 @@ def against_curve(curve, seats_by_case, layers_by_case, summary):
         joined.append((r, layers_by_case[r["case"]]))
     if len(joined) < 3:
         fail(f"--curve {curve}: {len(joined)} of its cases settled again in RUN (the same case ids); need 3")
-    print(f"the curve's cases on the layers settled again ({len(joined)}; displaced of Van der Meer's "
-          f"expectation, and where the count lies in his Poisson distribution, the mid-P):")
-    for r, layer in joined:
-        print(f"  {r['case']:>22}: displaced {float(r['units_displaced']):3.0f} of "
-              f"{float(r['units_displaced_van_der_meer']):5.2f} (mid-P "
-              f"{poisson_mid_p(float(r['units_displaced']), float(r['units_displaced_van_der_meer'])):.2f}); proud {layer['proud_units']:3d} "
-              f"(low {layer['proud_units_low']:2d}), at the foot {layer['units_at_foot']:3d}, "
-              f"porosity {layer['porosity']:.3f}")
     score = [poisson_mid_p(float(r["units_displaced"]), float(r["units_displaced_van_der_meer"]))
              for r, _ in joined]
+    print(f"the curve's cases on the layers settled again ({len(joined)}; displaced of Van der Meer's "
+          f"expectation, and where the count lies in his Poisson distribution, the mid-P):")
+    for (r, layer), mid_p in zip(joined, score):
+        print(f"  {r['case']:>22}: displaced {float(r['units_displaced']):3.0f} of "
+              f"{float(r['units_displaced_van_der_meer']):5.2f} (mid-P {mid_p:.2f}); proud {layer['proud_units']:3d} "
+              f"(low {layer['proud_units_low']:2d}), at the foot {layer['units_at_foot']:3d}, "
+              f"porosity {layer['porosity']:.3f}")
     correlations = {}
     for key in FIGURES:
         x = [layer[key] for _, layer in joined]
@@ -219,8 +226,7 @@ def against_curve(curve, seats_by_case, layers_by_case, summary):
     seats = [seat for r, _ in joined for seat in seats_by_case[r["case"]]]
     displaced = [seat for seat in seats if seat["points_displaced"] > 0]
     where = {}
-    for name, weak in (("proud", lambda seat: seat["above_neighbours_Dn"] > 0),
-                       ("at_foot", lambda seat: seat["x_from_foot_m"] < 0)):
+    for name, weak in (("proud", proud), ("at_foot", at_foot)):
         marked = sum(1 for seat in seats if weak(seat))
         hit = sum(1 for seat in displaced if weak(seat))
         p = hypergeometric_sf(hit, len(seats), marked, len(displaced)) if displaced else 1.0
@@ -228,11 +234,12 @@ def against_curve(curve, seats_by_case, layers_by_case, summary):
                        "p_value": p}
         print(f"  the displaced on their own layers: {hit} of {len(displaced)} {name.replace('_', ' ')} "
               f"({marked} of {len(seats)} units; {where[name]['at_random']:.1f} at random, P {p:.2g} of so many)")
-    for label in dict.fromkeys(layer["group"] for _, layer in sorted(joined, key=lambda j: j[1]["order"])):
-        mine = [seat for r, layer in joined if layer["group"] == label for seat in seats_by_case[r["case"]]]
-        gone = [seat for seat in mine if seat["points_displaced"] > 0]
-        print(f"    {label}: {len(gone)} displaced, {sum(1 for seat in gone if seat['above_neighbours_Dn'] > 0)} "
-              f"proud, {sum(1 for seat in gone if seat['x_from_foot_m'] < 0)} at the foot")
+    for label in labels:
+        gone = [seat for r, layer in joined if layer["group"] == label for seat in seats_by_case[r["case"]]
+                if seat["points_displaced"] > 0]
+        if any(layer["group"] == label for _, layer in joined):
+            print(f"    {label}: {len(gone)} displaced, {sum(1 for seat in gone if proud(seat))} proud, "
+                  f"{sum(1 for seat in gone if at_foot(seat))} at the foot")
     summary["curve"] = {"folder": curve, "cases": [r["case"] for r, _ in joined], "correlations": correlations,
                         "displaced_units": len(displaced), "displaced_by_seat": where}
 
@@ -246,19 +253,27 @@ def main():
     parser.add_argument("--out", required=True, help="output folder: layers.csv, summary.json, layers.png")
     args = parser.parse_args()
     groups, seats_by_case, varied = read_sweep(args.run)
-    if all(re.fullmatch(r"-?[0-9.]+", label) for label, _ in groups):
+    if all(numeric(label) for label, _ in groups):
         groups.sort(key=lambda g: float(g[0]))
     labels = [label for label, _ in groups]
     against = args.against if args.against is not None else labels[0]
-    matches = [label for label in labels if label == against or
-               (re.fullmatch(r"-?[0-9.]+", against) and re.fullmatch(r"-?[0-9.]+", label)
-                and float(label) == float(against))]
+    matches = [label for label in labels
+               if label == against or (numeric(against) and numeric(label) and float(label) == float(against))]
     if not matches:
         fail(f"--against {against}: not a group of {args.run} (its groups: {', '.join(labels)})")
     reference_label = matches[0]
+    summary = {"low_on_face_m": LOW_ON_FACE, "against": reference_label}
+    summary["groups"], summary["paired"] = group_figures(groups, reference_label)
+    layers_by_case = {layer["case"]: layer for _, layers in groups for layer in layers.values()}
+    if args.curve:
+        against_curve(args.curve, labels, seats_by_case, layers_by_case, summary)
+    write_outputs(groups, varied, summary, args.out)
+
+
+def group_figures(groups, reference_label):
+    """Per group, each figure's mean and interval; per other group, its differences from the reference's."""
+    figures, paired_all = {}, {}
     reference = dict(groups)[reference_label]
-    summary = {"low_on_face_m": LOW_ON_FACE, "against": reference_label, "groups": {},
-               "paired": {}}
     for label, layers in groups:
         print(f"{label}: {len(layers)} layers (seeds {', '.join(str(s) for s in sorted(layers))})")
         entry = {"seeds": sorted(layers)}
@@ -266,7 +281,7 @@ def main():
             mean, half = mean_interval([layer[key] for layer in layers.values()])
             entry[key] = {"mean": mean, "interval_95": interval(mean, half)}
             print(f"  {key:>20}: {mean:8.3f} +- {half:.3f}")
-        summary["groups"][label] = entry
+        figures[label] = entry
         if label == reference_label:
             continue
         common = sorted(set(layers) & set(reference))
@@ -278,15 +293,13 @@ def main():
                            "sign_test_p": sign_test_p(differences), "seeds": len(common)}
             print(f"  {key:>20} minus {reference_label}'s, seed by seed ({len(common)}): {mean:+8.3f} "
                   f"+- {half:.3f} (sign test P {paired[key]['sign_test_p']:.2g})")
-        summary["paired"][label] = paired
-    layers_by_case = {}
-    for order, (_, layers) in enumerate(groups):  # the groups' order, for the printout
-        for layer in layers.values():
-            layers_by_case[layer["case"]] = dict(layer, order=order)
-    if args.curve:
-        against_curve(args.curve, seats_by_case, layers_by_case, summary)
-    os.makedirs(args.out, exist_ok=True)
-    with open(os.path.join(args.out, "layers.csv"), "w", newline="") as f:
+        paired_all[label] = paired
+    return figures, paired_all
+
+
+def write_outputs(groups, varied, summary, out):
+    os.makedirs(out, exist_ok=True)
+    with open(os.path.join(out, "layers.csv"), "w", newline="") as f:
         f.write("# each settled layer's figures (porosity -, packing units per Dn^2, k_t -, counts in units; "
                 f"low: centre within {LOW_ON_FACE} m of the face's foot along the face)\n")
         writer = csv.writer(f, lineterminator="\n")
@@ -297,10 +310,10 @@ def main():
                 writer.writerow([layer["case"], label, seed, layer["units"]] +
                                 [f"{layer[k]:.6g}" if isinstance(layer[k], float) else layer[k] for k in FIGURES])
     summary["si_units"] = {"low_on_face_m": "m", "packing_density": "units per Dn^2", "counts": "units"}
-    with open(os.path.join(args.out, "summary.json"), "w") as f:
+    with open(os.path.join(out, "summary.json"), "w") as f:
         json.dump(summary, f, indent=2)
         f.write("\n")
-    chart(groups, varied, os.path.join(args.out, "layers.png"))
+    chart(groups, varied, os.path.join(out, "layers.png"))
 
 
 if __name__ == "__main__":

@@ -271,10 +271,8 @@ void check_cases_run(const SweepPlan &plan, const std::vector<std::size_t> &to_r
                          c.id.c_str());
         try {
             const Scene scene = load_scene(plan.spec.scene, c.overrides);
-            if (settle_only && (!scene.fluid || scene.fluid->settle_time <= 0.0))
-                throw InputError(
-                    "key 'fluid.settle_time': --settle-only needs a scene that settles its units "
-                    "before the waves (fluid.settle_time > 0 s)");
+            if (const std::string why = settle_only ? settle_only_refusal(scene) : ""; !why.empty())
+                throw InputError(why);
             check_scene_runs(scene, default_cache_dir(), plan.spec.np);
         } catch (const InputError &e) {
             if (terminal)
