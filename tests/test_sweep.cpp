@@ -270,6 +270,57 @@ TEST_F(SweepTest, SeedsOnTheCommandLineAddRealisationsAndKeepTheOthers) {
     EXPECT_FALSE(fs::exists(dir_ / "out"));
 }
 
+// --np sets every case's MPI ranks in place of the file's [run] np: the case
+// runs on them (the coupled run's summary says so) and the sweep file's copy
+// names them; what counts as done does not change (the same scene hashes, and
+// the finished case is not run again by the sweep without --np). The case is
+// the Slurm test's: a concrete cube sinking in still water, 0.4 s, ~3 s a run.
+TEST_F(SweepTest, NpSetsTheRanksOfEveryCaseAndNotWhatCountsAsDone) {
+#ifndef ARMOUR_HAS_OPENFOAM
+    GTEST_SKIP() << "needs the OpenFOAM coupling (Debian's openfoam)";
+#endif
+    const fs::path sweep = dir_ / "ranks.toml", out = dir_ / "out";
+    write(sweep, "scene = \"" + kSource +
+                     "/scenes/still_water_cube.toml\"\n[vary]\n\"fluid.penalty\" = [1e4]\n" +
+                     "[set]\n\"run.engine\" = \"liggghts\"\n\"body.0.position\" = [0.0, 0.0, 0.17]\n" +
+                     "\"run.duration\" = 0.4\n");
+    const std::string command = kArmour + " sweep " + sweep.string() + " --out " + out.string();
+    const Result as_file = run(command + " --dry-run"), two = run(command + " --dry-run --np 2");
+    ASSERT_EQ(two.status, 0) << two.output;
+    ASSERT_FALSE(listed_hash(as_file.output, "penalty-10000.0").empty()) << as_file.output;
+    EXPECT_EQ(listed_hash(two.output, "penalty-10000.0"), listed_hash(as_file.output, "penalty-10000.0"));
+
+    const Result r = run(command + " --np 2");
+    ASSERT_EQ(r.status, 0) << r.output;
+    const fs::path case_dir = out / "cases" / "penalty-10000.0";
+    EXPECT_EQ(json::parse(read_text(case_dir / "plan.json"))["np"], 2);
+    EXPECT_EQ(json::parse(read_text(case_dir / "run" / "summary.json"))["fluid"]["np"], 2);
+    EXPECT_NE(read_text(out / "sweep.toml").find("\n# armour sweep ran this file with --np 2\n"),
+              std::string::npos)
+        << read_text(out / "sweep.toml");
+    const std::string record = read_text(case_dir / "case.json");
+    const Result again = run(command);
+    ASSERT_EQ(again.status, 0) << again.output;
+    EXPECT_EQ(read_text(case_dir / "case.json"), record) << "the finished case ran again";
+
+    // Refused in one line before anything is written: a scene without [fluid], 0 ranks,
+    // with --settle-only (a settle runs on one rank), with --collect.
+    const fs::path none = dir_ / "none";
+    for (const auto &[options, expected] : std::vector<std::pair<std::string, std::string>>{
+             {tilt_sweep().string() + " --np 2", "armour: error: --np: case "},
+             {sweep.string() + " --np 0", "armour: error: --np: must be >= 1 (got 0)"},
+             {sweep.string() + " --np 2 --settle-only", "armour: error: --np: not with --settle-only"}}) {
+        const Result refused = run(kArmour + " sweep " + options + " --out " + none.string());
+        EXPECT_EQ(refused.status, 2) << refused.output;
+        EXPECT_EQ(refused.output.rfind(expected, 0), 0u) << refused.output;
+        EXPECT_EQ(std::count(refused.output.begin(), refused.output.end(), '\n'), 1) << refused.output;
+    }
+    const Result collect = run(kArmour + " sweep --collect " + out.string() + " --np 2");
+    EXPECT_EQ(collect.status, 2);
+    EXPECT_NE(collect.output.find("no --np"), std::string::npos) << collect.output;
+    EXPECT_FALSE(fs::exists(none));
+}
+
 // A stability curve's sweep over a test series (docs/stability.md, "Test
 // series"): seeds reach each step's train and the layer (seed_key as a list),
 // [vary] a step's height; every case is a different scene, and a seed key

@@ -288,7 +288,7 @@ void check_cases_run(const SweepPlan &plan, const std::vector<std::size_t> &to_r
 // comments for its copy in DIR/sweep.toml: a kept copy then says by itself
 // how its cases were made (empty when the file was run as written).
 std::string command_line_note(const SweepRequest &r) {
-    if (r.seeds.empty() && r.overrides.empty() && !r.settle_only)
+    if (r.seeds.empty() && r.overrides.empty() && !r.settle_only && r.np == 0)
         return "";
     std::string line = "# armour sweep ran this file with";
     if (r.settle_only)
@@ -298,10 +298,13 @@ std::string command_line_note(const SweepRequest &r) {
         for (std::size_t i = 0; i < r.seeds.size(); ++i)
             line += (i ? "," : "") + std::to_string(r.seeds[i]);
     }
+    if (r.np > 0)
+        line += " --np " + std::to_string(r.np);
     for (const std::string &kv : r.overrides)
         line += " --set '" + kv + "'";
     return "\n" + line + "\n# (" + (r.settle_only ? "--settle-only: each case's settle alone; " : "") +
-           "--seeds in place of the file's seeds; --set after its [set], in every case)\n";
+           "--seeds in place of the file's seeds; --np in place of its [run] np; --set after its [set], in "
+           "every case)\n";
 }
 
 // The sweep's own files in DIR (its marker first), the sweep file as run
@@ -388,6 +391,10 @@ CLI::App *add_sweep_command(CLI::App &app, SweepRequest &r) {
         ->delimiter(',')
         ->allow_extra_args(false) // one comma-separated word: the sweep file after it stays the sweep file
         ->check(integer_at_least(0));
+    cmd->add_option("--np", r.np,
+                    "MPI ranks of each case in place of the sweep file's [run] np (coupled scenes; "
+                    ">= 1); what counts as done does not change with it")
+        ->check(integer_at_least(1));
     cmd->add_flag("--settle-only", r.settle_only,
                   "Run each case's settle alone (`armour run --settle-only`: the layer its waves would "
                   "meet, no fluid case; scenes with fluid.settle_time > 0 s): results.csv gains the "
@@ -420,6 +427,8 @@ void check_sweep_options(const SweepRequest &r) {
     if (r.settle_only && !r.kept.empty())
         throw InputError("--kept: not with --settle-only (a kept folder holds runs with waves; a settle "
                          "takes a minute: run it again)");
+    if (r.settle_only && r.np > 0)
+        throw InputError("--np: not with --settle-only (a settle runs on one rank)");
     if (r.jobs > 0 && r.executor == "slurm") // else it would be ignored without a word
         throw InputError(
             "--jobs: only with --executor local (a Slurm array runs [slurm] max_concurrent cases "
@@ -464,9 +473,9 @@ int run_sweep(const SweepRequest &r) {
     }
     if (!r.collect.empty()) {
         if (!r.sweep_file.empty() || !r.out.empty() || !r.overrides.empty() || !r.kept.empty() ||
-            !r.cases.empty() || !r.seeds.empty() || r.settle_only)
+            !r.cases.empty() || !r.seeds.empty() || r.np != 0 || r.settle_only)
             throw InputError("--collect: takes the sweep's folder alone (no SWEEP.toml, no --out, no --set, "
-                             "no --kept, no --cases, no --seeds, no --settle-only)");
+                             "no --kept, no --cases, no --seeds, no --np, no --settle-only)");
         return collect(r);
     }
     check_sweep_options(r);
@@ -475,6 +484,10 @@ int run_sweep(const SweepRequest &r) {
     SweepSpec spec = read_sweep_file(r.sweep_file);
     if (!r.seeds.empty()) // before --set: a seed key the seeds vary is refused there
         spec.seeds = r.seeds;
+    if (r.np > 0) {
+        spec.np = r.np;
+        spec.np_key = "--np";
+    }
     add_command_line_sets(spec, r.overrides);
     ctx.plan = plan_sweep(spec); // every case checked before anything runs
     const std::set<std::size_t> selected = selected_cases(ctx.plan, r.cases);

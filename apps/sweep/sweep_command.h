@@ -1,5 +1,6 @@
 // `armour sweep SWEEP.toml --out DIR [--set KEY=VALUE]... [--executor local|slurm] [--jobs N]
-//  [--dry-run] [--retry-failed] [--no-wait] [--kept KEPT] [--cases ID,...] [--settle-only]` and
+//  [--dry-run] [--retry-failed] [--no-wait] [--kept KEPT] [--cases ID,...] [--seeds S,...] [--np N]
+//  [--settle-only]` and
 //  `armour sweep --collect DIR`.
 //
 // Description
@@ -15,7 +16,10 @@
 //     are, for a later sweep into the same DIR): a long study taken a few
 //     cases a sitting, in the order its user needs them. --set overrides a
 //     scene key for every case after the sweep file's [set] (a shorter
-//     run.duration for a trial). --settle-only runs each case's settle alone
+//     run.duration for a trial); --np sets the MPI ranks of every case in place
+//     of the file's [run] np (a case resumed with other ranks than it ran
+//     with goes on from its checkpoint; the scene hash, and so what counts as
+//     done, does not depend on the ranks). --settle-only runs each case's settle alone
 //     (`armour run --settle-only`: the layer its waves would meet, about a
 //     minute a case): many seeds' layers judged before hours of waves; its
 //     DIR holds settles only (a sweep with waves into it is refused).
@@ -47,6 +51,7 @@ struct SweepRequest {
     std::string kept;                // DIR of studies/keep_results.py: its done cases count as done here
     std::vector<std::string> cases;  // --cases: only these case ids run now; empty: every case
     std::vector<std::int64_t> seeds; // --seeds: in place of the sweep file's seeds; empty: the file's
+    int np = 0;                      // --np: MPI ranks per case in place of [run] np; 0 = not given
     std::string collect;             // DIR: gather a sweep submitted earlier
     std::string run_case;            // internal: run one case folder (what each executor starts)
     bool settle_only = false;        // --settle-only: each case `armour run --settle-only`
