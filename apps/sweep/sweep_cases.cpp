@@ -210,8 +210,8 @@ void resolve_case(const SweepSpec &spec, const std::vector<std::string> &columns
         throw InputError(spec.file + ": case " + c.id + ": " + e.what());
     }
     if (spec.np > 0 && !scene.fluid)
-        throw InputError((spec.np_key == "run.np" ? spec.file + ": key 'run.np'" : spec.np_key) + ": case " +
-                         c.id + ": only for scenes with [fluid] (MPI ranks of interFoam)");
+        throw InputError((spec.np_option.empty() ? spec.file + ": key 'run.np'" : spec.np_option) +
+                         ": case " + c.id + ": only for scenes with [fluid] (MPI ranks of interFoam)");
     if (analysis.empty())
         analysis = scene.analysis;
     c.scene_text = resolved_scene_toml(scene);

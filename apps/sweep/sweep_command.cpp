@@ -486,7 +486,7 @@ int run_sweep(const SweepRequest &r) {
         spec.seeds = r.seeds;
     if (r.np > 0) {
         spec.np = r.np;
-        spec.np_key = "--np";
+        spec.np_option = "--np";
     }
     add_command_line_sets(spec, r.overrides);
     ctx.plan = plan_sweep(spec); // every case checked before anything runs

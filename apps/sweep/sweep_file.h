@@ -45,7 +45,7 @@ struct SweepSpec {
     std::vector<std::int64_t> seeds;
     std::vector<std::string> seed_keys; // empty: every [[drop]]'s seed
     int np = 0;                         // MPI ranks per case; 0 = the scene's
-    std::string np_key = "run.np";      // where np came from, for errors: run.np or --np
+    std::string np_option;              // the option that set np, for errors (--np); empty: [run] np
     double timeout = 0.0;               // s of wall time per case; 0 = none
     SweepSlurm slurm;
 };
