@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Two or more kept stability curves on one chart, and their totals side by side.
+"""One or more kept stability curves on one chart, and their totals side by side.
 
 Description
     Reads results.csv of each kept stability curve (a folder written by
@@ -7,10 +7,14 @@ Description
     N_od against Ns at the toe: for each curve a point per value of the varied
     key (the mean of its realisations with 95 % Student-t intervals in Ns and
     N_od), Van der Meer's curve for cubes at the first curve's median N and
-    s_om. Prints, per varied value and in all, the units displaced by each
-    curve and Van der Meer's expected count at the runs' own N, Ns and s_om
-    (the sum of units_displaced_van_der_meer), with the Poisson probability of
-    a total this low or lower if the formula's count were the mean. What it
+    s_om. Given one curve (its folders joined with +), the chart is the one
+    `armour sweep` draws of its own cases (apps/sweep/sweep_report.py): each
+    realisation dotted, the band a section this wide sees about Van der
+    Meer's curve, Hudson's lines, and S beside N_od. Prints, per varied value
+    and in all, the units displaced by each curve and Van der Meer's expected
+    count at the runs' own N, Ns and s_om (the sum of
+    units_displaced_van_der_meer), with the Poisson probability of a total
+    this low or lower if the formula's count were the mean. What it
     answers: does a model choice (the clump, the mesh, the engine) move the
     damage, and toward the formula or away. And how widely the realisations
     scatter about the formula's counts: Pearson's chi-square over them against
@@ -70,7 +74,8 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "apps", "sweep"))
-from sweep_report import mean_interval, median, save, van_der_meer_n_od, van_der_meer_ns  # noqa: E402
+from sweep_report import (mean_interval, median, save, stability_chart, van_der_meer_n_od,  # noqa: E402
+                          van_der_meer_ns)
 
 SEAT_LEFT = 0.25  # Dn: a unit ending this far from its settled pose has left its seat (the pull test's mark)
 NEEDED = ("Ns", "N_od", "units_displaced", "units_displaced_van_der_meer", "waves.waves", "s_om")
@@ -526,6 +531,21 @@ def print_ns_factor(label, rows):
     return fit
 
 
+def as_sweep_cases(rows, varied):
+    """The rows as summary.json lists a sweep's cases: numeric figures, and the varied value that makes a point."""
+    def numeric(text):
+        try:
+            return float(text)
+        except (TypeError, ValueError):
+            return None
+
+    cases = []
+    for r in rows:
+        figures = {k: numeric(v) for k, v in r.items() if isinstance(v, str) and numeric(v) is not None}
+        cases.append({"figures": figures, "values": {varied: numeric(r[varied])} if varied else {}})
+    return cases
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[1].strip(),
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -584,6 +604,10 @@ def main():
         print_ns_factor("all", pooled)
         if all(r["toe_row_displaced"] is not None for r in pooled):
             print_ns_factor("without the toe row", without_toe_row(pooled))
+    if len(curves) == 1:  # one curve: the chart a sweep draws of its own cases, over every folder joined
+        plt.close(fig)
+        stability_chart(plt, as_sweep_cases(*curves[0]), args.out)
+        return
     rows = curves[0][0]
     n = median([float(r["waves.waves"]) for r in rows])
     s_om = median([float(r["s_om"]) for r in rows])

@@ -1220,6 +1220,15 @@ TEST_F(SweepTest, ComparedCurvesCountEachCurvesUnitsAgainstVanDerMeer) {
         << j.output;
     EXPECT_NE(j.output.find("all: 5 / 8.5 (P 0.15)"), std::string::npos) << j.output;
     EXPECT_NE(j.output.find("b + a:1700: units displaced"), std::string::npos) << j.output; // its label
+    // One curve is drawn as a sweep draws its own cases (sweep_report.stability_chart): the joined
+    // realisations as its cases, a point per density, A's 1700 kg/m^3 case beside B's.
+    EXPECT_GT(fs::file_size(dir_ / "j.png"), 10000u);
+    const Result cases =
+        run("cd " + kSource + "/studies && /usr/bin/python3 -c 'import compare_curves as c; " +
+            "print(sorted((x[\"values\"][\"unit.0.density\"], x[\"figures\"][\"N_od\"]) for x in " +
+            "c.as_sweep_cases(*c.read_curve(\"" + joined + "\"))))'");
+    ASSERT_EQ(cases.status, 0) << cases.output;
+    EXPECT_EQ(cases.output, "[(1700.0, 0.16), (1700.0, 0.64), (2000.0, 0.0)]\n");
 
     const Result bad = run(script + (dir_ / "missing").string() + " --out " + (dir_ / "d.png").string());
     EXPECT_EQ(bad.status, 2) << bad.output;

@@ -161,8 +161,12 @@ def median(values):
     return v[len(v) // 2] if len(v) % 2 else 0.5 * (v[len(v) // 2 - 1] + v[len(v) // 2])
 
 
-def stability_chart(plt, done, folder):
-    """N_od (and damage_S) against Ns with Van der Meer and Hudson; None without damage figures."""
+def stability_chart(plt, done, path):
+    """Draws N_od (and damage_S) against Ns with Van der Meer and Hudson into the PNG `path`.
+
+    `done`: cases as summary.json lists them ("figures", and "values" whose set
+    makes a point). Returns the chart's caption lines; None, drawing nothing,
+    without damage figures."""
     points = [c for c in done if number(c["figures"].get("N_od")) and number(c["figures"].get("Ns"))]
     if not points:
         return None
@@ -222,9 +226,9 @@ def stability_chart(plt, done, folder):
         ax2.set_xlabel("Ns = Hs / (Δ Dn) [-]")
         ax2.set_ylabel("S = Ae / Dn² (eroded area) [-]")
         ax2.grid(alpha=0.3)
-    save(fig, os.path.join(folder, "figures", "stability_Nod_vs_Ns.png"))
+    save(fig, path)
     plt.close(fig)
-    return "figures/stability_Nod_vs_Ns.png", text
+    return text
 
 
 def read_history(path):
@@ -289,10 +293,10 @@ def main(folder):
              f"{summary['done']} of {summary['total']} cases done, {summary['failed']} failed, "
              f"{summary['pending'] + summary['running']} not finished. Table: results.csv; "
              "each case's outputs: cases/<case>/run/.", ""]
-    stability = stability_chart(plt, done, folder)
+    stability = stability_chart(plt, done, os.path.join(folder, "figures", "stability_Nod_vs_Ns.png"))
     if stability:
-        lines += ["## Damage against the stability number", "", *[f"- {t}" for t in stability[1]], "",
-                  f"![N_od against Ns]({stability[0]})", ""]
+        lines += ["## Damage against the stability number", "", *[f"- {t}" for t in stability], "",
+                  "![N_od against Ns](figures/stability_Nod_vs_Ns.png)", ""]
     history = history_chart(plt, done, folder)
     if history:
         lines += ["## Damage against time", "", *[f"- {t}" for t in history[1]], "",
