@@ -143,6 +143,12 @@ void check_units_refined(const Scene &scene, const SceneSetup &setup) {
         ++first;
     const std::string key =
         "refine." + std::to_string(first) + (scene.refine[first].type == "box" ? ".max" : ".above");
+    // Every region of that level, so the user sees which one to widen.
+    std::string regions;
+    for (std::size_t r = 0; r < scene.refine.size(); ++r)
+        if (scene.refine[r].level == levels)
+            regions += (regions.empty() ? "" : ", ") + std::string("refine.") + std::to_string(r) + " '" +
+                       scene.refine[r].name + "'";
     for (std::size_t i = 0; i < setup.bodies.size(); ++i) {
         const BodyInit &b = setup.bodies[i];
         for (const auto &v : setup.units[b.unit].mesh.vertices) {
@@ -153,8 +159,8 @@ void check_units_refined(const Scene &scene, const SceneSetup &setup) {
                 throw InputError(
                     scene.file + ": key '" + key + "': body " + std::to_string(i) + " (unit '" +
                     setup.units[b.unit].name + "') starts outside every region of level " +
-                    std::to_string(levels) + " (vertex " + vector_text(p) +
-                    " m): the loads need fluid.cells; widen a region, raise its level, or run the graded "
+                    std::to_string(levels) + " (" + regions + ") with its vertex " + vector_text(p) +
+                    " m: the loads need fluid.cells; widen a region, raise its level, or run the graded "
                     "mesh (fluid.mesh = \"graded\")");
         }
     }

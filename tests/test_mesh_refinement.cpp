@@ -316,10 +316,13 @@ TEST(MeshRefinement, StabilitySceneRefinedAboutItsUnitsOnlyAndCoupledRunsOnIt) {
         fs::remove_all(dir);
 }
 
-// A band too thin for the units: refused before anything runs, one line.
+// A band too thin for the units: refused before anything runs, one line that
+// names every region of the finest level (here a box in front of the toe too).
 TEST(MeshRefinement, UnitsOutsideTheFinestRegionsAreRefusedBeforeAnythingRuns) {
     const fs::path dir = temp_dir("refine_outside");
-    const fs::path scene = stability_scene(dir, kBand), out = dir / "out";
+    const std::string toe = "[[refine]]\nname = \"toe\"\ntype = \"box\"\nmin = [1.15, -0.124, 0.18]\n"
+                            "max = [1.25, 0.124, 0.40]\n"; // in front of every unit
+    const fs::path scene = stability_scene(dir, kBand + toe), out = dir / "out";
     const std::string cmd =
         "'" + std::string(ARMOUR_EXE) + "' run '" + scene.string() + "' --out '" + out.string() +
         "' --set pattern.0.rows=5 --set pattern.0.placement='\"grid\"' "
@@ -330,7 +333,8 @@ TEST(MeshRefinement, UnitsOutsideTheFinestRegionsAreRefusedBeforeAnythingRuns) {
     const std::string log = read_text(dir / "run.log");
     EXPECT_TRUE(WIFEXITED(rc) && WEXITSTATUS(rc) == 2) << log;
     EXPECT_NE(log.find("armour: error: "), std::string::npos) << log;
-    EXPECT_NE(log.find("key 'refine.0.above': body 0 (unit 'cube') starts outside every region of level 1"),
+    EXPECT_NE(log.find("key 'refine.0.above': body 0 (unit 'cube') starts outside every region of level 1 "
+                       "(refine.0 'armour', refine.1 'toe') with its vertex ["),
               std::string::npos)
         << log;
     // One error line (a warning on the unused settle friction may precede it).
