@@ -541,7 +541,7 @@ def as_sweep_cases(rows, varied):
 
     cases = []
     for r in rows:
-        figures = {k: numeric(v) for k, v in r.items() if isinstance(v, str) and numeric(v) is not None}
+        figures = {k: x for k, v in r.items() if isinstance(v, str) and (x := numeric(v)) is not None}
         cases.append({"figures": figures, "values": {varied: numeric(r[varied])} if varied else {}})
     return cases
 
@@ -568,7 +568,8 @@ def main():
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(figsize=(6.5, 4.2))
+    # Several curves side by side on this chart; one is drawn as a sweep draws its cases (below).
+    fig, ax = plt.subplots(figsize=(6.5, 4.2)) if len(curves) > 1 else (None, None)
     top = 0.5
     for k, ((rows, varied), label) in enumerate(zip(curves, labels)):
         shift = 0.03 * (k - (len(curves) - 1) / 2)  # side by side where points share an Ns
@@ -581,8 +582,9 @@ def main():
         for i, (value, g) in enumerate(by_ns):  # points in rising Ns, whatever key varied it
             ns = mean_interval([float(r["Ns"]) for r in g])
             n_od = mean_interval([float(r["N_od"]) for r in g])
-            ax.errorbar([ns[0] + shift], [n_od[0]], xerr=[ns[1]], yerr=[n_od[1]], fmt="o", capsize=3,
-                        color=f"C{k}", label=None if i else label)
+            if ax:
+                ax.errorbar([ns[0] + shift], [n_od[0]], xerr=[ns[1]], yerr=[n_od[1]], fmt="o", capsize=3,
+                            color=f"C{k}", label=None if i else label)
             top = max(top, n_od[0] + n_od[1])
             shown = sum(int(float(r["units_displaced"])) for r in g)
             vdm = sum(float(r["units_displaced_van_der_meer"]) for r in g)
@@ -604,8 +606,7 @@ def main():
         print_ns_factor("all", pooled)
         if all(r["toe_row_displaced"] is not None for r in pooled):
             print_ns_factor("without the toe row", without_toe_row(pooled))
-    if len(curves) == 1:  # one curve: the chart a sweep draws of its own cases, over every folder joined
-        plt.close(fig)
+    if not ax:  # one curve: the chart a sweep draws of its own cases, over every folder joined
         stability_chart(plt, as_sweep_cases(*curves[0]), args.out)
         return
     rows = curves[0][0]
