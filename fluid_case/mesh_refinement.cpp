@@ -137,18 +137,17 @@ void check_units_refined(const Scene &scene, const SceneSetup &setup) {
     if (levels == 0 || settle_headroom(scene, setup) > 0.0)
         return;
     const double tolerance = 0.5 * fine_cell_size(scene).maxCoeff();
-    // The error names the first region of the deepest level, by its index.
-    std::size_t first = 0;
-    while (scene.refine[first].level != levels)
-        ++first;
-    const std::string key =
-        "refine." + std::to_string(first) + (scene.refine[first].type == "box" ? ".max" : ".above");
-    // Every region of that level, so the user sees which one to widen.
-    std::string regions;
-    for (std::size_t r = 0; r < scene.refine.size(); ++r)
-        if (scene.refine[r].level == levels)
-            regions += (regions.empty() ? "" : ", ") + std::string("refine.") + std::to_string(r) + " '" +
-                       scene.refine[r].name + "'";
+    // The error's key is the first region of the deepest level, by its index; it
+    // lists every region of that level, so the user sees which one to widen.
+    std::string key, regions;
+    for (std::size_t r = 0; r < scene.refine.size(); ++r) {
+        if (scene.refine[r].level != levels)
+            continue;
+        const std::string region = "refine." + std::to_string(r);
+        if (key.empty())
+            key = region + (scene.refine[r].type == "box" ? ".max" : ".above");
+        regions += (regions.empty() ? "" : ", ") + region + " '" + scene.refine[r].name + "'";
+    }
     for (std::size_t i = 0; i < setup.bodies.size(); ++i) {
         const BodyInit &b = setup.bodies[i];
         for (const auto &v : setup.units[b.unit].mesh.vertices) {
