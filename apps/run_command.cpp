@@ -118,6 +118,12 @@ Scene checked_settle(const RunRequest &r, const Scene &scene, const SceneSetup &
     refuse_if_differs(r.scene, resumable_form(settle_scene(scene, setup), false),
                       resumable_form(load_scene((dir / "scene.resolved.toml").string()), false),
                       "settled in " + dir.string());
+    // The stages are not in the settle's scene (it has no [fluid]).
+    const int stages = settle_report(dir, setup).value("settle_stages", 1);
+    if (stages != scene.fluid->settle_stages)
+        throw InputError("--resume: " + r.scene + ": key 'fluid.settle_stages': " +
+                         std::to_string(scene.fluid->settle_stages) + ", where " + dir.string() +
+                         " settled in " + std::to_string(stages) + "; run it again without --resume");
     return settled_scene(scene, load_scene((dir / "scene.settled.toml").string()).bodies);
 }
 
@@ -242,8 +248,10 @@ void print_plan(const RunRequest &r, const Scene &scene, const RunCheck &check, 
         std::printf("coupled with interFoam: template '%s', %s, %d rank%s, fluid steps <= %s s",
                     f.case_name.c_str(), mesh_layout(scene).c_str(), np, np > 1 ? "s" : "",
                     number_text(f.max_time_step).c_str());
+        const std::string stages =
+            f.settle_stages > 1 ? ", in " + std::to_string(f.settle_stages) + " stages from the toe up" : "";
         if (f.settle_time > 0.0 && !resume_time)
-            std::printf("; a dry settle of %s s first", number_text(f.settle_time).c_str());
+            std::printf("; a dry settle of %s s first%s", number_text(f.settle_time).c_str(), stages.c_str());
     } else {
         std::printf("dry (DEM): steps of %s s (limit %s s)", figure_text(check.dt.used).c_str(),
                     figure_text(check.dt.limit).c_str());

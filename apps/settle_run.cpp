@@ -177,6 +177,7 @@ Scene settled_scene(const Scene &scene, std::vector<SceneBody> bodies) {
     settled.fluid->settle_time = 0.0;
     settled.fluid->settle_friction.reset();
     settled.fluid->settle_density.reset();
+    settled.fluid->settle_stages = 1;
     settled.fluid->settled_by =
         scene.fluid->settle_engine.empty() ? scene.engine : scene.fluid->settle_engine;
     settled.fluid->settle_engine.clear();
@@ -212,9 +213,53 @@ void announce_settle(const Scene &scene, const Scene &dry, std::size_t units, co
     std::fflush(nullptr);
 }
 
+// A stage's own seed for the pattern (stage 0 keeps the pattern's): each
+// stage draws afresh, and the seed stays a TOML integer (< 2^63) in the
+// stage's scene.resolved.toml.
+std::uint64_t stage_seed(std::uint64_t seed, int stage) {
+    return stage == 0
+               ? seed
+               : (seed + 0x9E3779B97F4A7C15ULL * static_cast<std::uint64_t>(stage)) & 0x7FFFFFFFFFFFFFFFULL;
+}
+
+// The settle in fluid.settle_stages stages (DIR/stage-1 ...): stage k places
+// the pattern's next rows (an equal share of them, from the toe up) clear of
+// the units settled before, as [[body]] at rest, and settles them all; the
+// last stage runs settle_time, the others settle_time / stages. Returns the
+// units' states at the end; `placed` gets each unit's placed pose, in the
+// same order.
+std::vector<BodyState> settle_in_stages(const RunRequest &r, const Scene &dry, int stages,
+                                        const StillWater &water, OutputFolder &settle_folder,
+                                        std::vector<Pose> &placed) {
+    const ScenePattern &pattern = dry.patterns.front();
+    const int first = pattern.first_row, rows = pattern.rows - pattern.first_row;
+    std::vector<SceneBody> settled;
+    std::vector<BodyState> states;
+    for (int k = 0; k < stages; ++k) {
+        Scene stage = dry;
+        stage.patterns.front().first_row = first + rows * k / stages;
+        stage.patterns.front().rows = first + rows * (k + 1) / stages;
+        stage.patterns.front().seed = stage_seed(pattern.seed, k);
+        stage.bodies = settled;
+        stage.duration = k + 1 < stages ? dry.duration / stages : dry.duration;
+        stage.output_interval = std::min(dry.output_interval, stage.duration);
+        std::fprintf(stderr, "run: settle stage %d of %d: rows %d-%d, %g s\n", k + 1, stages,
+                     stage.patterns.front().first_row + 1, stage.patterns.front().rows, stage.duration);
+        std::fflush(nullptr);
+        SceneSetup setup = build_scene(stage, r.cache.empty() ? default_cache_dir() : r.cache, false);
+        for (std::size_t i = settled.size(); i < setup.bodies.size(); ++i)
+            placed.push_back(setup.bodies[i].pose);
+        OutputFolder folder(settle_folder.claim("stage-" + std::to_string(k + 1)), "armour run",
+                            OutputFolder::Mode::streaming);
+        run_dem(folder, stage, setup, &states, &water);
+        settled = bodies_at_rest(stage, setup, states);
+    }
+    return states;
+}
+
 // The settle itself (in the forked child): the DEM run of `dry` under the
-// still water into `dir`, then the settled scene (file `settled_name`) and
-// settled.json.
+// still water into `dir` (in stages: fluid.settle_stages), then the settled
+// scene (file `settled_name`) and settled.json.
 void run_settle(const RunRequest &r, const Scene &scene, const Scene &dry, const SceneSetup &setup,
                 const fs::path &dir, const std::string &settled_name) {
     const SceneFluid &fluid = *scene.fluid;
@@ -224,18 +269,28 @@ void run_settle(const RunRequest &r, const Scene &scene, const Scene &dry, const
     water.level = fluid.water_level;
     water.density = fluid.fluid_density;
     water.update_interval = std::min(fluid.max_time_step, dry.output_interval);
-    SceneSetup dry_setup = build_scene(dry, r.cache.empty() ? default_cache_dir() : r.cache, false);
-    if (dry_setup.bodies.size() != setup.bodies.size())
-        throw InputError("fluid.settle_time: the settle placed " + std::to_string(dry_setup.bodies.size()) +
+    std::vector<Pose> placed;
+    if (fluid.settle_stages > 1) {
+        settle_folder.open();
+        // The whole settle's scene, as `--resume` checks it (each stage's own
+        // is in its folder).
+        write_text_file(settle_folder.claim("scene.resolved.toml"), resolved_scene_toml(dry));
+        states = settle_in_stages(r, dry, fluid.settle_stages, water, settle_folder, placed);
+    } else {
+        SceneSetup dry_setup = build_scene(dry, r.cache.empty() ? default_cache_dir() : r.cache, false);
+        run_dem(settle_folder, dry, dry_setup, &states, &water);
+        for (const BodyInit &b : dry_setup.bodies)
+            placed.push_back(b.pose);
+    }
+    if (states.size() != setup.bodies.size())
+        throw InputError("fluid.settle_time: the settle placed " + std::to_string(states.size()) +
                          " units, the scene " + std::to_string(setup.bodies.size()));
-    run_dem(settle_folder, dry, dry_setup, &states, &water);
 
     std::vector<SceneBody> bodies = bodies_at_rest(scene, setup, states);
     double speed = 0.0, displacement = 0.0;
     for (std::size_t i = 0; i < states.size(); ++i) {
         speed = std::max(speed, states[i].velocity.norm());
-        displacement =
-            std::max(displacement, (states[i].pose.position - setup.bodies[i].pose.position).norm());
+        displacement = std::max(displacement, (states[i].pose.position - placed[i].position).norm());
     }
     write_text_file(settle_folder.claim(settled_name),
                     resolved_scene_toml(settled_scene(scene, std::move(bodies))));
@@ -245,6 +300,7 @@ void run_settle(const RunRequest &r, const Scene &scene, const Scene &dry, const
             {"settle_time", fluid.settle_time},
             {"settle_friction", fluid.settle_friction ? json(*fluid.settle_friction) : json(nullptr)},
             {"settle_density", fluid.settle_density ? json(*fluid.settle_density) : json(nullptr)},
+            {"settle_stages", fluid.settle_stages},
             {"water_level", water.level},
             {"water_density", water.density},
             {"max_speed_at_end", speed},

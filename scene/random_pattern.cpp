@@ -50,13 +50,13 @@ struct Slot {
     int layer, row, col, columns;
 };
 
-// The pattern's slots in the grid's order (layer, row, column); a layer of
-// odd index has a column fewer, staggered.
+// The pattern's slots in the grid's order (layer, row, column), its rows
+// from first_row up; a layer of odd index has a column fewer, staggered.
 std::vector<Slot> grid_slots(const ScenePattern &p) {
     std::vector<Slot> slots;
     for (int layer = 0; layer < p.layers; ++layer) {
         const int columns = layer % 2 == 1 && p.columns > 1 ? p.columns - 1 : p.columns;
-        for (int row = 0; row < p.rows; ++row)
+        for (int row = p.first_row; row < p.rows; ++row)
             for (int col = 0; col < columns; ++col)
                 slots.push_back({layer, row, col, columns});
     }
@@ -104,10 +104,12 @@ std::vector<std::size_t> placing_order(const std::vector<Slot> &slots, bool seat
 class RandomPlacer {
   public:
     RandomPlacer(const ScenePattern &p, const PatternGrid &grid, int unit, const UnitTemplate &unit_template,
-                 const Collider &collider, double reach, double Dn, const std::vector<Wall> &walls)
+                 const Collider &collider, double reach, double Dn, const std::vector<Wall> &walls,
+                 const UnitsBefore &before)
         : p_(p), grid_(grid), slope_(*grid.slope), unit_(unit), template_(unit_template), collider_(collider),
-          reach_(reach), Dn_(Dn), walls_(walls), rng_(p.seed), seated_(p.placement == "seated"),
-          clear_of_toe_(p.clear_of_toe.value_or(false)), play_(0.5 * std::max(0.0, grid.spacing - grid.size)),
+          reach_(reach), Dn_(Dn), walls_(walls), before_(before), rng_(p.seed),
+          seated_(p.placement == "seated"), clear_of_toe_(p.clear_of_toe.value_or(false)),
+          play_(0.5 * std::max(0.0, grid.spacing - grid.size)),
           step_top_(slope_.floor_z + slope_.toe_height) {
         if (collider.spheres)
             for (const auto &sphere : unit_template.clump)
@@ -225,6 +227,8 @@ class RandomPlacer {
     }
 
     bool clear(const BodyInit &b) const {
+        if (before_.clear && !before_.clear(b))
+            return false;
         for (const BodyInit *other : placed_)
             if ((b.pose.position - other->pose.position).norm() < 2.0 * reach_ + p_.gap &&
                 closer_than(b, *other, template_, collider_, p_.gap))
@@ -270,7 +274,7 @@ class RandomPlacer {
             b = pose(q, s, y, height);
             return clear(b);
         };
-        double ceiling = below + p_.gap;
+        double ceiling = std::max(below, before_.top + below) + p_.gap;
         for (const double t : top_)
             ceiling = std::max(ceiling, t + p_.gap + below);
         double n = below + p_.gap;
@@ -314,6 +318,7 @@ class RandomPlacer {
     const Collider &collider_;
     const double reach_, Dn_;
     const std::vector<Wall> &walls_;
+    const UnitsBefore &before_;
     std::mt19937_64 rng_;
     const bool seated_;       // placement "seated": toe up, each unit slid down into its trough
     const bool clear_of_toe_; // no centre seaward of the face's foot
@@ -329,8 +334,8 @@ class RandomPlacer {
 std::vector<BodyInit> random_pattern(const ScenePattern &p, const PatternGrid &grid, int unit,
                                      const UnitTemplate &unit_template, const Collider &collider,
                                      double reach, double Dn, const std::vector<Wall> &walls,
-                                     const std::string &key) {
-    return RandomPlacer(p, grid, unit, unit_template, collider, reach, Dn, walls).place_all(key);
+                                     const UnitsBefore &before, const std::string &key) {
+    return RandomPlacer(p, grid, unit, unit_template, collider, reach, Dn, walls, before).place_all(key);
 }
 
 } // namespace armour

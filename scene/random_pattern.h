@@ -11,6 +11,7 @@
 #include "scene.h"
 
 #include <Eigen/Geometry>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -27,15 +28,22 @@ struct PatternGrid {
     Eigen::Vector3d domain_min, domain_max; // m: run.domain_min/max, which every unit stays inside
 };
 
+// The units already in the scene when a pattern is placed (its [[body]]
+// entries: a settle in stages, fluid.settle_stages): whether a pose clears
+// them all by the pattern's gap, and their highest point above the face (m).
+struct UnitsBefore {
+    std::function<bool(const BodyInit &)> clear;
+    double top = 0.0;
+};
+
 // The poses of pattern `p` (its unit `unit`, collided as `collider`, no part
 // farther than `reach` (m) from its centre) with placement "random" or "seated", clear
-// of `walls` and of each other. Throws InputError, its message `key` (the
-// scene file and the pattern's key up to its last part: "FILE: key
-// 'pattern.0.") + "placement': ...", when a slot holds no pose after many
-// draws.
+// of `walls`, of `before` and of each other, its rows from p.first_row up. Throws InputError, its message
+// `key` (the scene file and the pattern's key up to its last part: "FILE: key 'pattern.0.") + "placement':
+// ...", when a slot holds no pose after many draws.
 std::vector<BodyInit> random_pattern(const ScenePattern &p, const PatternGrid &grid, int unit,
                                      const UnitTemplate &unit_template, const Collider &collider,
                                      double reach, double Dn, const std::vector<Wall> &walls,
-                                     const std::string &key);
+                                     const UnitsBefore &before, const std::string &key);
 
 } // namespace armour

@@ -120,6 +120,10 @@ struct ScenePattern {
     // foot (toe_x); unset (as every layer kept before it) or false lets it.
     // Unset is not written, so a scene without it keeps its text and hash.
     std::optional<bool> clear_of_toe;
+    // The first row placed (0: from the toe). A settle in stages
+    // (fluid.settle_stages) places a pattern a few rows at a time, each
+    // stage's rows clear of the units settled before them ([[body]]).
+    int first_row = 0;
 };
 
 // A coupled fluid run (interFoam through the armourCoupling plugin): the
@@ -193,6 +197,11 @@ struct SceneFluid {
     // settles every case at one density (docs/scenes.md, "Settling before
     // coupling").
     std::optional<double> settle_density;
+    // The settle builds the [[pattern]]'s layer in this many stages from the
+    // toe up, as a placer builds it: each stage places the next rows clear
+    // of the units settled so far and settles them all (settle_time / stages;
+    // the last stage settle_time). 1 = the whole pile at once.
+    int settle_stages = 1;
     // The engine of the settle ("" = run.engine): clumps settle a layer that
     // exact hulls then meet the waves in, so both engines start from one layer.
     std::string settle_engine;

@@ -304,6 +304,12 @@ const std::vector<Key<ScenePattern>> &pattern_keys() {
             "placement \"random\" or \"seated\": true sets every unit with its centre landward of the slope "
             "wall's foot (toe_x), none over the toe in front of it, as a placer starts the layer on the toe; "
             "unset or false, the pile's lowest units may stand out over it (docs/stability.md)"),
+        key("first_row", &P::first_row, "",
+            "the first row placed (0: the toe's); the rows below stay empty for units already there "
+            "([[body]]), which random and seated placement set the pattern's units clear of (a settle in "
+            "stages, fluid.settle_stages, writes such scenes)")
+            .in(Range::at_least(0))
+            .written_if([](const P &p) { return p.first_row != 0; }),
     };
     return keys;
 }

@@ -133,6 +133,12 @@ const std::vector<Key<SceneFluid>> &fluid_keys() {
             "concrete (below)")
             .in(Range::above(0))
             .defaults("the units' own"),
+        key("settle_stages", &F::settle_stages, "",
+            "the settle builds the [[pattern]]'s layer this many stages from the toe up, as a placer "
+            "builds it: each stage places the next rows clear of the units already settled and settles "
+            "them all, settle_time / settle_stages each, the last settle_time (below)")
+            .in(Range::at_least(1))
+            .written_if([](const F &f) { return f.settle_stages != 1; }),
         key("settle_engine", &F::settle_engine, "",
             "the engine of the settle: bullet (exact hulls, each cube grown to hold its clump) settles the "
             "layer that run.engine liggghts (clumps) runs and its settled scene runs with --engine bullet: "

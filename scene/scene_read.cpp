@@ -258,6 +258,9 @@ void read_placements(const Table &root, Scene &s) {
         if (wall->type != "slope")
             t.fail("wall", "wall " + toml_string(p.wall) + " is of type " + toml_string(wall->type) +
                                "; a pattern needs a \"slope\" wall");
+        if (p.first_row >= p.rows)
+            t.fail("first_row", std::to_string(p.first_row) + " leaves no row to place: rows = " +
+                                    std::to_string(p.rows) + " (first_row counts from 0)");
         if (p.clear_of_toe.value_or(false) && p.placement == "grid")
             t.fail("clear_of_toe",
                    "is for placement \"random\" or \"seated\" (a grid faces the slope from its "
@@ -268,6 +271,28 @@ void read_placements(const Table &root, Scene &s) {
     const bool wave_flume = s.waves && s.waves->type != "solitary";
     if (s.bodies.empty() && s.drops.empty() && s.patterns.empty() && !wave_flume)
         root.fail("body", "the scene places no units: add a [[body]], [[drop]] or [[pattern]]");
+}
+
+// fluid.settle_stages builds one [[pattern]] a few rows a stage: the
+// scene's units must all be its, each stage at least a row.
+void check_settle_stages(const Table &root, const Scene &s) {
+    if (!s.fluid || s.fluid->settle_stages == 1)
+        return;
+    const Table t = root.section("fluid");
+    if (s.fluid->settle_time <= 0.0)
+        t.fail("settle_stages", "stages of a settle need one: fluid.settle_time is 0");
+    if (s.patterns.size() != 1 || !s.bodies.empty() || !s.drops.empty())
+        t.fail("settle_stages", "builds the layer of one [[pattern]] row by row, and the scene has " +
+                                    std::to_string(s.patterns.size()) + " [[pattern]], " +
+                                    std::to_string(s.bodies.size()) + " [[body]] and " +
+                                    std::to_string(s.drops.size()) + " [[drop]]");
+    const ScenePattern &p = s.patterns.front();
+    if (p.placement == "grid")
+        t.fail("settle_stages", "is for placement \"random\" or \"seated\", which set each stage's rows "
+                                "clear of the units settled before them; pattern.0.placement is \"grid\"");
+    if (s.fluid->settle_stages > p.rows - p.first_row)
+        t.fail("settle_stages", std::to_string(s.fluid->settle_stages) + " stages for the pattern's " +
+                                    std::to_string(p.rows - p.first_row) + " rows: at most one stage a row");
 }
 
 std::string read_text(const std::string &path) {
@@ -351,6 +376,7 @@ Scene load_scene(const std::string &path, const std::vector<std::string> &overri
             .fail("kind", "kind \"damage\" counts units on a slope: the scene needs a "
                           "[[wall]] of type \"slope\"");
     read_placements(root, s);
+    check_settle_stages(root, s);
     return s;
 }
 

@@ -348,6 +348,33 @@ void drop_units(const Scene &scene, std::size_t k, const Placement &place, Scene
                          "drop.min/max");
 }
 
+// The units in the scene before a random pattern's (a settle's stage: the
+// rows settled before it, as [[body]]): the pattern's units clear them by
+// `gap`, as the engine collides them, and rise no higher than their top.
+UnitsBefore units_before(const SceneSetup &setup, const Placement &place, const PatternGrid &grid, double gap,
+                         int unit) {
+    UnitsBefore before;
+    const std::vector<BodyInit> others = setup.bodies; // a copy: the pattern appends to setup.bodies
+    if (others.empty())
+        return before;
+    for (const BodyInit &o : others)
+        before.top =
+            std::max(before.top, (o.pose.position - grid.origin).dot(grid.normal) + place.reach[o.unit]);
+    const UnitTemplate &u = setup.units[static_cast<std::size_t>(unit)];
+    const Collider &c = place.colliders[static_cast<std::size_t>(unit)];
+    const double reach = place.reach[static_cast<std::size_t>(unit)];
+    before.clear = [others, &setup, &place, &u, &c, reach, gap](const BodyInit &b) {
+        for (const BodyInit &o : others) {
+            const auto k = static_cast<std::size_t>(o.unit);
+            if ((b.pose.position - o.pose.position).norm() < reach + place.reach[k] + gap &&
+                closer_than(b, u, c, o, setup.units[k], place.colliders[k], gap))
+                return false;
+        }
+        return true;
+    };
+    return before;
+}
+
 void pattern_units(const Scene &scene, std::size_t k, const Placement &place, SceneSetup &setup) {
     const ScenePattern &p = scene.patterns[k];
     const int unit = unit_index(setup, p.unit);
@@ -417,8 +444,9 @@ void pattern_units(const Scene &scene, std::size_t k, const Placement &place, Sc
         grid.size = 2.0 * half;
         grid.domain_min = place.domain_min;
         grid.domain_max = place.placement_max;
+        const UnitsBefore before = units_before(setup, place, grid, p.gap, unit);
         for (const BodyInit &b : random_pattern(p, grid, unit, setup.units[unit], collider, place.reach[unit],
-                                                Dn, setup.walls, scene.file + ": key '" + key))
+                                                Dn, setup.walls, before, scene.file + ": key '" + key))
             setup.bodies.push_back(b);
         return;
     }
@@ -428,7 +456,7 @@ void pattern_units(const Scene &scene, std::size_t k, const Placement &place, Sc
         const bool shifted = layer % 2 == 1 && p.columns > 1;
         const int columns = shifted ? p.columns - 1 : p.columns;
         const double n = low + p.gap + layer * (low + high + p.gap);
-        for (int row = 0; row < p.rows; ++row)
+        for (int row = p.first_row; row < p.rows; ++row)
             for (int col = 0; col < columns; ++col)
                 setup.bodies.push_back(pose(first + (row + (layer % 2) * 0.5) * spacing,
                                             (col - 0.5 * (columns - 1)) * spacing, n));

@@ -282,6 +282,66 @@ TEST(RandomPlacement, ClearOfToeSetsNoCentreSeawardOfTheFoot) {
     }
 }
 
+// pattern.0.first_row with units already there (a settle in stages,
+// fluid.settle_stages, places each stage's rows on the rows settled before,
+// as [[body]]): rows 3-5 of the CI-sized layer placed over rows 1-2 of
+// another seed set each unit clear of those bodies by the pattern's gap;
+// placed without them, the same rows reach into where they stand (the
+// check can fail). Both placements: 27 units, none below the third row.
+TEST(RandomPlacement, LaterRowsClearTheUnitsAlreadyThere) {
+    for (const std::string placement : {"random", "seated"}) {
+        armour::Scene base = stability_scene(
+            {"pattern.0.rows=2", "pattern.0.seed=5", "pattern.0.placement=\"" + placement + "\""});
+        const armour::SceneSetup lower = armour::build_scene(base, ARMOUR_TEST_CACHE, false);
+        ASSERT_EQ(lower.bodies.size(), 18u);
+        armour::Scene upper = stability_scene(
+            {"pattern.0.first_row=2", "pattern.0.seed=6", "pattern.0.placement=\"" + placement + "\""});
+        const armour::SceneSetup alone = armour::build_scene(upper, ARMOUR_TEST_CACHE, false);
+        for (const armour::BodyInit &b : lower.bodies) {
+            armour::SceneBody body;
+            body.unit = "cube";
+            body.position = b.pose.position;
+            const Eigen::Quaterniond q = b.pose.orientation;
+            body.orientation = Eigen::Vector4d(q.w(), q.x(), q.y(), q.z());
+            upper.bodies.push_back(body);
+        }
+        const armour::SceneSetup both = armour::build_scene(upper, ARMOUR_TEST_CACHE, false);
+        ASSERT_EQ(alone.bodies.size(), 27u);
+        ASSERT_EQ(both.bodies.size(), 45u);
+        double cleared = HUGE_VAL, reached = HUGE_VAL;
+        for (std::size_t i = 18; i < both.bodies.size(); ++i)
+            for (std::size_t j = 0; j < 18; ++j) {
+                cleared = std::min(cleared, sphere_gap(both, both.bodies[i], both.bodies[j]));
+                reached = std::min(reached, sphere_gap(both, alone.bodies[i - 18], both.bodies[j]));
+            }
+        std::printf("%s: rows 3-5 over rows 1-2: closest %.3g mm; placed without them %.3g mm\n",
+                    placement.c_str(), 1e3 * cleared, 1e3 * reached);
+        EXPECT_GE(cleared, kGap - 1e-9) << placement;
+        EXPECT_LT(reached, kGap) << placement;
+        EXPECT_GE(closest_gaps(both).second, 0.0) << placement;
+    }
+}
+
+// The keys of a settle in stages, refused as read, naming the key.
+TEST(RandomPlacement, StagesAndFirstRowsThatCannotBeBuiltAreRefused) {
+    const std::vector<std::pair<std::vector<std::string>, std::string>> refused = {
+        {{"pattern.0.first_row=5"}, "key 'pattern.0.first_row': 5 leaves no row to place: rows = 5"},
+        {{"fluid.settle_stages=6"}, "key 'fluid.settle_stages': 6 stages for the pattern's 5 rows"},
+        {{"fluid.settle_stages=2", "pattern.0.placement=\"grid\""},
+         "key 'fluid.settle_stages': is for placement \"random\" or \"seated\""},
+        {{"fluid.settle_stages=2", "fluid.settle_time=0"},
+         "key 'fluid.settle_stages': stages of a settle need one"},
+        {{"fluid.settle_stages=0"}, "key 'fluid.settle_stages'"},
+    };
+    for (const auto &[sets, message] : refused)
+        try {
+            stability_scene(sets);
+            ADD_FAILURE() << sets.back() << " was read";
+        } catch (const armour::InputError &e) {
+            EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+        }
+}
+
 TEST(SeatedPlacement, ASlotNoTurnedUnitFitsIsRefusedNamingThePlacement) {
     try {
         armour::build_scene(

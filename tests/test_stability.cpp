@@ -591,6 +591,66 @@ TEST(StabilityCubes, SettleOnlyLeavesTheLayerACoupledRunStartsFrom) {
             fs::remove_all(r->dir);
 }
 
+// fluid.settle_stages (docs/stability.md): the CI-sized layer built in five
+// stages from the toe up, a row of both layers each (9 units), each stage
+// placed on the units settled before it and settled with them. Each stage
+// is an `armour run` of its own in OUT/settle/stage-K, its scene holding the
+// units settled before as [[body]] and the pattern from its row on (stage 2
+// reruns from its scene.resolved.toml); the settled layer is still and
+// within the Rock Manual's band, as the one-piece settle's is, its scene
+// settles nothing again, and `--resume` without the stages is refused.
+TEST(StabilityCubes, ASettleInStagesBuildsTheLayerFromTheToeUp) {
+    const SceneRun staged =
+        run_stability("staged", "--set pattern.0.seed=2 --set fluid.settle_stages=5 --settle-only");
+    ASSERT_EQ(staged.status, 0) << staged.output;
+    for (int k = 1; k <= 5; ++k) {
+        const fs::path stage = staged.out / "settle" / ("stage-" + std::to_string(k));
+        ASSERT_TRUE(fs::is_regular_file(stage / "summary.json")) << stage;
+        const std::string scene = read_text(stage / "scene.resolved.toml");
+        std::size_t bodies = 0;
+        for (auto at = scene.find("[[body]]"); at != std::string::npos; at = scene.find("[[body]]", at + 1))
+            ++bodies;
+        EXPECT_EQ(bodies, static_cast<std::size_t>(9 * (k - 1))) << stage;
+        EXPECT_EQ(scene.find("first_row = " + std::to_string(k - 1)) != std::string::npos, k > 1) << stage;
+        EXPECT_NE(staged.output.find("settle stage " + std::to_string(k) + " of 5: rows " +
+                                     std::to_string(k) + "-" + std::to_string(k) + ", " +
+                                     (k < 5 ? "0.5" : "2.5") + " s"),
+                  std::string::npos)
+            << staged.output;
+    }
+    std::ifstream settled_json(staged.out / "settle" / "settled.json");
+    const json settled = json::parse(settled_json);
+    EXPECT_EQ(settled["settle_stages"].get<int>(), 5);
+    EXPECT_EQ(settled["units"].get<int>(), 45);
+    EXPECT_LT(settled["max_speed_at_end"].get<double>(), 0.01 * kDn);
+    const json &layer = staged.summary["settled_layer"];
+    ASSERT_TRUE(layer.is_object()) << staged.summary.dump(2);
+    std::printf("settled in 5 stages, seed 2: %s\n", layer.dump().c_str());
+    EXPECT_FALSE(layer["outside_rock_manual"].get<bool>()) << layer.dump();
+    EXPECT_GE(layer["units_on_slope"].get<int>(), 42);
+    EXPECT_EQ(read_text(staged.out / "settle" / "scene.settled.toml").find("settle_stages"),
+              std::string::npos);
+    // The stages are not in the settle's scene: `--resume` with another
+    // number of them is refused by its settled.json, naming the key.
+    const fs::path log = staged.dir / "resume.log";
+    const int rc = std::system(("'" + std::string(ARMOUR_EXE) + "' run '" + ARMOUR_SOURCE_DIR +
+                                "/scenes/stability_cubes.toml' --out '" + staged.out.string() + "' " +
+                                kSmall + "--set pattern.0.seed=2 --resume > '" + log.string() + "' 2>&1")
+                                   .c_str());
+    EXPECT_TRUE(WIFEXITED(rc) && WEXITSTATUS(rc) == 2) << read_text(log);
+    EXPECT_NE(read_text(log).find("armour: error: --resume: "), std::string::npos) << read_text(log);
+    EXPECT_NE(read_text(log).find("key 'fluid.settle_stages': 1, where"), std::string::npos)
+        << read_text(log);
+    const SceneRun rerun = armour_test::run_scene(
+        ARMOUR_EXE, staged.out / "settle" / "stage-2" / "scene.resolved.toml", "stability_stage_rerun",
+        "--set run.duration=0.01 --set run.output_interval=0.01");
+    EXPECT_EQ(rerun.status, 0) << rerun.output;
+    EXPECT_EQ(rerun.summary["units"].get<int>(), 18) << rerun.summary.dump(2);
+    if (!HasFailure())
+        for (const SceneRun *r : {&staged, &rerun})
+            fs::remove_all(r->dir);
+}
+
 // A scene that does not settle, or a settle asked to resume: refused in one
 // line naming the key or option, nothing written.
 TEST(StabilityCubes, SettleOnlyWithoutASettleIsRefused) {
