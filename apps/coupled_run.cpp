@@ -59,7 +59,7 @@ fs::path prepare_case(const RunRequest &r, const Scene &scene, const SceneSetup 
     if (scene.checkpoint_interval > 0.0)
         folder.claim("checkpoints"); // the plugin writes them
     const std::map<std::string, std::string> paths =
-        case_paths(resolved, r.cache.empty() ? default_cache_dir() : fs::absolute(r.cache).string(), out);
+        case_paths(resolved, fs::absolute(r.cache_dir()).string(), out);
     if (resume) {
         resume_case(scene, *resume, paths, case_dir);
         return case_dir;

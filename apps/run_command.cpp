@@ -138,8 +138,7 @@ namespace {
 
 int resume_settled(const RunRequest &r, OutputFolder &folder, const Scene &scene, const SceneSetup &setup) {
     const auto [settled, checkpoint] = checked_settled_resume(r, scene, setup, folder.target());
-    const SceneSetup settled_setup =
-        build_scene(settled, r.cache.empty() ? default_cache_dir() : r.cache, false);
+    const SceneSetup settled_setup = build_scene(settled, r.cache_dir(), false);
     folder.resume();
     return with_settle_report(folder, run_coupled(r, settled, settled_setup, folder, &checkpoint),
                               settle_report(folder.target() / "settle", setup));
@@ -277,7 +276,7 @@ int dry_run(const RunRequest &r, const Scene &scene) {
         resume = checked_resume(r, scene, out);
     // A resume goes on with the run's ranks unless told (run_coupled).
     const int np = r.np > 0 || !resume || !scene.fluid ? r.np : checkpoint_ranks(*resume);
-    const RunCheck check = check_run(scene, r.cache.empty() ? default_cache_dir() : r.cache, np);
+    const RunCheck check = check_run(scene, r.cache_dir(), np);
     if (r.resume && settles)
         resume = checked_settled_resume(r, scene, check.setup, out).second;
     if (!r.resume)
@@ -321,6 +320,10 @@ void refuse_replacing_stopped_run(const RunRequest &r) {
 
 } // namespace
 
+std::string RunRequest::cache_dir() const {
+    return cache.empty() ? default_cache_dir() : cache;
+}
+
 std::string resume_key_text(const Scene &scene) {
     return resumable_form(scene, true);
 }
@@ -344,7 +347,7 @@ int run_scene(const RunRequest &r) {
     std::optional<Checkpoint> resume;
     if (r.resume && !settles)
         resume = checked_resume(r, scene, folder.target());
-    SceneSetup setup = build_scene(scene, r.cache.empty() ? default_cache_dir() : r.cache, true);
+    SceneSetup setup = build_scene(scene, r.cache_dir(), true);
     if (!r.resume)
         warn_if_no_checkpoint(scene);
     if (!scene.fluid) {

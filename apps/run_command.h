@@ -18,6 +18,9 @@ struct RunRequest {
     bool restart = false;               // replace a run DIR holds that stopped before its end
     bool dry_run = false;               // every check of a run, a plan on stdout, nothing written to DIR
     bool settle_only = false;           // the settle a coupled run starts with, and its layer's figures
+
+    // --cache, or the default folder (ARMOUR_CACHE, XDG_CACHE_HOME, ~/.cache) when it is not given.
+    std::string cache_dir() const;
 };
 
 // Returns the exit status (0 on success); throws InputError before anything

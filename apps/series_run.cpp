@@ -24,10 +24,6 @@ using nlohmann::json;
 
 namespace {
 
-std::string cache_of(const RunRequest &r) {
-    return r.cache.empty() ? default_cache_dir() : r.cache;
-}
-
 fs::path step_dir(const fs::path &out, std::size_t k) {
     return out / "series" / std::to_string(k + 1);
 }
@@ -263,7 +259,7 @@ int write_series_summary(const Scene &series, const Scene &last, const SceneSetu
 int dry_run_series(const RunRequest &r, const Scene &scene) {
     const fs::path out = OutputFolder::check_writable(r.out, "armour run");
     check_options(r, scene);
-    const SceneSetup setup = build_scene(scene, cache_of(r), false);
+    const SceneSetup setup = build_scene(scene, r.cache_dir(), false);
     const std::vector<std::string> warnings = check_steps(r, scene, setup);
     const bool settles = scene.fluid->settle_time > 0.0;
     if (r.resume)
@@ -306,7 +302,7 @@ int run_series(const RunRequest &r, const Scene &scene) {
         return dry_run_series(r, scene);
     OutputFolder folder(r.out, "armour run", OutputFolder::Mode::streaming); // refused before any work
     check_options(r, scene);
-    SceneSetup setup = build_scene(scene, cache_of(r), true);
+    SceneSetup setup = build_scene(scene, r.cache_dir(), true);
     warn_if_settle_keys_unused(scene);
     warn_if_settle_hands_clumps_to_hulls(scene);
     check_steps(r, scene, setup); // every step's case, before anything is written
@@ -320,7 +316,7 @@ int run_series(const RunRequest &r, const Scene &scene) {
         folder.resume();
         if (settles) {
             settle = settle_report(out / "settle", setup);
-            setup = build_scene(start, cache_of(r), false);
+            setup = build_scene(start, r.cache_dir(), false);
         }
     } else {
         folder.open(); // an earlier result of this command is replaced
@@ -335,7 +331,7 @@ int run_series(const RunRequest &r, const Scene &scene) {
         throw InputError("--out: cannot create " + (out / "series").string() + ": " + ec.message());
     const std::size_t count = scene.series.size();
     Scene step = series_step_scene(start, 0);
-    SceneSetup step_setup = build_scene(step, cache_of(r), false);
+    SceneSetup step_setup = build_scene(step, r.cache_dir(), false);
     for (std::size_t k = 0;; ++k) {
         if (const int status = run_step(r, step, step_setup, step_dir(out, k), scene.series[k], k, count);
             status != 0)
@@ -344,7 +340,7 @@ int run_series(const RunRequest &r, const Scene &scene) {
             break;
         const std::vector<SceneBody> bodies = bodies_at_end(step_dir(out, k), start, step_setup);
         step = series_step_scene(start, k + 1, &bodies);
-        step_setup = build_scene(step, cache_of(r), false);
+        step_setup = build_scene(step, r.cache_dir(), false);
     }
     return write_series_summary(scene, step, step_setup, folder, settle);
 }

@@ -246,7 +246,7 @@ std::vector<BodyState> settle_in_stages(const RunRequest &r, const Scene &dry, i
         std::fprintf(stderr, "run: settle stage %d of %d: rows %d-%d, %g s\n", k + 1, stages,
                      stage.patterns.front().first_row + 1, stage.patterns.front().rows, stage.duration);
         std::fflush(nullptr);
-        SceneSetup setup = build_scene(stage, r.cache.empty() ? default_cache_dir() : r.cache, false);
+        SceneSetup setup = build_scene(stage, r.cache_dir(), false);
         for (std::size_t i = settled.size(); i < setup.bodies.size(); ++i)
             placed.push_back(setup.bodies[i].pose);
         OutputFolder folder(settle_folder.claim("stage-" + std::to_string(k + 1)), "armour run",
@@ -277,7 +277,7 @@ void run_settle(const RunRequest &r, const Scene &scene, const Scene &dry, const
         write_text_file(settle_folder.claim("scene.resolved.toml"), resolved_scene_toml(dry));
         states = settle_in_stages(r, dry, fluid.settle_stages, water, settle_folder, placed);
     } else {
-        SceneSetup dry_setup = build_scene(dry, r.cache.empty() ? default_cache_dir() : r.cache, false);
+        SceneSetup dry_setup = build_scene(dry, r.cache_dir(), false);
         run_dem(settle_folder, dry, dry_setup, &states, &water);
         for (const BodyInit &b : dry_setup.bodies)
             placed.push_back(b.pose);
@@ -359,7 +359,7 @@ Scene settle_before_coupling(const RunRequest &r, OutputFolder &folder, const Sc
     // domain or overlapping. Say so in the user's own terms.
     try {
         Scene settled = load_scene(settled_file.string());
-        setup = build_scene(settled, r.cache.empty() ? default_cache_dir() : r.cache, false);
+        setup = build_scene(settled, r.cache_dir(), false);
         return settled;
     } catch (const InputError &e) {
         if (speed <= still)
@@ -395,7 +395,7 @@ int settle_only(const RunRequest &r, const Scene &scene) {
     const auto start = std::chrono::steady_clock::now();
     if (r.dry_run) { // the settle's checks (units, placement, settle keys, --out), nothing written
         const fs::path out = OutputFolder::check_writable(r.out, "armour run");
-        const SceneSetup setup = build_scene(scene, r.cache.empty() ? default_cache_dir() : r.cache, true);
+        const SceneSetup setup = build_scene(scene, r.cache_dir(), true);
         const Scene dry = settle_scene(scene, setup);
         warn_if_settle_hands_clumps_to_hulls(scene);
         std::printf("plan: settle %zu units for %g s (fluid.settle_time) in %s under still water at %g m, "
@@ -406,7 +406,7 @@ int settle_only(const RunRequest &r, const Scene &scene) {
         return 0;
     }
     OutputFolder folder(r.out, "armour run", OutputFolder::Mode::streaming); // refused before any work
-    SceneSetup setup = build_scene(scene, r.cache.empty() ? default_cache_dir() : r.cache, true);
+    SceneSetup setup = build_scene(scene, r.cache_dir(), true);
     warn_if_settle_hands_clumps_to_hulls(scene);
     folder.open();
     json report;
