@@ -122,6 +122,51 @@ TEST_F(Run, RefusesOverlappingBodiesNamingThePair) {
     EXPECT_FALSE(fs::exists(out()));
 }
 
+// A settled layer starts with its contacts pressed: the start check allows
+// two clump spheres the Hertz overlap under 10 unit weights, with the pair's
+// effective radius ra rb / (ra + rb) (two equal spheres press 1.26 x deeper
+// than one on a plane). Two one-sphere cubes, at 0.95 and 1.05 x that
+// overlap: the first starts, the second is refused. (With a plane's radius
+// the check allowed 0.79 x and refused both.) E = 5e6 Pa, so that the
+// Hertz figure, not the floor of 5 % of the radius, decides.
+TEST_F(Run, StartCheckAllowsTwoSpheresTheirHertzOverlapUnderTenUnitWeights) {
+    const auto scene = [](double centres) {
+        return "name = \"pair\"\n[run]\nduration = 0.001\noutput_interval = 0.001\ndomain_min = [-1, -1, "
+               "-0.5]\n"
+               "domain_max = [1, 1, 1.5]\n[[material]]\nname = \"concrete\"\nyoungs_modulus = 5e6\n"
+               "[[unit]]\nname = \"cube\"\nshape = \"cube\"\nsize = 0.2\nspheres = 1\n"
+               "[[body]]\nunit = \"cube\"\nposition = [0, 0, 0.5]\n[[body]]\nunit = \"cube\"\nposition = [" +
+               std::to_string(centres) + ", 0, 0.5]\n";
+    };
+    const fs::path file = dir_ / "pair.toml";
+    std::ofstream(file) << scene(0.5); // apart: to read the clump
+    const armour::SceneSetup setup = armour::build_scene(armour::load_scene(file.string()), cache_, false);
+    const armour::UnitTemplate &unit = setup.units[0];
+    ASSERT_EQ(unit.clump.size(), 1u);
+    const double r = unit.clump[0].radius;
+    // (Both cubes unturned: their spheres lie as far apart as their centres.)
+    const armour::Material &m = setup.settings.materials[unit.material];
+    const double e_star = m.youngs_modulus / (2.0 * (1.0 - m.poisson_ratio * m.poisson_ratio));
+    const double force = 10.0 * unit.props.mass * 9.81; // N
+    const double hertz = std::pow(3.0 * force / (4.0 * e_star * std::sqrt(r / 2.0)), 2.0 / 3.0);
+    std::printf("[ pair     ] sphere r = %.2f mm: Hertz pair overlap under 10 unit weights %.2f mm\n",
+                1e3 * r, 1e3 * hertz);
+    ASSERT_GT(hertz, 0.05 * r); // the Hertz figure decides, not the 5 % floor
+    // build_scene holds the start check (a one-sphere clump is no LIGGGHTS
+    // multisphere, so `armour run` would refuse it for that first).
+    const auto build = [&](double overlap) {
+        std::ofstream(file) << scene(2.0 * r - overlap);
+        return armour::build_scene(armour::load_scene(file.string()), cache_, false);
+    };
+    EXPECT_NO_THROW(build(0.95 * hertz));
+    try {
+        build(1.05 * hertz);
+        ADD_FAILURE() << "1.05 x the Hertz overlap started";
+    } catch (const armour::InputError &e) {
+        EXPECT_NE(std::string(e.what()).find("bodies overlap (pairs 0-1)"), std::string::npos) << e.what();
+    }
+}
+
 TEST_F(Run, RefusesABodyCuttingIntoAWall) {
     EXPECT_EQ(run(scene_text("[0, 0, 0.05]")), 2);
     EXPECT_NE(error_line().find("cuts into wall 'floor'"), std::string::npos) << err_;
