@@ -126,14 +126,14 @@ TEST_F(Run, RefusesOverlappingBodiesNamingThePair) {
 // two clump spheres the Hertz overlap under 10 unit weights, with the pair's
 // effective radius ra rb / (ra + rb) (two equal spheres press 1.26 x deeper
 // than one on a plane). Two one-sphere cubes, at 0.95 and 1.05 x that
-// overlap: the first starts, the second is refused. (With a plane's radius
+// overlap: the first passes the check, the second is refused. (With a plane's radius
 // the check allowed 0.79 x and refused both.) E = 5e6 Pa, so that the
 // Hertz figure, not the floor of 5 % of the radius, decides.
 TEST_F(Run, StartCheckAllowsTwoSpheresTheirHertzOverlapUnderTenUnitWeights) {
     const auto scene = [](double centres) {
-        return "name = \"pair\"\n[run]\nduration = 0.001\noutput_interval = 0.001\ndomain_min = [-1, -1, "
-               "-0.5]\n"
-               "domain_max = [1, 1, 1.5]\n[[material]]\nname = \"concrete\"\nyoungs_modulus = 5e6\n"
+        return "name = \"pair\"\n[run]\nduration = 0.001\noutput_interval = 0.001\n"
+               "domain_min = [-1, -1, -0.5]\ndomain_max = [1, 1, 1.5]\n"
+               "[[material]]\nname = \"concrete\"\nyoungs_modulus = 5e6\n"
                "[[unit]]\nname = \"cube\"\nshape = \"cube\"\nsize = 0.2\nspheres = 1\n"
                "[[body]]\nunit = \"cube\"\nposition = [0, 0, 0.5]\n[[body]]\nunit = \"cube\"\nposition = [" +
                std::to_string(centres) + ", 0, 0.5]\n";
