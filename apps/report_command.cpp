@@ -101,7 +101,7 @@ int run_report(const ReportRequest &r) {
         throw InputError(scene_file.string() +
                          ": no [fluid] table: a DEM run's analysis samples its engine as it runs and is in "
                          "its summary.json when it ends; `armour report` reads coupled runs");
-    const SceneSetup setup = build_scene(scene, r.cache.empty() ? default_cache_dir() : r.cache, false);
+    const SceneSetup setup = build_scene(scene, cache_dir_or_default(r.cache), false);
     if (setup.bodies.empty())
         throw InputError(scene_file.string() +
                          ": no bodies (an empty wave flume): its wave figures are in its summary.json when "

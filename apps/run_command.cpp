@@ -321,7 +321,7 @@ void refuse_replacing_stopped_run(const RunRequest &r) {
 } // namespace
 
 std::string RunRequest::cache_dir() const {
-    return cache.empty() ? default_cache_dir() : cache;
+    return cache_dir_or_default(cache);
 }
 
 std::string resume_key_text(const Scene &scene) {

@@ -139,6 +139,10 @@ std::string default_cache_dir() {
     return (fs::temp_directory_path() / "armour-fsi-cache").string();
 }
 
+std::string cache_dir_or_default(const std::string &given) {
+    return given.empty() ? default_cache_dir() : given;
+}
+
 TriangleMesh plane_wall(const Eigen::Vector3d &point, const Eigen::Vector3d &normal, double size) {
     const Eigen::Vector3d n = normal.normalized();
     const Eigen::Vector3d u = n.unitOrthogonal() * (0.5 * size);

@@ -62,8 +62,11 @@ double sphere_overlap(double radius, const Material &material, double force);
 std::optional<double> growth_to_hold_clump(const UnitTemplate &unit);
 
 // The default clump cache: $ARMOUR_CACHE, else $XDG_CACHE_HOME/armour-fsi,
-// else ~/.cache/armour-fsi.
+// else ~/.cache/armour-fsi, else armour-fsi-cache in the temporary folder.
 std::string default_cache_dir();
+
+// The clump cache a command uses: `given` (its --cache) when set, else the default.
+std::string cache_dir_or_default(const std::string &given);
 
 // Wall surfaces (m, world frame), exposed for tests.
 TriangleMesh plane_wall(const Eigen::Vector3d &point, const Eigen::Vector3d &normal, double size);

@@ -60,12 +60,20 @@ Usage
         docs/results/stability_by_height --pool --out chart.png
     python3 studies/compare_curves.py docs/results/stability_curve_dn4 \\
         docs/results/stability_one_layer_dn4+docs/results/stability_curve_dn4:2050 --out chart.png
+    python3 studies/compare_curves.py docs/results/stability_curve_dn4 \\
+        docs/results/settled_layers_dn4/staged_11_waves --seeds 2,3,4 --out chart.png
 
     A curve given as FOLDER[:VALUE,...]+FOLDER... is one curve of several
     kept studies' points: each folder's realisations, or only those whose
     varied key takes one of the VALUEs (the second example: the one-layer
     study's points on the 2050 kg/m3 layers with the curve's own 2050 point,
     whose layers they are).
+
+    --seeds 2,3,4 keeps only those seeds' realisations in every curve, so that
+    curves run on different sets of seeds are set side by side on the same
+    ones (the third example: the Dn/4 curve's seeds 2-4 settled at once beside
+    the same cases settled in 11 stages). A seed a curve has no done case of
+    is refused, naming the curve.
 """
 import argparse
 import csv
@@ -109,6 +117,24 @@ def read_curve(spec):
             part_rows = [r for r in part_rows if float(r[part_varied]) in wanted]
         rows, varied = rows + part_rows, part_varied
     return rows, varied
+
+
+def only_seeds(curve, spec, seeds):
+    """A curve's rows of the given seeds only; every seed must have a done case in it."""
+    rows, varied = curve
+    for seed in seeds:
+        if not any(r.get("seed") == str(seed) for r in rows):
+            fail(f"{spec}: --seeds: no done case with seed {seed}")
+    return [r for r in rows if int(r["seed"]) in seeds], varied
+
+
+def seed_list(text):
+    """--seeds' value, a comma-separated list of whole numbers."""
+    try:
+        seeds = [int(s) for s in text.split(",")]
+    except ValueError:
+        fail(f"--seeds: '{text}' is not a comma-separated list of seeds (whole numbers)")
+    return seeds
 
 
 def default_label(spec):
@@ -557,6 +583,7 @@ def main():
     parser.add_argument("--precision", type=float, default=0.1,
                         help="the relative half-width on a point's f (95 %%) the planning line asks for "
                         "(default 0.1)")
+    parser.add_argument("--seeds", help="only these seeds' realisations in every curve, e.g. 2,3,4")
     args = parser.parse_args()
     labels = args.label or [default_label(c) for c in args.curves]
     if len(labels) != len(args.curves):
@@ -564,6 +591,9 @@ def main():
     if not 0.0 < args.precision <= 1.0:
         fail(f"--precision: {args.precision:g} is not a relative half-width in (0, 1]")
     curves = [read_curve(c) for c in args.curves]
+    if args.seeds is not None:
+        seeds = seed_list(args.seeds)
+        curves = [only_seeds(curve, spec, seeds) for curve, spec in zip(curves, args.curves)]
 
     import matplotlib
     matplotlib.use("Agg")

@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -395,6 +396,25 @@ TEST_F(Run, RestGapTellsTheFacesAClumpRocksOn) {
     EXPECT_GT(gap_plus_x, overlap);
     EXPECT_LT(on_minus_z.wander, 1e-4);
     EXPECT_GT(on_plus_x.wander, 1e-3);
+}
+
+// A command's clump cache is its --cache when given, else the default
+// ($ARMOUR_CACHE first): `armour run` and `armour report` ask the same function.
+TEST(ClumpCache, IsTheCommandsCacheFlagElseTheDefault) {
+    const char *before = std::getenv("ARMOUR_CACHE");
+    const std::string kept = before ? before : "";
+    ::setenv("ARMOUR_CACHE", "/tmp/armour-cache-of-this-test", 1);
+    EXPECT_EQ(armour::default_cache_dir(), "/tmp/armour-cache-of-this-test");
+    EXPECT_EQ(armour::cache_dir_or_default(""), "/tmp/armour-cache-of-this-test");
+    EXPECT_EQ(armour::cache_dir_or_default("given/cache"), "given/cache");
+    armour::RunRequest request;
+    EXPECT_EQ(request.cache_dir(), "/tmp/armour-cache-of-this-test");
+    request.cache = "given/cache";
+    EXPECT_EQ(request.cache_dir(), "given/cache");
+    if (before)
+        ::setenv("ARMOUR_CACHE", kept.c_str(), 1);
+    else
+        ::unsetenv("ARMOUR_CACHE");
 }
 
 TEST_F(Run, KeepsTheUsersFiles) {

@@ -1230,6 +1230,24 @@ TEST_F(SweepTest, ComparedCurvesCountEachCurvesUnitsAgainstVanDerMeer) {
     ASSERT_EQ(cases.status, 0) << cases.output;
     EXPECT_EQ(cases.output, "[(1700.0, 0.16), (1700.0, 0.64), (2000.0, 0.0)]\n");
 
+    // --seeds keeps only those seeds' realisations in every curve: A's seed 1 at 2000 kg/m^3 (0 of
+    // 0.5) and 1700 kg/m^3 (1 of 4.0), 1 of 4.5 in all (P(X <= 1 | 4.5) = 5.5 e^-4.5 = 0.061), beside
+    // B's own seed 1 (4 of 4.5). A seed a curve has not run is refused, naming the curve.
+    const Result seeded = run(script + (dir_ / "a").string() + " " + (dir_ / "b").string() +
+                              " --seeds 1 --out " + (dir_ / "s.png").string());
+    ASSERT_EQ(seeded.status, 0) << seeded.output;
+    EXPECT_NE(seeded.output.find("unit.0.density 2000.0: Ns 2.50  0 / 0.5 (P 0.61)  over 1 realisations"),
+              std::string::npos)
+        << seeded.output;
+    EXPECT_NE(seeded.output.find("all: 1 / 4.5 (P 0.061)"), std::string::npos) << seeded.output;
+    EXPECT_NE(seeded.output.find("all: 4 / 4.5 (P 0.53)"), std::string::npos) << seeded.output;
+    const Result unseeded = run(script + (dir_ / "a").string() + " " + (dir_ / "b").string() +
+                                " --seeds 1,2 --out " + (dir_ / "d.png").string());
+    EXPECT_EQ(unseeded.status, 2) << unseeded.output;
+    EXPECT_EQ(unseeded.output,
+              "armour: error: " + (dir_ / "b").string() + ": --seeds: no done case with seed 2\n");
+    EXPECT_FALSE(fs::exists(dir_ / "d.png"));
+
     const Result bad = run(script + (dir_ / "missing").string() + " --out " + (dir_ / "d.png").string());
     EXPECT_EQ(bad.status, 2) << bad.output;
     EXPECT_EQ(bad.output, "armour: error: " + (dir_ / "missing" / "results.csv").string() +
