@@ -122,10 +122,11 @@ def read_curve(spec):
 def only_seeds(curve, spec, seeds):
     """A curve's rows of the given seeds only; every seed must have a done case in it."""
     rows, varied = curve
-    for seed in seeds:
-        if not any(r.get("seed") == str(seed) for r in rows):
+    by_seed = {seed: [r for r in rows if r.get("seed") == str(seed)] for seed in seeds}
+    for seed, seed_rows in by_seed.items():
+        if not seed_rows:
             fail(f"{spec}: --seeds: no done case with seed {seed}")
-    return [r for r in rows if int(r["seed"]) in seeds], varied
+    return [r for seed_rows in by_seed.values() for r in seed_rows], varied
 
 
 def seed_list(text):
