@@ -257,6 +257,39 @@ std::vector<BodyState> settle_in_stages(const RunRequest &r, const Scene &dry, i
     return states;
 }
 
+// A settle in stages has no DEM run of its own: its summary.json (read as a
+// one-piece settle's is: engine, steps, wall time) adds up its stages'.
+void write_staged_settle_summary(OutputFolder &settle_folder, const fs::path &dir, const Scene &dry,
+                                 int stages, std::size_t units) {
+    double wall = 0.0, simulated = 0.0;
+    long long steps = 0;
+    json engine;
+    for (int k = 1; k <= stages; ++k) {
+        std::ifstream in(dir / ("stage-" + std::to_string(k)) / "summary.json");
+        const json stage = json::parse(in, nullptr, false);
+        if (stage.is_discarded())
+            throw std::runtime_error("settle stage " + std::to_string(k) + " wrote no summary.json");
+        wall += stage.value("wall_seconds", 0.0);
+        simulated += stage.value("simulated_seconds", 0.0);
+        steps += stage.value("steps", 0LL);
+        engine = stage.value("engine", json());
+    }
+    write_text_file(
+        settle_folder.claim("summary.json"),
+        json{{"command", "run"},
+             {"scene", dry.name},
+             {"engine", engine},
+             {"settle_stages", stages},
+             {"units", units},
+             {"steps", steps},
+             {"simulated_seconds", simulated},
+             {"wall_seconds", wall},
+             {"stages", "stage-1 ... stage-" + std::to_string(stages) + ", each a DEM run's output"},
+             {"si_units", {{"simulated_seconds", "s"}, {"wall_seconds", "s"}}}}
+                .dump(2) +
+            "\n");
+}
+
 // The settle itself (in the forked child): the DEM run of `dry` under the
 // still water into `dir` (in stages: fluid.settle_stages), then the settled
 // scene (file `settled_name`) and settled.json.
@@ -276,6 +309,7 @@ void run_settle(const RunRequest &r, const Scene &scene, const Scene &dry, const
         // is in its folder).
         write_text_file(settle_folder.claim("scene.resolved.toml"), resolved_scene_toml(dry));
         states = settle_in_stages(r, dry, fluid.settle_stages, water, settle_folder, placed);
+        write_staged_settle_summary(settle_folder, dir, dry, fluid.settle_stages, states.size());
     } else {
         SceneSetup dry_setup = build_scene(dry, r.cache_dir(), false);
         run_dem(settle_folder, dry, dry_setup, &states, &water);

@@ -456,8 +456,8 @@ TEST(CoupledResume, SettledWaveRunResumesWithTheSameCommand) {
     const fs::path dir = test_dir("settled_resume");
     const auto args = [&](const fs::path &out, const std::vector<std::string> &flags) {
         return run_args("stability_cubes.toml", out,
-                        {"pattern.0.rows=5", "fluid.cells=[50,6,16]", "fluid.penalty=200", "run.duration=12",
-                         "run.checkpoint_interval=3"},
+                        {"pattern.0.rows=5", "fluid.settle_stages=5", "fluid.cells=[50,6,16]",
+                         "fluid.penalty=200", "run.duration=12", "run.checkpoint_interval=3"},
                         flags);
     };
     const fs::path reference = dir / "reference", killed = dir / "killed";

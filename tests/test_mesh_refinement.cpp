@@ -251,6 +251,7 @@ TEST(MeshRefinement, StabilitySceneRefinedAboutItsUnitsOnlyAndCoupledRunsOnIt) {
     const fs::path scene = stability_scene(dir, kBand), out = dir / "out";
     const std::string sets =
         "--set pattern.0.rows=5 --set pattern.0.placement='\"grid\"' --set fluid.settle_time=0 "
+        "--set fluid.settle_stages=1 "
         "--set 'fluid.cells=[100,12,31]' --set fluid.penalty=200 --set run.duration=0.1 "
         "--set run.output_interval=0.05 --set run.checkpoint_interval=0 "
         "--set fluid.write_interval=0.1";
@@ -326,7 +327,8 @@ TEST(MeshRefinement, UnitsOutsideTheFinestRegionsAreRefusedBeforeAnythingRuns) {
     const std::string cmd =
         "'" + std::string(ARMOUR_EXE) + "' run '" + scene.string() + "' --out '" + out.string() +
         "' --set pattern.0.rows=5 --set pattern.0.placement='\"grid\"' "
-        "--set fluid.settle_time=0 --set 'fluid.cells=[100,12,31]' --set refine.0.above=0.02 "
+        "--set fluid.settle_time=0 --set fluid.settle_stages=1 --set 'fluid.cells=[100,12,31]' "
+        "--set refine.0.above=0.02 "
         "> '" +
         (dir / "run.log").string() + "' 2>&1";
     const int rc = std::system(cmd.c_str());

@@ -30,9 +30,10 @@ constexpr double kGap = 0.002; // m, the scene's pattern.0.gap
 constexpr int kUnits = 5 * 9;  // 5 rows of 5 + 4: the CI-sized scene of test_stability
 
 // The shipped scene (placed at random) with 5 rows instead of 11: the
-// CI-sized layer of test_stability.
+// CI-sized layer of test_stability, placed in one piece (the placement
+// alone: a settle's stages place a few of its rows each).
 armour::Scene stability_scene(std::vector<std::string> overrides) {
-    overrides.insert(overrides.begin(), "pattern.0.rows=5");
+    overrides.insert(overrides.begin(), {"pattern.0.rows=5", "fluid.settle_stages=1"});
     return armour::load_scene(std::string(ARMOUR_SOURCE_DIR) + "/scenes/stability_cubes.toml", overrides);
 }
 
@@ -539,8 +540,9 @@ TEST(RandomPlacement, TheFullPileStandsAboveTheFlumeOnlyForASettle) {
         walls_top = std::max(walls_top, v.z());
     EXPECT_GE(walls_top, top);
 
-    const armour::Scene unsettled = armour::load_scene(
-        std::string(ARMOUR_SOURCE_DIR) + "/scenes/stability_cubes.toml", {"fluid.settle_time=0"});
+    const armour::Scene unsettled =
+        armour::load_scene(std::string(ARMOUR_SOURCE_DIR) + "/scenes/stability_cubes.toml",
+                           {"fluid.settle_time=0", "fluid.settle_stages=1"});
     try {
         armour::build_scene(unsettled, ARMOUR_TEST_CACHE, false);
         FAIL() << "a pile above the flume's top was placed without a settle";

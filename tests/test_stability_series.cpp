@@ -36,7 +36,8 @@ namespace {
 
 constexpr double kDn = 0.04; // m, the scene's cube
 
-const std::vector<std::string> kSmall = {"pattern.0.rows=5", "fluid.cells=[50,6,16]", "fluid.penalty=200"};
+const std::vector<std::string> kSmall = {"pattern.0.rows=5", "fluid.settle_stages=5", "fluid.cells=[50,6,16]",
+                                         "fluid.penalty=200"};
 
 // Two steps of rising waves, 2 s each (ramped over half a period: the
 // waves reach the toe at ~1 s), the second with its own period and seed.

@@ -120,10 +120,12 @@ class SweepTest : public ::testing::Test {
     // three densities of one seed: three layers for `--settle-only`.
     fs::path layers_sweep() {
         const fs::path file = dir_ / "layers.toml";
-        write(file, "scene = \"" + kSource +
-                        "/scenes/stability_cubes.toml\"\nseeds = [2]\nseed_key = [\"pattern.0.seed\"]\n"
-                        "[vary]\n\"unit.0.density\" = [1845, 2050, 2475]\n"
-                        "[set]\n\"pattern.0.rows\" = 5\n\"fluid.settle_time\" = 1.0\n");
+        write(
+            file,
+            "scene = \"" + kSource +
+                "/scenes/stability_cubes.toml\"\nseeds = [2]\nseed_key = [\"pattern.0.seed\"]\n"
+                "[vary]\n\"unit.0.density\" = [1845, 2050, 2475]\n"
+                "[set]\n\"pattern.0.rows\" = 5\n\"fluid.settle_stages\" = 5\n\"fluid.settle_time\" = 1.0\n");
         return file;
     }
 
@@ -869,10 +871,12 @@ TEST_F(SweepTest, AStoppedSeriesCaseGoesOnFromItsSteps) {
     write(scene, read_text(fs::path(kSource) / "scenes" / "stability_cubes.toml") +
                      "\n[[series]]\nHs = 0.10\nTp = 1.8\nramp_time = 0.9\nduration = 2.0\n"
                      "\n[[series]]\nHs = 0.12\nTp = 1.6\nseed = 2\nramp_time = 0.8\nduration = 2.0\n");
-    write(sweep, "scene = \"" + scene.string() +
-                     "\"\n[set]\n\"pattern.0.rows\" = 5\n\"fluid.cells\" = [50, 6, 16]\n"
-                     "\"fluid.penalty\" = 200.0\n\"run.checkpoint_interval\" = 1.0\n"
-                     "[[case]]\n\"series.1.Hs\" = 0.12\n");
+    write(
+        sweep,
+        "scene = \"" + scene.string() +
+            "\"\n[set]\n\"pattern.0.rows\" = 5\n\"fluid.settle_stages\" = 5\n\"fluid.cells\" = [50, 6, 16]\n"
+            "\"fluid.penalty\" = 200.0\n\"run.checkpoint_interval\" = 1.0\n"
+            "[[case]]\n\"series.1.Hs\" = 0.12\n");
     const pid_t pid = ::fork();
     if (pid == 0) {
         ::freopen("/dev/null", "w", stderr);
