@@ -257,13 +257,15 @@ std::vector<BodyState> settle_in_stages(const RunRequest &r, const Scene &dry, i
     return states;
 }
 
-// A settle in stages has no DEM run of its own: its summary.json (read as a
-// one-piece settle's is: engine, steps, wall time) adds up its stages'.
+// A settle in stages has no DEM run of its own: its summary.json adds up its
+// stages' steps and seconds, and takes the engine, its step and the step's
+// limit from the last stage (every stage's units are the scene's own), the
+// keys a one-piece settle's summary is read for.
 void write_staged_settle_summary(OutputFolder &settle_folder, const fs::path &dir, const Scene &dry,
                                  int stages, std::size_t units) {
     double wall = 0.0, simulated = 0.0;
     long long steps = 0;
-    json engine;
+    json last;
     for (int k = 1; k <= stages; ++k) {
         std::ifstream in(dir / ("stage-" + std::to_string(k)) / "summary.json");
         const json stage = json::parse(in, nullptr, false);
@@ -272,20 +274,23 @@ void write_staged_settle_summary(OutputFolder &settle_folder, const fs::path &di
         wall += stage.value("wall_seconds", 0.0);
         simulated += stage.value("simulated_seconds", 0.0);
         steps += stage.value("steps", 0LL);
-        engine = stage.value("engine", json());
+        last = stage;
     }
     write_text_file(
         settle_folder.claim("summary.json"),
-        json{{"command", "run"},
-             {"scene", dry.name},
-             {"engine", engine},
-             {"settle_stages", stages},
-             {"units", units},
-             {"steps", steps},
-             {"simulated_seconds", simulated},
-             {"wall_seconds", wall},
-             {"stages", "stage-1 ... stage-" + std::to_string(stages) + ", each a DEM run's output"},
-             {"si_units", {{"simulated_seconds", "s"}, {"wall_seconds", "s"}}}}
+        json{
+            {"command", "run"},
+            {"scene", dry.name},
+            {"engine", last.value("engine", json())},
+            {"dt", last.value("dt", json())},
+            {"dt_limit", last.value("dt_limit", json())},
+            {"settle_stages", stages},
+            {"units", units},
+            {"steps", steps},
+            {"simulated_seconds", simulated},
+            {"wall_seconds", wall},
+            {"stages", "stage-1 ... stage-" + std::to_string(stages) + ", each a DEM run's output"},
+            {"si_units", {{"dt", "s"}, {"dt_limit", "s"}, {"simulated_seconds", "s"}, {"wall_seconds", "s"}}}}
                 .dump(2) +
             "\n");
 }

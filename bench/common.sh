@@ -139,15 +139,18 @@ bench_window_args() {
   end="$(awk -v a="$opt_checkpoint" -v b="$opt_seconds" 'BEGIN { printf "%.10g", a + b }')"
 }
 
-# The stability scene as shipped, settled once into $layer = $out/layer (Dn/2
+# The stability scene's layer, settled once into $layer = $out/layer (Dn/2
 # cells for the short coupled start; the settle is the DEM's alone), and its
 # settled scene with the fluid's tables removed, $out/hold.toml: a dry hold of
-# the layer. Sets $layer for the caller.
+# the layer. Settled at once (fluid.settle_stages = 1, not the scene's 11
+# stages): one LIGGGHTS set-up, $layer/settle/liggghts/, that the DEM benches
+# replay, and the layer their kept figures were measured on. Sets $layer for
+# the caller.
 bench_settled_layer_dry() {
   layer="$out/layer"
   if [ ! -f "$layer/settle/scene.settled.toml" ]; then
     "$build/apps/armour" run "$root/scenes/stability_cubes.toml" --out "$layer" --set 'fluid.cells=[100,12,31]' \
-      --set run.duration=0.05 >"$layer.log" 2>&1
+      --set fluid.settle_stages=1 --set run.duration=0.05 >"$layer.log" 2>&1
   fi
   awk '/^\[/ { skip = ($0 ~ /^\[fluid\]|^\[waves\]|^\[\[porous\]\]|^\[\[series\]\]|^\[\[refine\]\]|^\[analysis\]/) } !skip' \
     "$layer/settle/scene.settled.toml" >"$out/hold.toml"

@@ -7,8 +7,8 @@
 #           characteristic velocity, the impact the limit is sized for): the
 #           rebound speed and the largest spin after impact, against the
 #           finest step's;
-#   hold    the stability scene's settled layer (99 units, as shipped: Dn/2
-#           cells for the short coupled start, which the settle does not use)
+#   hold    the stability scene's settled layer (99 units, settled at once:
+#           Dn/2 cells for the short coupled start, which the settle does not use)
 #           held dry: how far the units creep at each step;
 # and what it saves: the hold's wall seconds per simulated second (the DEM's
 # sub-steps are this cost inside every coupled step). Writes OUT/summary.json
@@ -94,7 +94,7 @@ for variant in flat corner; do
   done
 done
 
-# The hold: settle the scene as shipped, then hold its layer with the fluid's tables removed.
+# The hold: settle the scene's layer at once, then hold its layer with the fluid's tables removed.
 bench_settled_layer_dry
 hold_limit=$(limit_of "$layer/settle")
 for m in $hold_multiples; do

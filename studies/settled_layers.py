@@ -34,6 +34,7 @@ Description
 
 Usage
     build/apps/armour sweep studies/stability_cubes.toml --out RUN --settle-only --seeds 1,2,3,4,5,6,7,8
+    (the layers kept in docs/results/settled_layers_dn4 add --set fluid.settle_stages=1: settled at once)
     python3 studies/settled_layers.py RUN --against 2050 [--curve docs/results/stability_curve_dn4] --out OUT
 """
 import argparse
