@@ -12,7 +12,8 @@ Description
     machine counts the kept cases done: `armour sweep ... --kept DEST` copies
     those with the same scene into its --out and runs only the others. Paths of the source
     tree in summary.json (the scene, the sweep file) are written relative to
-    it, so the kept files name no machine's folders. Bodies, fields and
+    it, so the kept files name no machine's folders. A sweep still running
+    in RUN is refused (its report and figures are written when it ends). Bodies, fields and
     checkpoints stay in the sweep folder. DEST is written afresh: files of
     cases or figures it held before and the sweep no longer has are removed
     only under DEST/cases and DEST/figures.
@@ -22,6 +23,7 @@ Usage
     armour sweep STUDY --out NEW_RUN --kept docs/results/stability_curve   # elsewhere: the other cases
 """
 import csv
+import fcntl
 import json
 import os
 import shutil
@@ -58,11 +60,29 @@ def finished_rows(text):
     return lines[0] + "".join(line for line in lines[1:] if next(csv.reader([line]))[column] == "done")
 
 
+def refuse_while_running(run):
+    """Exit 2 while an armour command holds RUN's lock: a running sweep rewrites results.csv and summary.json
+    as its cases end but report.md and figures/ only when it ends, so a keep now would hold a stale report."""
+    try:
+        with open(os.path.join(run, ".armour-lock")) as lock:
+            try:
+                fcntl.flock(lock, fcntl.LOCK_SH | fcntl.LOCK_NB)
+            except BlockingIOError:
+                holder = lock.read().strip() or "unknown"
+                print(f"armour: error: {run}: in use by another armour command (pid {holder}); its report.md and "
+                      f"figures are written when it ends: keep then, or stop it (kill -TERM {holder}: its running "
+                      "cases go back to pending and every table is written)", file=sys.stderr)
+                sys.exit(2)
+    except FileNotFoundError:
+        pass
+
+
 def keep(run, dest):
     if not os.path.isfile(os.path.join(run, "summary.json")):
         print(f"armour: error: {os.path.join(run, 'summary.json')}: not found (not an armour sweep folder)",
               file=sys.stderr)
         sys.exit(2)
+    refuse_while_running(run)
     with open(os.path.join(run, "summary.json")) as f:
         summary = json.load(f)
     root = source_tree(summary)

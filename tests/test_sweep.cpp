@@ -625,6 +625,42 @@ TEST_F(SweepTest, KeptResultsLetASweepElsewhereRunOnlyTheOtherCases) {
     EXPECT_FALSE(fs::exists(dir_ / "bad"));
 }
 
+// A sweep still running writes its report.md and figures when it ends: while
+// an armour command holds the folder's lock, keep_results.py keeps nothing
+// (one error line naming the holder, exit 2, DEST not made); once the lock is
+// free the same command keeps the folder.
+TEST_F(SweepTest, KeepResultsRefusesASweepStillRunning) {
+    const fs::path file = dir_ / "one.toml";
+    write(file, "scene = \"" + kSource +
+                    "/scenes/tilt_cube.toml\"\n[set]\n\"run.duration\" = 0.5\n[vary]\n"
+                    "\"material.0.friction\" = [0.5]\n");
+    const fs::path out = dir_ / "running";
+    const Result sweep = run(kArmour + " sweep " + file.string() + " --out " + out.string());
+    ASSERT_EQ(sweep.status, 0) << sweep.output;
+    const std::string keep = "/usr/bin/python3 " + kSource + "/studies/keep_results.py " + out.string() +
+                             " " + (dir_ / "kept").string();
+    // The lock as a running sweep holds it (results/output_folder.cpp): its
+    // pid in DIR/.armour-lock, the file flock()ed, removed when it ends.
+    const fs::path lock = out / ".armour-lock";
+    const int fd = ::open(lock.c_str(), O_CREAT | O_RDWR, 0644);
+    ASSERT_GE(fd, 0);
+    ASSERT_EQ(::flock(fd, LOCK_EX | LOCK_NB), 0);
+    const std::string pid = std::to_string(::getpid());
+    ASSERT_EQ(::write(fd, pid.data(), pid.size()), static_cast<ssize_t>(pid.size()));
+    const Result refused = run(keep);
+    ::close(fd);
+    fs::remove(lock);
+    EXPECT_EQ(refused.status, 2) << refused.output;
+    const std::string why =
+        "armour: error: " + out.string() + ": in use by another armour command (pid " + pid + ")";
+    EXPECT_EQ(refused.output.rfind(why, 0), 0u) << refused.output;
+    EXPECT_EQ(std::count(refused.output.begin(), refused.output.end(), '\n'), 1) << refused.output;
+    EXPECT_FALSE(fs::exists(dir_ / "kept"));
+    const Result kept = run(keep);
+    EXPECT_EQ(kept.status, 0) << kept.output;
+    EXPECT_TRUE(fs::exists(dir_ / "kept" / "cases" / "friction-0.5" / "case.json"));
+}
+
 // A long study is taken a few cases a sitting, in the order its user needs
 // them (the realisations of one point first): --cases runs only those, the
 // others stay pending in the same folder for the next sweep, which runs only
