@@ -116,6 +116,16 @@ class SweepTest : public ::testing::Test {
         return file;
     }
 
+    // The tilt scene run `duration` s at each friction in `frictions` (a TOML
+    // list's items): a sweep of short cases, in DIR/`name`.
+    fs::path friction_sweep(const std::string &name, const std::string &duration,
+                            const std::string &frictions) {
+        const fs::path file = dir_ / name;
+        write(file, "scene = \"" + kSource + "/scenes/tilt_cube.toml\"\n[set]\n\"run.duration\" = " +
+                        duration + "\n[vary]\n\"material.0.friction\" = [" + frictions + "]\n");
+        return file;
+    }
+
     // The shipped stability scene CI-sized (5 rows), its settle cut to 1 s, at
     // three densities of one seed: three layers for `--settle-only`.
     fs::path layers_sweep() {
@@ -577,15 +587,8 @@ TEST_F(SweepTest, ALongerRunGoesOnFromEachCasesLastCheckpoint) {
 // (another machine, the run folder lost) take those cases as done and run
 // only the others; a kept case of another scene runs again.
 TEST_F(SweepTest, KeptResultsLetASweepElsewhereRunOnlyTheOtherCases) {
-    const auto sweep_file = [&](const std::string &name, const std::string &duration,
-                                const std::string &frictions) {
-        const fs::path file = dir_ / name;
-        write(file, "scene = \"" + kSource + "/scenes/tilt_cube.toml\"\n[set]\n\"run.duration\" = " +
-                        duration + "\n[vary]\n\"material.0.friction\" = [" + frictions + "]\n");
-        return file.string();
-    };
-    const Result first = run(kArmour + " sweep " + sweep_file("one.toml", "3.0", "0.5") + " --out " +
-                             (dir_ / "first").string());
+    const Result first = run(kArmour + " sweep " + friction_sweep("one.toml", "3.0", "0.5").string() +
+                             " --out " + (dir_ / "first").string());
     ASSERT_EQ(first.status, 0) << first.output;
     const fs::path kept = dir_ / "kept";
     const Result keep = run("/usr/bin/python3 " + kSource + "/studies/keep_results.py " +
@@ -593,7 +596,7 @@ TEST_F(SweepTest, KeptResultsLetASweepElsewhereRunOnlyTheOtherCases) {
     ASSERT_EQ(keep.status, 0) << keep.output;
     ASSERT_TRUE(fs::exists(kept / "cases" / "friction-0.5" / "case.json"));
 
-    const std::string two = sweep_file("two.toml", "3.0", "0.3, 0.5");
+    const std::string two = friction_sweep("two.toml", "3.0", "0.3, 0.5").string();
     const fs::path out = dir_ / "elsewhere";
     const Result resumed =
         run(kArmour + " sweep " + two + " --out " + out.string() + " --kept " + kept.string());
@@ -612,8 +615,9 @@ TEST_F(SweepTest, KeptResultsLetASweepElsewhereRunOnlyTheOtherCases) {
     EXPECT_FALSE(rows["friction-0.3"].at("steps").empty()); // the case the kept folder lacked ran here
 
     // Another scene (a shorter run): the kept case is not this sweep's.
-    const Result other = run(kArmour + " sweep " + sweep_file("short.toml", "2.0", "0.5") + " --out " +
-                             (dir_ / "other").string() + " --kept " + kept.string() + " --dry-run");
+    const Result other =
+        run(kArmour + " sweep " + friction_sweep("short.toml", "2.0", "0.5").string() + " --out " +
+            (dir_ / "other").string() + " --kept " + kept.string() + " --dry-run");
     ASSERT_EQ(other.status, 0) << other.output;
     EXPECT_NE(other.output.find("1 would run"), std::string::npos) << other.output;
 
@@ -630,10 +634,7 @@ TEST_F(SweepTest, KeptResultsLetASweepElsewhereRunOnlyTheOtherCases) {
 // (one error line naming the holder, exit 2, DEST not made); once the lock is
 // free the same command keeps the folder.
 TEST_F(SweepTest, KeepResultsRefusesASweepStillRunning) {
-    const fs::path file = dir_ / "one.toml";
-    write(file, "scene = \"" + kSource +
-                    "/scenes/tilt_cube.toml\"\n[set]\n\"run.duration\" = 0.5\n[vary]\n"
-                    "\"material.0.friction\" = [0.5]\n");
+    const fs::path file = friction_sweep("one.toml", "0.5", "0.5");
     const fs::path out = dir_ / "running";
     const Result sweep = run(kArmour + " sweep " + file.string() + " --out " + out.string());
     ASSERT_EQ(sweep.status, 0) << sweep.output;
@@ -666,10 +667,7 @@ TEST_F(SweepTest, KeepResultsRefusesASweepStillRunning) {
 // others stay pending in the same folder for the next sweep, which runs only
 // them. An id that is not a case: one error line, nothing made.
 TEST_F(SweepTest, CasesRunsOnlyTheNamedCasesAndTheRestLater) {
-    const fs::path file = dir_ / "three.toml";
-    write(file, "scene = \"" + kSource +
-                    "/scenes/tilt_cube.toml\"\n[set]\n\"run.duration\" = 2.0\n[vary]\n"
-                    "\"material.0.friction\" = [0.3, 0.5, 0.7]\n");
+    const fs::path file = friction_sweep("three.toml", "2.0", "0.3, 0.5, 0.7");
     const fs::path out = dir_ / "some";
     const std::string sweep = kArmour + " sweep " + file.string() + " --out " + out.string();
     const Result some = run(sweep + " --cases friction-0.7,friction-0.3");
