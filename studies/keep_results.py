@@ -61,16 +61,17 @@ def finished_rows(text):
 
 
 def refuse_while_running(run):
-    """Exit 2 while an armour command holds RUN's lock: a running sweep rewrites results.csv and summary.json
-    as its cases end but report.md and figures/ only when it ends, so a keep now would hold a stale report."""
+    """Exit 2 while an armour command holds RUN's lock: a running sweep rewrites results.csv, summary.json,
+    report.md and figures/ as its cases end, the charts in place, so a keep now could take the files of two
+    moments, or a chart half drawn."""
     try:
         with open(os.path.join(run, ".armour-lock")) as lock:
             try:
                 fcntl.flock(lock, fcntl.LOCK_SH | fcntl.LOCK_NB)
             except BlockingIOError:
                 holder = lock.read().strip() or "unknown"
-                print(f"armour: error: {run}: in use by another armour command (pid {holder}); its report.md and "
-                      f"figures are written when it ends: keep then, or stop it (kill -TERM {holder}: its running "
+                print(f"armour: error: {run}: in use by another armour command (pid {holder}); it rewrites its tables and "
+                      f"figures as its cases end: keep when it ends, or stop it (kill -TERM {holder}: its running "
                       "cases go back to pending and every table is written)", file=sys.stderr)
                 sys.exit(2)
     except FileNotFoundError:

@@ -1,11 +1,12 @@
-// Waits on what the tests that kill a run and resume it started: a child's
-// exit, and an output folder's lock (docs/outputs.md) being let go.
+// Waits on what the tests that stop a run or a sweep started: a child's exit,
+// a condition on its files, and an output folder's lock (docs/outputs.md) being let go.
 #pragma once
 
 #include <cerrno>
 #include <chrono>
 #include <fcntl.h>
 #include <filesystem>
+#include <functional>
 #include <sys/file.h>
 #include <sys/wait.h>
 #include <thread>
@@ -19,6 +20,19 @@ inline int wait_for(pid_t pid) {
     while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
     }
     return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+// Waits until `ready` holds or process `pid` ends, however slow the machine
+// (no time limit: a run that hangs is left to ctest's timeout). True while
+// it still runs; false when it ended first (then reaped).
+inline bool wait_until(pid_t pid, const std::function<bool()> &ready) {
+    int status = 0;
+    while (!ready()) {
+        if (::waitpid(pid, &status, WNOHANG) != 0)
+            return false;
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    return true;
 }
 
 // True once nothing holds DIR/.armour-lock (or there is none): after SIGKILL,

@@ -63,19 +63,7 @@ pid_t start(const std::vector<std::string> &a) {
 }
 
 using armour_test::wait_for;
-
-// Waits until `ready` holds or process `pid` ends, however slow the machine
-// (no time limit: a run that hangs is left to ctest's timeout). True while
-// it still runs; false when it ended first (then reaped).
-bool wait_until(pid_t pid, const std::function<bool()> &ready) {
-    int status = 0;
-    while (!ready()) {
-        if (::waitpid(pid, &status, WNOHANG) != 0)
-            return false;
-        std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    }
-    return true;
-}
+using armour_test::wait_until;
 
 double since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -4,6 +4,7 @@
 // checked, one tiny case of each run), and the report's stability chart on
 // synthetic damage summaries. The armour binary runs as a separate process,
 // as users run it.
+#include "process_wait.h"
 #include "scene_smoke.h"
 #include "scratch_folder.h"
 
@@ -629,10 +630,10 @@ TEST_F(SweepTest, KeptResultsLetASweepElsewhereRunOnlyTheOtherCases) {
     EXPECT_FALSE(fs::exists(dir_ / "bad"));
 }
 
-// A sweep still running writes its report.md and figures when it ends: while
-// an armour command holds the folder's lock, keep_results.py keeps nothing
-// (one error line naming the holder, exit 2, DEST not made); once the lock is
-// free the same command keeps the folder.
+// A sweep still running rewrites its tables, report.md and figures as its
+// cases end (the charts in place): while an armour command holds the folder's
+// lock, keep_results.py keeps nothing (one error line naming the holder, exit
+// 2, DEST not made); once the lock is free the same command keeps the folder.
 TEST_F(SweepTest, KeepResultsRefusesASweepStillRunning) {
     const fs::path file = friction_sweep("one.toml", "0.5", "0.5");
     const fs::path out = dir_ / "running";
@@ -660,6 +661,35 @@ TEST_F(SweepTest, KeepResultsRefusesASweepStillRunning) {
     const Result kept = run(keep);
     EXPECT_EQ(kept.status, 0) << kept.output;
     EXPECT_TRUE(fs::exists(dir_ / "kept" / "cases" / "friction-0.5" / "case.json"));
+}
+
+// A sweep rewrites report.md as each case ends, not only at its own end: a
+// study of days is read as it goes. With one job, the second case (a long
+// one) starts only after the first's row is in the report; the sweep is then
+// stopped (SIGTERM), the long case left pending.
+TEST_F(SweepTest, ReportFollowsTheCasesAsTheyEnd) {
+    const fs::path file = dir_ / "durations.toml";
+    write(file,
+          "scene = \"" + kSource + "/scenes/tilt_cube.toml\"\n[vary]\n\"run.duration\" = [0.5, 600.0]\n");
+    const fs::path out = dir_ / "following";
+    std::fflush(nullptr);
+    const pid_t sweep = ::fork();
+    if (sweep == 0) {
+        ::freopen("/dev/null", "w", stderr);
+        ::execl(ARMOUR_EXE, ARMOUR_EXE, "sweep", file.c_str(), "--out", out.c_str(), "--jobs", "1",
+                static_cast<char *>(nullptr));
+        ::_exit(127);
+    }
+    const fs::path second = out / "cases" / "duration-600.0" / "log.txt";
+    const bool started = armour_test::wait_until(sweep, [&] { return fs::exists(second); });
+    const std::string report = read_text(out / "report.md");
+    if (started)
+        ::kill(sweep, SIGTERM);
+    ASSERT_TRUE(started) << "the sweep ended before its second case started";
+    EXPECT_EQ(armour_test::wait_for(sweep), 1); // stopped: a case did not finish
+    EXPECT_NE(report.find("1 of 2 cases done, 0 failed, 1 not finished"), std::string::npos) << report;
+    EXPECT_NE(report.find("| duration-0.5 | 0.5 |  | done |"), std::string::npos) << report;
+    EXPECT_NE(report.find("| duration-600.0 | 600.0 |  | pending |"), std::string::npos) << report;
 }
 
 // A long study is taken a few cases a sitting, in the order its user needs

@@ -7,8 +7,8 @@
 //     (DIR/slurm/array.sbatch, task i runs line i+1 of DIR/slurm/cases.txt),
 //     submitted with sbatch and followed with squeue; the final state of each
 //     task comes from sacct where accounting is on, else from scontrol.
-//     Both rewrite results.csv and summary.json as cases finish and print the
-//     progress line with an ETA from the cases finished so far.
+//     Both rewrite results.csv, summary.json and report.md as cases finish and
+//     print the progress line with an ETA from the cases finished so far.
 //
 // Usage
 //     run_local(ctx, to_run, jobs);
@@ -41,6 +41,11 @@ inline int ranks_per_case(const SweepContext &ctx) {
 
 // Reads the cases' folders, writes the tables and returns them.
 SweepTable refresh_tables(const SweepContext &ctx, const std::set<std::string> &skipped);
+
+// DIR/report.md and DIR/figures/ from DIR/summary.json (apps/sweep/sweep_report.py):
+// rewritten as each case ends and when the sweep ends. A warning, not an error,
+// where python3 or matplotlib is missing: the tables are complete without them.
+void write_report(const std::filesystem::path &out);
 
 void run_local(const SweepContext &ctx, const std::vector<std::size_t> &to_run, int jobs,
                const std::set<std::string> &skipped);

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <numeric>
 #include <sys/prctl.h>
@@ -27,6 +28,17 @@ double estimate_eta(const std::vector<CaseRecord> &finished, int left, int paral
         return -1.0;
     const double mean = std::accumulate(walls.begin(), walls.end(), 0.0) / static_cast<double>(walls.size());
     return mean * static_cast<double>(left) / static_cast<double>(std::max(1, parallel));
+}
+
+void write_report(const fs::path &out) {
+    const std::string command = std::string("/usr/bin/python3 '") + ARMOUR_SOURCE_DIR +
+                                "/apps/sweep/sweep_report.py' '" + out.string() + "' >&2";
+    std::fflush(nullptr);
+    if (std::system(command.c_str()) != 0)
+        std::fprintf(stderr,
+                     "armour: warning: %s: the report's charts could not be drawn (python3 + "
+                     "matplotlib); results.csv and summary.json are complete\n",
+                     (out / "report.md").c_str());
 }
 
 SweepTable refresh_tables(const SweepContext &ctx, const std::set<std::string> &skipped) {
@@ -109,6 +121,12 @@ void run_local(const SweepContext &ctx, const std::vector<std::size_t> &to_run, 
                 std::fprintf(stderr, "%ssweep: case %s failed (%s); log %s:\n%s", terminal ? "\n" : "",
                              c.id.c_str(), r.reason.c_str(), (case_dir(ctx.out, c) / "log.txt").c_str(),
                              log_tail(case_dir(ctx.out, c), 5).c_str());
+            }
+            // A case that ended has its row in report.md and its point on the
+            // charts before the next starts: a study of days is read as it goes.
+            if (r.status == "done" || r.status == "failed") {
+                refresh_tables(ctx, skipped);
+                write_report(ctx.out);
             }
         }
         const auto now = std::chrono::steady_clock::now();

@@ -172,16 +172,22 @@ void follow_slurm(const SweepContext &ctx, const std::set<std::string> &skipped)
     std::string last_line;
     std::set<std::string> finished;
     std::vector<CaseRecord> finished_records;
+    int reported = 0; // the job's cases done or failed when report.md was last written
     for (;;) {
         const bool queued = !slurm_job_in_queue(ctx.out).empty();
         const SweepTable table = refresh_tables(ctx, skipped);
-        int left = 0;
+        int left = 0, ended = 0;
         for (const auto &row : table.rows)
             if (std::find(ids.begin(), ids.end(), row.record.id) != ids.end()) {
                 if (row.status == "done" && finished.insert(row.record.id).second)
                     finished_records.push_back(row.record);
                 left += row.status == "pending" || row.status == "running";
+                ended += row.status == "done" || row.status == "failed";
             }
+        if (queued && ended > reported) { // report.md follows the cases (the sweep writes it at its end)
+            write_report(ctx.out);
+            reported = ended;
+        }
         const int parallel = std::max(1, table.count("running"));
         const std::string line =
             progress_line(table, estimate_eta(finished_records, left, parallel)) + " (Slurm job " + id + ")";

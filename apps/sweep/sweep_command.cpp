@@ -169,17 +169,6 @@ void add_command_line_sets(SweepSpec &spec, const std::vector<std::string> &over
     }
 }
 
-void write_report(const fs::path &out) {
-    const std::string command = std::string("/usr/bin/python3 '") + ARMOUR_SOURCE_DIR +
-                                "/apps/sweep/sweep_report.py' '" + out.string() + "' >&2";
-    std::fflush(nullptr);
-    if (std::system(command.c_str()) != 0)
-        std::fprintf(stderr,
-                     "armour: warning: %s: the report's charts could not be drawn (python3 + "
-                     "matplotlib); results.csv and summary.json are complete\n",
-                     (out / "report.md").c_str());
-}
-
 // `selected`: the cases --cases names (plan indices), whose completion decides
 // the exit status; empty: every case.
 int finish(const SweepContext &ctx, const std::set<std::string> &skipped,
