@@ -82,6 +82,7 @@ void run_local(const SweepContext &ctx, const std::vector<std::size_t> &to_run, 
     const bool terminal = ::isatty(STDERR_FILENO) != 0;
     std::string last_line;
     bool changed = true;
+    bool report_due = false; // a case ended since report.md was written
     // Ctrl-C or SIGTERM: no new cases; the running ones are stopped, put
     // back to pending by their runners, and the tables written whole.
     stop_requested = 0;
@@ -122,16 +123,16 @@ void run_local(const SweepContext &ctx, const std::vector<std::size_t> &to_run, 
                              c.id.c_str(), r.reason.c_str(), (case_dir(ctx.out, c) / "log.txt").c_str(),
                              log_tail(case_dir(ctx.out, c), 5).c_str());
             }
-            // A case that ended has its row in report.md and its point on the
-            // charts before the next starts: a study of days is read as it goes.
-            if (r.status == "done" || r.status == "failed") {
-                refresh_tables(ctx, skipped);
-                write_report(ctx.out);
-            }
+            report_due = r.status == "done" || r.status == "failed";
         }
         const auto now = std::chrono::steady_clock::now();
         if (changed || now - last_print > std::chrono::seconds(terminal ? 1 : 30)) {
             const SweepTable table = refresh_tables(ctx, skipped);
+            // A case that ended has its row in report.md and its point on the
+            // charts before the next starts: a study of days is read as it goes.
+            if (report_due)
+                write_report(ctx.out);
+            report_due = false;
             const int left = static_cast<int>(to_run.size() - next) + static_cast<int>(running.size());
             const std::string line = progress_line(table, estimate_eta(finished, left, jobs));
             if (terminal)
