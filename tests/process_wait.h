@@ -1,18 +1,39 @@
-// Waits on what the tests that stop a run or a sweep started: a child's exit,
-// a condition on its files, and an output folder's lock (docs/outputs.md) being let go.
+// Starts, and waits on, what the tests that stop a run or a sweep start: a
+// child's exit, a condition on its files, and an output folder's lock
+// (docs/outputs.md) being let go.
 #pragma once
 
 #include <cerrno>
 #include <chrono>
+#include <cstdio>
 #include <fcntl.h>
 #include <filesystem>
 #include <functional>
+#include <string>
 #include <sys/file.h>
 #include <sys/wait.h>
 #include <thread>
 #include <unistd.h>
+#include <vector>
 
 namespace armour_test {
+
+// Runs program `argv[0]` with `argv` in a child process, its stderr to
+// /dev/null (a progress line the test does not read); returns the child's pid.
+inline pid_t start_quietly(const std::vector<std::string> &argv) {
+    std::fflush(nullptr);
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        ::freopen("/dev/null", "w", stderr);
+        std::vector<char *> args;
+        for (const std::string &a : argv)
+            args.push_back(const_cast<char *>(a.c_str()));
+        args.push_back(nullptr);
+        ::execv(args[0], args.data());
+        ::_exit(127);
+    }
+    return pid;
+}
 
 // The exit status of child `pid` once it ends; 128 + the signal that killed it.
 inline int wait_for(pid_t pid) {

@@ -521,15 +521,8 @@ TEST(CoupledResume, StoppedSweepResumesItsCaseFromTheCheckpoint) {
                         << "[set]\n\"fluid.cell_size\" = 0.04\n\"run.duration\" = 0.6\n"
                         << "\"run.checkpoint_interval\" = 0.05\n[vary]\n\"fluid.max_courant\" = [0.5]\n";
     const auto sweep = [&] {
-        std::fflush(nullptr);
-        const pid_t pid = ::fork();
-        if (pid == 0) {
-            ::freopen("/dev/null", "w", stderr);
-            ::execl(ARMOUR_EXE, ARMOUR_EXE, "sweep", file.c_str(), "--out", out.c_str(), "--jobs", "1",
-                    static_cast<char *>(nullptr));
-            ::_exit(127);
-        }
-        return pid;
+        return armour_test::start_quietly(
+            {ARMOUR_EXE, "sweep", file.string(), "--out", out.string(), "--jobs", "1"});
     };
     const fs::path run = out / "cases" / "max_courant-0.5" / "run";
     const pid_t first = sweep();

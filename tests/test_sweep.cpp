@@ -672,14 +672,8 @@ TEST_F(SweepTest, ReportFollowsTheCasesAsTheyEnd) {
     write(file,
           "scene = \"" + kSource + "/scenes/tilt_cube.toml\"\n[vary]\n\"run.duration\" = [0.5, 600.0]\n");
     const fs::path out = dir_ / "following";
-    std::fflush(nullptr);
-    const pid_t sweep = ::fork();
-    if (sweep == 0) {
-        ::freopen("/dev/null", "w", stderr);
-        ::execl(ARMOUR_EXE, ARMOUR_EXE, "sweep", file.c_str(), "--out", out.c_str(), "--jobs", "1",
-                static_cast<char *>(nullptr));
-        ::_exit(127);
-    }
+    const pid_t sweep = armour_test::start_quietly(
+        {ARMOUR_EXE, "sweep", file.string(), "--out", out.string(), "--jobs", "1"});
     const fs::path second = out / "cases" / "duration-600.0" / "log.txt";
     const bool started = armour_test::wait_until(sweep, [&] { return fs::exists(second); });
     const std::string report = read_text(out / "report.md");
