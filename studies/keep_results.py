@@ -70,9 +70,9 @@ def refuse_while_running(run):
                 fcntl.flock(lock, fcntl.LOCK_SH | fcntl.LOCK_NB)
             except BlockingIOError:
                 holder = lock.read().strip() or "unknown"
-                print(f"armour: error: {run}: in use by another armour command (pid {holder}); it rewrites its tables and "
-                      f"figures as its cases end: keep when it ends, or stop it (kill -TERM {holder}: its running "
-                      "cases go back to pending and every table is written)", file=sys.stderr)
+                print(f"armour: error: {run}: in use by another armour command (pid {holder}); it rewrites its "
+                      f"tables and figures as its cases end: keep when it ends, or stop it (kill -TERM {holder}: "
+                      "its running cases go back to pending and every table is written)", file=sys.stderr)
                 sys.exit(2)
     except FileNotFoundError:
         pass
