@@ -1937,4 +1937,49 @@ TEST_F(SlurmSweepTest, FailedTaskIsReportedWithSlurmStateAndLogTail) {
     EXPECT_EQ(summary["cases"][0]["slurm_state"], "FAILED");
 }
 
+// Under Slurm the sweep that follows the job array rewrites report.md as each
+// task ends, as the local one does. Two tilt tests side by side: at 20 deg/s
+// the cube slides at 1.3 s, at 0.01 deg/s it would at 2 660 s (minutes of
+// wall time). Once the first has ended and the second still runs, report.md
+// says so. The job is then cancelled: the long case ends as a failed case
+// with Slurm's state, and the sweep exits 1.
+TEST_F(SlurmSweepTest, ReportFollowsTheTasksAsTheyEnd) {
+    const fs::path file = dir_ / "durations.toml", out = dir_ / "following";
+    write(file, "scene = \"" + kSource +
+                    "/scenes/tilt_cube.toml\"\n[vary]\n\"analysis.tilt_rate\" = [20.0, 0.01]\n"
+                    "[set]\n\"run.duration\" = 6000.0\n");
+    // The sweep itself, not a shell: `env` hands it Slurm's settings and execs it under the same pid.
+    const pid_t sweep =
+        armour_test::start_quietly({"/bin/sh", "-c",
+                                    "exec env " + env() + kArmour + " sweep " + file.string() + " --out " +
+                                        out.string() + " --executor slurm"});
+    std::string report;
+    const bool followed = armour_test::wait_until(sweep, [&] {
+        report = read_text(out / "report.md");
+        return report.find("1 of 2 cases done") != std::string::npos;
+    });
+    const std::string long_case = read_text(out / "cases" / "tilt_rate-0.01" / "case.json");
+    std::string job;
+    if (fs::exists(out / "slurm" / "job.json"))
+        job = json::parse(read_text(out / "slurm" / "job.json"))["job_id"];
+    if (!job.empty())
+        run(env() + "scancel " + job);
+    ASSERT_TRUE(followed) << "the sweep ended before report.md counted the short case";
+    EXPECT_NE(report.find("1 of 2 cases done, 0 failed, 1 not finished"), std::string::npos) << report;
+    EXPECT_NE(report.find("| tilt_rate-20.0 | 20.0 |  | done |"), std::string::npos) << report;
+    EXPECT_EQ(long_case.find("\"status\": \"done\""), std::string::npos) << "it ended first: " << long_case;
+
+    EXPECT_EQ(armour_test::wait_for(sweep), 1); // cancelled: a case did not finish
+    const json summary = json::parse(read_text(out / "summary.json"));
+    EXPECT_EQ(summary["done"], 1);
+    EXPECT_EQ(summary["failed"], 1);
+    std::string cancelled; // the long case's Slurm state
+    for (const json &c : summary["cases"])
+        if (c["case"] == "tilt_rate-0.01") {
+            EXPECT_EQ(c["status"], "failed");
+            cancelled = c.value("slurm_state", "");
+        }
+    EXPECT_EQ(cancelled.rfind("CANCELLED", 0), 0u) << summary.dump();
+}
+
 } // namespace
