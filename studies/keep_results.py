@@ -14,9 +14,11 @@ Description
     tree in summary.json (the scene, the sweep file) are written relative to
     it, so the kept files name no machine's folders. A sweep still running
     in RUN is refused (its report and figures are written when it ends). Bodies, fields and
-    checkpoints stay in the sweep folder. DEST is written afresh: files of
-    cases or figures it held before and the sweep no longer has are removed
-    only under DEST/cases and DEST/figures.
+    checkpoints stay in the sweep folder. DEST/kept_files.txt lists the files
+    a keep wrote: a later keep into DEST removes those of them it no longer
+    writes (a case or a chart the sweep no longer has) and nothing else, so a
+    file of one's own in DEST stays. (A DEST kept before that list: the
+    files of the names a keep writes count as its own.)
 
 Usage
     python3 studies/keep_results.py RUN docs/results/stability_curve
@@ -26,11 +28,13 @@ import csv
 import fcntl
 import json
 import os
+import re
 import shutil
 import sys
 
 TOP = ("results.csv", "report.md", "sweep.toml")
 PER_CASE = ("summary.json", "damage.csv", "damage_history.csv")
+MANIFEST = "kept_files.txt"
 
 
 def source_tree(summary):
@@ -78,6 +82,40 @@ def refuse_while_running(run):
         pass
 
 
+def written_before(dest):
+    """The files, relative to DEST, that an earlier keep wrote there: its list, or without one (a keep before the
+    list was written) the files of the names a keep writes."""
+    try:
+        with open(os.path.join(dest, MANIFEST)) as f:
+            return {line.strip() for line in f if line.strip()}
+    except FileNotFoundError:
+        pass
+    found = {name for name in TOP + ("summary.json",) if os.path.isfile(os.path.join(dest, name))}
+    for top, _, names in os.walk(os.path.join(dest, "cases")):
+        ours = PER_CASE if os.path.basename(top) == "run" else ("case.json",)
+        found |= {os.path.relpath(os.path.join(top, n), dest) for n in names if n in ours}
+    try:  # the charts: those its report.md shows (a chart of one's own there is not in it)
+        with open(os.path.join(dest, "report.md")) as f:
+            found |= {"figures/" + name for name in re.findall(r"\(figures/([^()\s/]+\.png)\)", f.read())}
+    except FileNotFoundError:
+        pass
+    return found
+
+
+def remove_stale(dest, stale):
+    """Removes the files in `stale` (paths relative to DEST) and the folders that leaves empty under DEST."""
+    for name in sorted(stale):
+        if os.path.isabs(name) or ".." in name.split(os.sep):
+            continue  # not a file a keep writes: a list edited by hand
+        path = os.path.join(dest, name)
+        if os.path.isfile(path):
+            os.remove(path)
+        folder = os.path.dirname(path)
+        while os.path.abspath(folder) != os.path.abspath(dest) and os.path.isdir(folder) and not os.listdir(folder):
+            os.rmdir(folder)
+            folder = os.path.dirname(folder)
+
+
 def keep(run, dest):
     if not os.path.isfile(os.path.join(run, "summary.json")):
         print(f"armour: error: {os.path.join(run, 'summary.json')}: not found (not an armour sweep folder)",
@@ -88,8 +126,8 @@ def keep(run, dest):
         summary = json.load(f)
     root = source_tree(summary)
     summary = relative_to_source(summary, root)
-    for sub in ("cases", "figures"):
-        shutil.rmtree(os.path.join(dest, sub), ignore_errors=True)
+    before = written_before(dest)
+    written = {"summary.json"}
     os.makedirs(os.path.join(dest, "figures"), exist_ok=True)
     with open(os.path.join(dest, "summary.json"), "w") as f:
         json.dump(summary, f, indent=2)
@@ -102,10 +140,12 @@ def keep(run, dest):
                 text = finished_rows(text)
             with open(os.path.join(dest, name), "w") as f:
                 f.write(text.replace(root + os.sep, "") if root else text)  # the report names the scene
+            written.add(name)
     figures = os.path.join(run, "figures")
     for name in sorted(os.listdir(figures)) if os.path.isdir(figures) else []:
         if name.endswith(".png"):
             shutil.copyfile(os.path.join(figures, name), os.path.join(dest, "figures", name))
+            written.add(os.path.join("figures", name))
     kept = 0
     for case in summary["cases"]:
         source = os.path.join(run, case["folder"], "run")
@@ -116,10 +156,15 @@ def keep(run, dest):
         os.makedirs(target, exist_ok=True)
         for name in files:
             shutil.copyfile(os.path.join(source, name), os.path.join(target, name))
+            written.add(os.path.join(case["folder"], "run", name))
         # The record lets `armour sweep` resume from the kept cases elsewhere.
         shutil.copyfile(os.path.join(run, case["folder"], "case.json"),
                         os.path.join(dest, case["folder"], "case.json"))
+        written.add(os.path.join(case["folder"], "case.json"))
         kept += 1
+    remove_stale(dest, before - written)
+    with open(os.path.join(dest, MANIFEST), "w") as f:
+        f.write("".join(name + "\n" for name in sorted(written)))
     print(f"kept {kept} of {len(summary['cases'])} cases' results in {dest}")
 
 

@@ -663,6 +663,45 @@ TEST_F(SweepTest, KeepResultsRefusesASweepStillRunning) {
     EXPECT_TRUE(fs::exists(dir_ / "kept" / "cases" / "friction-0.5" / "case.json"));
 }
 
+// Kept again from a sweep with fewer cases, DEST loses the files of the case
+// the sweep no longer has, and nothing keep_results.py did not write: a
+// chart and a note of one's own in DEST's figures/ and cases/ stay. A DEST
+// kept before kept_files.txt existed: the files of the names a keep writes,
+// and the charts its report.md shows, count as its own.
+TEST_F(SweepTest, KeepingAgainRemovesOnlyWhatAKeepWrote) {
+    const fs::path two = dir_ / "two", one = dir_ / "one", dest = dir_ / "kept";
+    ASSERT_EQ(run(kArmour + " sweep " + friction_sweep("two.toml", "0.5", "0.3, 0.5").string() + " --out " +
+                  two.string())
+                  .status,
+              0);
+    ASSERT_EQ(run(kArmour + " sweep " + friction_sweep("one.toml", "0.5", "0.5").string() + " --out " +
+                  one.string())
+                  .status,
+              0);
+    const std::string keep = "/usr/bin/python3 " + kSource + "/studies/keep_results.py ";
+    for (const bool listed : {true, false}) {
+        SCOPED_TRACE(listed ? "with kept_files.txt" : "kept before kept_files.txt");
+        const Result first = run(keep + two.string() + " " + dest.string());
+        ASSERT_EQ(first.status, 0) << first.output;
+        ASSERT_TRUE(fs::exists(dest / "cases" / "friction-0.3" / "run" / "summary.json"));
+        if (!listed)
+            fs::remove(dest / "kept_files.txt");
+        write(dest / "figures" / "mine.png", "a chart of one's own");
+        write(dest / "cases" / "notes.txt", "a note of one's own");
+        const Result again = run(keep + one.string() + " " + dest.string());
+        ASSERT_EQ(again.status, 0) << again.output;
+        EXPECT_FALSE(fs::exists(dest / "cases" / "friction-0.3")) << "the case the sweep no longer has";
+        EXPECT_TRUE(fs::exists(dest / "cases" / "friction-0.5" / "run" / "summary.json"));
+        EXPECT_EQ(read_text(dest / "figures" / "mine.png"), "a chart of one's own");
+        EXPECT_EQ(read_text(dest / "cases" / "notes.txt"), "a note of one's own");
+        const std::string listed_files = read_text(dest / "kept_files.txt");
+        EXPECT_NE(listed_files.find("cases/friction-0.5/case.json\n"), std::string::npos) << listed_files;
+        EXPECT_EQ(listed_files.find("friction-0.3"), std::string::npos) << listed_files;
+        EXPECT_EQ(listed_files.find("mine.png"), std::string::npos) << listed_files;
+        EXPECT_EQ(read_csv(dest / "results.csv").size(), 1u);
+    }
+}
+
 // A sweep rewrites report.md as each case ends, not only at its own end: a
 // study of days is read as it goes. With one job, the second case (a long
 // one) starts only after the first's row is in the report; the sweep is then
