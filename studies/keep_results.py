@@ -18,7 +18,8 @@ Description
     a keep wrote: a later keep into DEST removes those of them it no longer
     writes (a case or a chart the sweep no longer has) and nothing else, so a
     file of one's own in DEST stays. (A DEST kept before that list: the
-    files of the names a keep writes count as its own.)
+    files of the names a keep writes, and the charts its report.md shows,
+    count as its own.)
 
 Usage
     python3 studies/keep_results.py RUN docs/results/stability_curve
@@ -84,7 +85,7 @@ def refuse_while_running(run):
 
 def written_before(dest):
     """The files, relative to DEST, that an earlier keep wrote there: its list, or without one (a keep before the
-    list was written) the files of the names a keep writes."""
+    list was written) the files of the names a keep writes and the charts its report.md shows."""
     try:
         with open(os.path.join(dest, MANIFEST)) as f:
             return {line.strip() for line in f if line.strip()}
