@@ -13,7 +13,7 @@ Description
     those with the same scene into its --out and runs only the others. Paths of the source
     tree in summary.json (the scene, the sweep file) are written relative to
     it, so the kept files name no machine's folders. A sweep still running
-    in RUN is refused (its report and figures are written when it ends). Bodies, fields and
+    in RUN is refused (it rewrites its tables and charts as each case ends). Bodies, fields and
     checkpoints stay in the sweep folder. DEST/kept_files.txt lists the files
     a keep wrote: a later keep into DEST removes those of them it no longer
     writes (a case or a chart the sweep no longer has) and nothing else, so a
