@@ -1983,7 +1983,7 @@ TEST_F(SlurmSweepTest, FailedTaskIsReportedWithSlurmStateAndLogTail) {
 // says so. The job is then cancelled: the long case ends as a failed case
 // with Slurm's state, and the sweep exits 1.
 TEST_F(SlurmSweepTest, ReportFollowsTheTasksAsTheyEnd) {
-    const fs::path file = dir_ / "durations.toml", out = dir_ / "following";
+    const fs::path file = dir_ / "tilt_rates.toml", out = dir_ / "following";
     write(file, "scene = \"" + kSource +
                     "/scenes/tilt_cube.toml\"\n[vary]\n\"analysis.tilt_rate\" = [20.0, 0.01]\n"
                     "[set]\n\"run.duration\" = 6000.0\n");
