@@ -117,6 +117,21 @@ def remove_stale(dest, stale):
             folder = os.path.dirname(folder)
 
 
+def put(dest, name, written, text=None, source=None):
+    """Writes DEST/name whole or not at all (a temporary file renamed over it), from `text` or a copy of the file
+    `source`, and counts it in `written`: a keep cut short leaves no file half written."""
+    path = os.path.join(dest, name)
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    partial = path + ".keeping"
+    if source is None:
+        with open(partial, "w") as f:
+            f.write(text)
+    else:
+        shutil.copyfile(source, partial)
+    os.replace(partial, path)
+    written.add(name)
+
+
 def keep(run, dest):
     if not os.path.isfile(os.path.join(run, "summary.json")):
         print(f"armour: error: {os.path.join(run, 'summary.json')}: not found (not an armour sweep folder)",
@@ -127,45 +142,35 @@ def keep(run, dest):
         summary = json.load(f)
     root = source_tree(summary)
     summary = relative_to_source(summary, root)
-    before = written_before(dest)
-    written = {"summary.json"}
+    before, written = written_before(dest), set()
     os.makedirs(os.path.join(dest, "figures"), exist_ok=True)
-    with open(os.path.join(dest, "summary.json"), "w") as f:
-        json.dump(summary, f, indent=2)
-        f.write("\n")
+    put(dest, "summary.json", written, text=json.dumps(summary, indent=2) + "\n")
     for name in TOP:
         if os.path.exists(os.path.join(run, name)):
             with open(os.path.join(run, name)) as f:
                 text = f.read()
             if name == "results.csv":
                 text = finished_rows(text)
-            with open(os.path.join(dest, name), "w") as f:
-                f.write(text.replace(root + os.sep, "") if root else text)  # the report names the scene
-            written.add(name)
+            # The report names the scene: as a path in the source tree, as summary.json does.
+            put(dest, name, written, text=text.replace(root + os.sep, "") if root else text)
     figures = os.path.join(run, "figures")
     for name in sorted(os.listdir(figures)) if os.path.isdir(figures) else []:
         if name.endswith(".png"):
-            shutil.copyfile(os.path.join(figures, name), os.path.join(dest, "figures", name))
-            written.add(os.path.join("figures", name))
+            put(dest, os.path.join("figures", name), written, source=os.path.join(figures, name))
     kept = 0
     for case in summary["cases"]:
         source = os.path.join(run, case["folder"], "run")
         files = [n for n in PER_CASE if os.path.exists(os.path.join(source, n))]
         if case["status"] != "done" or not files:
             continue
-        target = os.path.join(dest, case["folder"], "run")
-        os.makedirs(target, exist_ok=True)
         for name in files:
-            shutil.copyfile(os.path.join(source, name), os.path.join(target, name))
-            written.add(os.path.join(case["folder"], "run", name))
+            put(dest, os.path.join(case["folder"], "run", name), written, source=os.path.join(source, name))
         # The record lets `armour sweep` resume from the kept cases elsewhere.
-        shutil.copyfile(os.path.join(run, case["folder"], "case.json"),
-                        os.path.join(dest, case["folder"], "case.json"))
-        written.add(os.path.join(case["folder"], "case.json"))
+        put(dest, os.path.join(case["folder"], "case.json"), written,
+            source=os.path.join(run, case["folder"], "case.json"))
         kept += 1
     remove_stale(dest, before - written)
-    with open(os.path.join(dest, MANIFEST), "w") as f:
-        f.write("".join(name + "\n" for name in sorted(written)))
+    put(dest, MANIFEST, set(), text="".join(name + "\n" for name in sorted(written)))
     print(f"kept {kept} of {len(summary['cases'])} cases' results in {dest}")
 
 
