@@ -123,12 +123,17 @@ def put(dest, name, written, text=None, source=None):
     path = os.path.join(dest, name)
     os.makedirs(os.path.dirname(path), exist_ok=True)
     partial = path + ".keeping"
-    if source is None:
-        with open(partial, "w") as f:
-            f.write(text)
-    else:
-        shutil.copyfile(source, partial)
-    os.replace(partial, path)
+    try:
+        if source is None:
+            with open(partial, "w") as f:
+                f.write(text)
+        else:
+            shutil.copyfile(source, partial)
+        os.replace(partial, path)
+    finally:
+        # Interrupted (Ctrl-C, a full disk): the temporary file goes, the old DEST/name stays.
+        if os.path.exists(partial):
+            os.remove(partial)
     written.add(name)
 
 
