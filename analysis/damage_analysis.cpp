@@ -130,11 +130,16 @@ class DamageAnalysis : public Analysis {
 
     std::string write(json &summary) const override {
         const double Dn = this->Dn();
-        Counts counts;
-        const std::string rows = unit_rows(counts);
-        const double N_od = n_od(counts.displaced, layer_width_, Dn);
         json settled_layer = nullptr; // the layer the waves met, as a profiler measures it
         const std::optional<double> S = eroded_area_over_Dn2(settled_layer, summary);
+        std::optional<double> thickness; // m, the settled layer's
+        if (!settled_layer.is_null())
+            thickness = settled_layer["layer_thickness"].get<double>();
+        Counts counts;
+        const std::string rows = unit_rows(counts, thickness);
+        if (!settled_layer.is_null())
+            settled_layer["units_on_top"] = counts.on_top;
+        const double N_od = n_od(counts.displaced, layer_width_, Dn);
         // The waves the run measured at its gauges (a wave train), else its targets.
         const WaveConditions w =
             wave_conditions(measured_waves_, scene_, acting_seconds(scene_, frame_.origin.x(), start_, end_));
@@ -143,6 +148,7 @@ class DamageAnalysis : public Analysis {
         summary["units"] = units_.size();
         summary["units_displaced"] = counts.displaced;
         summary["units_displaced_at_foot"] = counts.displaced_at_foot;
+        summary["units_displaced_on_top"] = thickness ? json(counts.displaced_on_top) : json(nullptr);
         summary["N_od"] = N_od;
         summary["rocking_units"] = counts.rocking;
         summary["Ns"] = nullable(p.Ns);
@@ -182,8 +188,15 @@ class DamageAnalysis : public Analysis {
                                                    history_);
         std::string line =
             std::to_string(counts.displaced) + " of " + std::to_string(units_.size()) + " units displaced";
-        if (counts.displaced_at_foot > 0)
-            line += " (" + std::to_string(counts.displaced_at_foot) + " at the foot)";
+        if (counts.displaced_at_foot > 0 || counts.displaced_on_top > 0) {
+            std::string where;
+            if (counts.displaced_at_foot > 0)
+                where = std::to_string(counts.displaced_at_foot) + " at the foot";
+            if (counts.displaced_on_top > 0)
+                where += (where.empty() ? "" : ", ") + std::to_string(counts.displaced_on_top) +
+                         " from on top of the layer";
+            line += " (" + where + ")";
+        }
         line += ", N_od " + num(N_od) + ", " + std::to_string(counts.rocking) + " rocking";
         if (!outside.empty() && p.vdm_ns) {
             line += "; outside Van der Meer's tested range:";
@@ -203,25 +216,31 @@ class DamageAnalysis : public Analysis {
   private:
     struct Counts {
         int displaced = 0, displaced_at_foot = 0, rocking = 0; // units
+        int on_top = 0, displaced_on_top = 0;                  // units
     };
 
     // damage.csv's rows: each unit from its settled pose; counts the displaced and the rocking.
-    std::string unit_rows(Counts &counts) const {
+    // A unit on the face whose settled centre lies farther out of it than the
+    // layer is thick (`thickness`, m) rests on the double layer, not in it: on_top.
+    std::string unit_rows(Counts &counts, std::optional<double> thickness) const {
         std::string rows =
             "# damage per unit from its settled pose (SI; displacements in Dn)\n"
-            "body,unit,s_m,y_m,n_m,at_foot,max_displacement_over_Dn,final_displacement_over_Dn,"
+            "body,unit,s_m,y_m,n_m,at_foot,on_top,max_displacement_over_Dn,final_displacement_over_Dn,"
             "max_rotation_deg,rocking_events,displaced\n";
         for (std::size_t i = 0; i < units_.size(); ++i) {
             const UnitDamageTracker &u = units_[i];
             const bool is_displaced = u.displacement() >= scene_.displaced_threshold;
             const bool foot = frame_.seaward_of_foot(u.reference().position);
+            const Eigen::Vector3d at = frame_.local(u.reference().position);
+            const bool on_top = thickness && !foot && at.z() > *thickness;
             counts.displaced += is_displaced ? 1 : 0;
             counts.displaced_at_foot += is_displaced && foot ? 1 : 0;
+            counts.on_top += on_top ? 1 : 0;
+            counts.displaced_on_top += is_displaced && on_top ? 1 : 0;
             counts.rocking += u.rocking_events() > 0 ? 1 : 0;
-            const Eigen::Vector3d at = frame_.local(u.reference().position);
             rows += std::to_string(i) + "," + setup_.units[unit(i)].name + "," + num(at.x()) + "," +
-                    num(at.y()) + "," + num(at.z()) + "," + (foot ? "1" : "0") + "," +
-                    num(u.max_displacement()) + "," + num(u.displacement()) + "," +
+                    num(at.y()) + "," + num(at.z()) + "," + (foot ? "1" : "0") + "," + (on_top ? "1" : "0") +
+                    "," + num(u.max_displacement()) + "," + num(u.displacement()) + "," +
                     num(u.max_rotation_deg()) + "," + std::to_string(u.rocking_events()) + "," +
                     (is_displaced ? "1" : "0") + "\n";
         }

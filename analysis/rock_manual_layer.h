@@ -61,8 +61,10 @@ std::string settled_layer_warning(const Scene &scene, const SceneSetup &setup,
 nlohmann::json layer_record(const LayerFigures &layer, const LayerVerdict &verdict);
 // The record of the layer the bodies at `states` form on the scene's first
 // slope wall (as the damage analysis measures the layer the waves meet),
-// with the units in all and those whose centres lie seaward of the face's
-// foot (units_at_foot); null without a slope wall or units on its face.
+// with the units in all, those whose centres lie seaward of the face's foot
+// (units_at_foot) and those on the face whose centres lie farther out of it
+// than the layer is thick (units_on_top: resting on the double layer, not in
+// it); null without a slope wall or units on its face.
 nlohmann::json settled_layer_record(const Scene &scene, const SceneSetup &setup,
                                     const std::vector<BodyState> &states);
 

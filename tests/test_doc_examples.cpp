@@ -137,6 +137,7 @@ const Rule kRules[] = {
 const char *const kScriptRules[] = {
     R"(^studies/compare_curves\.py$)", // reads kept results in docs/results/: ~2 s a chart
     R"(^studies/seats\.py$)",          // reads kept results and layers in docs/results/: ~1 s
+    R"(^studies/damage_timing\.py$)",  // reads kept results in docs/results/: ~2 s
 };
 
 // Internal options the documents name but --help leaves out on purpose.

@@ -683,6 +683,51 @@ TEST(Damage, UnitsSeawardOfTheFacesFootAreCountedApart) {
     std::filesystem::remove_all(out);
 }
 
+// A cube resting on the layer (its centre 1.5 a out of the face, over a layer
+// of cubes lying flat, a thick) is on top of it: flagged in damage.csv's
+// on_top, counted in the settled layer's units_on_top, and when it washes
+// off, in units_displaced_on_top and the result line; the layer's own cubes
+// (centres 0.5 a out) are not.
+TEST(Damage, UnitsRestingOnTheLayerAreCountedApart) {
+    CubeSlope c = damage_slope(2.0);
+    c.layer(4, 4, 1.1 * kA, 0.5 * kA);
+    c.place(2.0 * kA, 0.0, 1.5 * kA);
+    const std::filesystem::path out = temporary("armour_test_damage_on_top");
+    std::filesystem::remove_all(out);
+    std::filesystem::create_directories(out);
+    const auto analysis = armour::make_analysis({c.scene, c.setup, out.string(), ""});
+    std::vector<BodyState> now = c.states;
+    analysis->sample(0.0, now);
+    now.back().pose.position += 10.0 * c.frame.across;
+    analysis->sample(1.0, now);
+    nlohmann::json summary = nlohmann::json::object();
+    const std::string result = analysis->write(summary);
+    const double thickness = summary["damage"]["settled_layer"]["layer_thickness"].get<double>();
+    EXPECT_GT(thickness, 0.5 * kA);
+    EXPECT_LT(thickness, 1.5 * kA);
+    EXPECT_EQ(summary["damage"]["settled_layer"]["units_on_top"].get<int>(), 1);
+    EXPECT_EQ(summary["units_displaced"].get<int>(), 1);
+    EXPECT_EQ(summary["units_displaced_on_top"].get<int>(), 1);
+    EXPECT_EQ(result.rfind("1 of 17 units displaced (1 from on top of the layer), N_od ", 0), 0u) << result;
+
+    std::ifstream csv(out / "damage.csv");
+    std::vector<std::string> flags; // on_top, a row per unit
+    for (std::string line; std::getline(csv, line);) {
+        if (line.empty() || line[0] == '#')
+            continue;
+        std::vector<std::string> cells;
+        std::stringstream in(line);
+        for (std::string cell; std::getline(in, cell, ',');)
+            cells.push_back(cell);
+        flags.push_back(cells[6]);
+    }
+    ASSERT_EQ(flags.size(), 18u); // header, 17 units
+    EXPECT_EQ(flags[0], "on_top");
+    EXPECT_EQ(std::count(flags.begin() + 1, flags.end(), "1"), 1);
+    EXPECT_EQ(flags.back(), "1");
+    std::filesystem::remove_all(out);
+}
+
 // A layer of two sizes, or of two densities, has no one Dn for N_od's strips
 // and no one delta for Ns: refused before any tool runs, naming both units.
 TEST(Damage, MixedUnitsAreRefusedNamingBoth) {

@@ -582,16 +582,19 @@ TEST(StabilityCubes, SettleOnlyLeavesTheLayerACoupledRunStartsFrom) {
     EXPECT_EQ(alone["units_on_slope"], waves["units_on_slope"]);
     EXPECT_EQ(alone["outside_rock_manual"], waves["outside_rock_manual"]);
     EXPECT_EQ(alone["units_at_foot"], waves["units_at_foot"]);
+    EXPECT_EQ(alone["units_on_top"], waves["units_on_top"]);
     EXPECT_EQ(alone["units"].get<int>(), 45);
-    // The units seaward of the face's foot are the damage analysis' at_foot
-    // units (damage.csv).
+    // The units seaward of the face's foot and those resting on the layer are
+    // the damage analysis' at_foot and on_top units (damage.csv).
     std::vector<std::string> header;
     const auto rows = csv_rows(coupled.out / "damage.csv", header);
-    double at_foot = 0.0;
-    const auto column = std::find(header.begin(), header.end(), "at_foot") - header.begin();
-    for (const auto &row : rows)
-        at_foot += row.at(static_cast<std::size_t>(column));
-    EXPECT_EQ(alone["units_at_foot"].get<int>(), static_cast<int>(at_foot));
+    for (const char *flag : {"at_foot", "on_top"}) {
+        double flagged = 0.0;
+        const auto column = std::find(header.begin(), header.end(), flag) - header.begin();
+        for (const auto &row : rows)
+            flagged += row.at(static_cast<std::size_t>(column));
+        EXPECT_EQ(alone[std::string("units_") + flag].get<int>(), static_cast<int>(flagged)) << flag;
+    }
     EXPECT_EQ(settle.summary["settle"]["scene"], "settle/scene.settled.toml");
     EXPECT_GT(settle.summary["wall_seconds"].get<double>(), 0.0);
     if (!HasFailure())

@@ -1189,6 +1189,68 @@ TEST_F(SweepTest, ReportDrawsDamageAgainstVanDerMeerAndHudson) {
     EXPECT_NE(h.output.find("None"), std::string::npos) << h.output; // without them: no lines
 }
 
+// When the units left and from which seats (studies/damage_timing.py): each
+// displaced unit at the time its case's count first reached its number, as a
+// share of the case's wave train at the toe, pooled against Van der Meer's
+// u^0.75 with an interval from resampling the cases; each unit's seat on top
+// of the layer (settled centre farther out of the face than the layer is
+// thick) or in it, at the foot or on the face; bad input is one error line.
+TEST_F(SweepTest, DamageTimingPutsEachDepartureInTheTrainAndOnItsSeat) {
+    const auto summary = [](int displaced) {
+        return "{\"waves\": {\"window\": [4.0, 14.0]}, \"units_displaced\": " + std::to_string(displaced) +
+               ", \"damage\": {\"settled_layer\": {\"layer_thickness\": 0.08}}}\n";
+    };
+    const std::string history = "# units displaced against time\ntime_s,units_displaced,N_od,max\n";
+    const fs::path a = dir_ / "k" / "cases" / "a" / "run", b = dir_ / "k" / "cases" / "b" / "run";
+    // a: one unit gone at 4.5 s (u 0.05), one at 6 s (0.2); a third moved 1 Dn at 9 s and came back
+    // (its final displacement is under 1 Dn), so it is not one of the case's two displaced.
+    write(a / "summary.json", summary(2));
+    write(a / "damage_history.csv", history + "0,0,0,0\n4.5,1,0,1\n6,2,0,1\n9,3,0,1\n10,2,0,1\n");
+    write(a / "damage.csv", "# per unit\nbody,unit,s_m,y_m,n_m,at_foot,displaced\n"
+                            "0,cube,0.1,0,0.10,0,1\n1,cube,0.1,0,0.05,0,1\n2,cube,-0.02,0,0.03,1,0\n"
+                            "3,cube,0.2,0,0.05,0,0\n");
+    // b: one gone before the window (3 s: at u 0, counted apart), one at 12 s (u 0.8); its damage.csv
+    // predates n_m, so it counts in the timing only.
+    write(b / "summary.json", summary(2));
+    write(b / "damage_history.csv", history + "0,0,0,0\n3,1,0,1\n12,2,0,1\n");
+    write(b / "damage.csv", "# per unit\nbody,unit,s_m,y_m,displaced\n0,cube,0.1,0,1\n1,cube,0.2,0,1\n");
+    write(dir_ / "k" / "cases" / "c" / "run" / "summary.json", summary(0)); // no history: not a case here
+
+    const std::string script = "/usr/bin/python3 " + kSource + "/studies/damage_timing.py ";
+    const Result r = run(script + (dir_ / "k").string() + " --label K --out " + (dir_ / "t").string());
+    ASSERT_EQ(r.status, 0) << r.output;
+    // Pooled shares 0.05, 0.2, 0, 0.8: 3 of 4 gone by a quarter and by half of the waves. Resampled,
+    // a draw holds a and a (4 of 4), a and b (6 of 8) or b and b (2 of 4): the interval 50-100 %.
+    EXPECT_NE(r.output.find("K: 2 cases, 4 displaced (1 before the first wave)"), std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("gone by 25% of the waves: 75% (95 % 50%-100%); Van der Meer 35%"),
+              std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("gone by 50% of the waves: 75% (95 % 50%-100%); Van der Meer 59%"),
+              std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("seats (1 cases with n_m)"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("face, on top                 1 / 1"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("face, in the layer           2 / 1"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("foot, in the layer           1 / 0"), std::string::npos) << r.output;
+    EXPECT_GT(fs::file_size(dir_ / "t" / "timing.png"), 10000u);
+    const auto out = nlohmann::json::parse(read_text(dir_ / "t" / "summary.json"));
+    const auto &curve = out["curves"][0];
+    EXPECT_EQ(curve["displaced"].get<int>(), 4);
+    EXPECT_NEAR(curve["by_share_of_waves"]["0.25"]["van_der_meer"].get<double>(), std::pow(0.25, 0.75),
+                1e-12);
+    EXPECT_NEAR(curve["by_share_of_waves"]["0.5"]["share_displaced"].get<double>(), 0.75, 1e-12);
+
+    // Bad input: a folder with no case, and labels that do not pair with the folders.
+    for (const std::string &args :
+         {(dir_ / "none").string(), (dir_ / "k").string() + " --label A --label B"}) {
+        const Result bad = run(script + args);
+        EXPECT_EQ(bad.status, 2) << args << "\n" << bad.output;
+        EXPECT_EQ(bad.output.rfind("armour: error: ", 0), 0u) << bad.output;
+        EXPECT_EQ(std::count(bad.output.begin(), bad.output.end(), '\n'), 1) << bad.output;
+    }
+}
+
 // Two kept curves side by side (studies/compare_curves.py): each curve's
 // units displaced per point and in all against Van der Meer's expected count,
 // with the Poisson chance of so few, and their spread about it and within the

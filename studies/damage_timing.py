@@ -1,0 +1,204 @@
+#!/usr/bin/env python3
+"""When in the wave train the units left, and from which seats.
+
+Description
+    Reads the cases of one or more kept stability curves (folders written by
+    studies/keep_results.py, or a sweep's own --out: cases/<case>/run/ with
+    summary.json, damage_history.csv and damage.csv) and answers two
+    questions about the damage they counted.
+
+    When: each displaced unit is put at the time the case's count of
+    displaced units first reached its number (damage_history.csv), as a
+    share u of the case's wave train at the toe (the incident-wave analysis'
+    window in summary.json: u = 0 where its first wave starts, 1 at the end;
+    a unit gone before the window counts at 0 and is reported apart). Van der
+    Meer's formula for cubes, Ns = (6.7 N_od^0.4 / N^0.3 + 1.0) s_om^-0.1
+    (Van der Meer 1988), holds N_od proportional to N^0.75 at one Ns, so a
+    stationary sea that damages a layer as his did has u^0.75 of its units
+    gone by the share u of its waves: 35 % by the first quarter, 59 % by the
+    first half. A layer that loses its units in the first large waves and
+    then holds lies above that. The shares come with 95 % intervals from
+    resampling the cases (units leave with their neighbours, so a case, not
+    a unit, is one draw; 2000 resamples, a fixed seed).
+
+    From where: each unit's settled centre (damage.csv: n_m out of the face,
+    at_foot) against the layer's measured thickness (summary.json:
+    damage.settled_layer.layer_thickness): on top of the layer where the
+    centre lies farther out of the face than the layer is thick (more than
+    half of the unit outside the double layer: a unit resting on it, not in
+    it), in the layer otherwise; at the foot or on the face as the damage
+    analysis flags it. Per class, the units and the displaced. Cases whose
+    damage.csv has no n_m column (written before it) count in the timing only.
+
+    Prints a table per curve; with --out writes OUT/summary.json (the
+    figures, dimensionless shares and counts) and OUT/timing.png (the
+    cumulative share of the displaced against the share of the waves, each
+    curve beside Van der Meer's u^0.75).
+
+Usage
+    python3 studies/damage_timing.py docs/results/settled_layers_dn4/staged_11_waves \\
+        docs/results/stability_curve_dn4 --label staged --label "at once" --out OUT
+"""
+import argparse
+import csv
+import glob
+import json
+import os
+import sys
+
+import numpy as np
+
+EXPONENT = 0.75  # N_od ~ N^(0.3/0.4) at one Ns: Van der Meer (1988), cubes
+SHARES = (0.25, 0.5)
+RESAMPLES = 2000
+
+
+def fail(message):
+    print(f"armour: error: {message}", file=sys.stderr)
+    sys.exit(2)
+
+
+def read_rows(path):
+    """A CSV's rows as dicts, its '#' comment lines skipped."""
+    with open(path) as f:
+        return list(csv.DictReader(line for line in f if not line.startswith("#")))
+
+
+def read_case(run):
+    """A case's departures (shares of its wave train) and its units' seats, or None without its files."""
+    names = ("summary.json", "damage_history.csv", "damage.csv")
+    if not all(os.path.isfile(os.path.join(run, n)) for n in names):
+        return None
+    with open(os.path.join(run, "summary.json")) as f:
+        summary = json.load(f)
+    start, end = summary["waves"]["window"]
+    displaced = int(summary["units_displaced"])
+    times, count = [], 0
+    for row in read_rows(os.path.join(run, "damage_history.csv")):
+        while count < min(int(row["units_displaced"]), displaced):
+            count += 1
+            times.append(float(row["time_s"]))
+    shares = [min(max((t - start) / (end - start), 0.0), 1.0) for t in times]
+    case = {"shares": shares, "before_waves": sum(t < start for t in times), "seats": None}
+    rows = read_rows(os.path.join(run, "damage.csv"))
+    if rows and "n_m" in rows[0]:
+        thickness = summary["damage"]["settled_layer"]["layer_thickness"]
+        case["seats"] = [(("foot" if r["at_foot"] == "1" else "face"),
+                          ("on top" if float(r["n_m"]) > thickness else "in the layer"),
+                          r["displaced"] == "1") for r in rows]
+    return case
+
+
+def read_curve(folder):
+    cases = [c for c in (read_case(run) for run in sorted(glob.glob(os.path.join(folder, "cases", "*", "run"))))
+             if c is not None]
+    if not cases:
+        fail(f"{folder}: no case with summary.json, damage_history.csv and damage.csv under cases/*/run/")
+    return cases
+
+
+def share_by(shares, cut):
+    return sum(u <= cut for u in shares) / len(shares) if shares else None
+
+
+def interval(cases, cut, rng):
+    """95 % interval of the pooled share by `cut`, the cases resampled with replacement."""
+    draws = []
+    for _ in range(RESAMPLES):
+        picked = rng.integers(0, len(cases), len(cases))
+        shares = [u for i in picked for u in cases[i]["shares"]]
+        if shares:
+            draws.append(share_by(shares, cut))
+    return [float(np.percentile(draws, 2.5)), float(np.percentile(draws, 97.5))] if draws else None
+
+
+def seat_table(cases):
+    table = {}
+    for case in cases:
+        for where, height, displaced in case["seats"] or []:
+            entry = table.setdefault(f"{where}, {height}", {"units": 0, "displaced": 0})
+            entry["units"] += 1
+            entry["displaced"] += displaced
+    return table
+
+
+def describe(label, cases, rng):
+    shares = [u for c in cases for u in c["shares"]]
+    result = {"label": label, "cases": len(cases), "displaced": len(shares),
+              "before_waves": sum(c["before_waves"] for c in cases), "by_share_of_waves": {},
+              "seats": seat_table(cases), "cases_with_seats": sum(c["seats"] is not None for c in cases)}
+    for cut in SHARES:
+        result["by_share_of_waves"][f"{cut:g}"] = {
+            "share_displaced": share_by(shares, cut), "interval_95": interval(cases, cut, rng),
+            "van_der_meer": cut**EXPONENT}
+    return result, shares
+
+
+def print_result(r):
+    print(f"{r['label']}: {r['cases']} cases, {r['displaced']} displaced ({r['before_waves']} before the first wave)")
+    for cut, s in r["by_share_of_waves"].items():
+        if s["share_displaced"] is None:
+            continue  # nothing displaced: no share to give
+        lo, hi = s["interval_95"]
+        print(f"  gone by {float(cut):.0%} of the waves: {s['share_displaced']:.0%} (95 % {lo:.0%}-{hi:.0%}); "
+              f"Van der Meer {s['van_der_meer']:.0%}")
+    if r["seats"]:
+        print(f"  seats ({r['cases_with_seats']} cases with n_m): units / displaced")
+        for key in sorted(r["seats"]):
+            print(f"    {key:24s} {r['seats'][key]['units']:5d} / {r['seats'][key]['displaced']}")
+
+
+def chart(curves, path):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(6, 4.5))
+    u = np.linspace(0, 1, 101)
+    ax.plot(u, u**EXPONENT, "k--", label="Van der Meer: N_od ~ N^0.75 at one Ns")
+    for label, shares in curves:
+        s = np.sort(shares)
+        ax.step(np.concatenate([[0], s, [1]]), np.concatenate([[0], np.arange(1, len(s) + 1) / len(s), [1]]),
+                where="post", label=f"{label} ({len(s)} displaced)")
+    ax.set_xlabel("share of the wave train at the toe (-)")
+    ax.set_ylabel("share of the displaced units gone (-)")
+    ax.set_xlim(0, 1)
+    ax.set_ylim(0, 1.02)
+    ax.grid(alpha=0.3)
+    ax.legend(loc="lower right", fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("curves", nargs="+", metavar="KEPT", help="a kept curve's folder (or a sweep's --out)")
+    parser.add_argument("--label", action="append", default=[], help="a name per KEPT, in order")
+    parser.add_argument("--out", help="folder for summary.json and timing.png")
+    args = parser.parse_args()
+    if args.label and len(args.label) != len(args.curves):
+        fail(f"--label: {len(args.label)} given for {len(args.curves)} curves (one each, or none)")
+    if args.out and os.path.exists(args.out) and not os.path.isdir(args.out):
+        fail(f"--out {args.out}: exists and is not a folder")
+    rng = np.random.default_rng(1)
+    results, curves = [], []
+    for i, folder in enumerate(args.curves):
+        label = args.label[i] if args.label else folder
+        result, shares = describe(label, read_curve(folder), rng)
+        print_result(result)
+        results.append(result)
+        curves.append((label, shares))
+    if args.out:
+        os.makedirs(args.out, exist_ok=True)
+        chart(curves, os.path.join(args.out, "timing.png"))
+        with open(os.path.join(args.out, "summary.json"), "w") as f:
+            json.dump({"command": "damage_timing", "exponent": EXPONENT, "curves": results,
+                       "files": {"chart": "timing.png"},
+                       "units": "shares and counts, dimensionless"}, f, indent=2)
+            f.write("\n")
+
+
+if __name__ == "__main__":
+    main()
