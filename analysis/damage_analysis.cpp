@@ -121,7 +121,12 @@ class DamageAnalysis : public Analysis {
         double largest = 0.0;
         for (std::size_t i = 0; i < states.size(); ++i) {
             units_[i].sample(t, states[i].pose);
-            displaced += units_[i].displacement() >= scene_.displaced_threshold ? 1 : 0;
+            const bool out = units_[i].displacement() >= scene_.displaced_threshold;
+            if (!out)
+                left_at_[i] = std::nan(""); // back within the threshold: not gone (yet)
+            else if (std::isnan(left_at_[i]))
+                left_at_[i] = t;
+            displaced += out ? 1 : 0;
             largest = std::max(largest, units_[i].displacement());
         }
         history_ += num(t) + "," + std::to_string(displaced) + "," +
@@ -220,13 +225,14 @@ class DamageAnalysis : public Analysis {
     };
 
     // damage.csv's rows: each unit from its settled pose; counts the displaced and the rocking.
+    // left_at_s, for a displaced unit: the record from which it has stayed displaced (when it left).
     // A unit on the face whose settled centre lies farther out of it than the
     // layer is thick (`thickness`, m) rests on the double layer, not in it: on_top.
     std::string unit_rows(Counts &counts, std::optional<double> thickness) const {
         std::string rows =
             "# damage per unit from its settled pose (SI; displacements in Dn)\n"
             "body,unit,s_m,y_m,n_m,at_foot,on_top,max_displacement_over_Dn,final_displacement_over_Dn,"
-            "max_rotation_deg,rocking_events,displaced\n";
+            "max_rotation_deg,rocking_events,displaced,left_at_s\n";
         for (std::size_t i = 0; i < units_.size(); ++i) {
             const UnitDamageTracker &u = units_[i];
             const bool is_displaced = u.displacement() >= scene_.displaced_threshold;
@@ -242,7 +248,7 @@ class DamageAnalysis : public Analysis {
                     num(at.y()) + "," + num(at.z()) + "," + (foot ? "1" : "0") + "," + (on_top ? "1" : "0") +
                     "," + num(u.max_displacement()) + "," + num(u.displacement()) + "," +
                     num(u.max_rotation_deg()) + "," + std::to_string(u.rocking_events()) + "," +
-                    (is_displaced ? "1" : "0") + "\n";
+                    (is_displaced ? "1," + num(left_at_[i]) : "0,") + "\n";
         }
         return rows;
     }
@@ -332,6 +338,7 @@ class DamageAnalysis : public Analysis {
         for (std::size_t i = 0; i < states.size(); ++i)
             units_.emplace_back(states[i].pose, setup_.unit_Dn[unit(i)], scene_.rocking_threshold_deg,
                                 rest_time(scene_));
+        left_at_.assign(states.size(), std::nan(""));
         history_.clear();
         start_ = t;
         region_ = layer_region(frame_, setup_, states);
@@ -347,6 +354,7 @@ class DamageAnalysis : public Analysis {
     SettleWatch settle_;
     bool wait_for_settle_ = true, settled_ = false;
     std::vector<UnitDamageTracker> units_;
+    std::vector<double> left_at_; // s: since when each unit has stayed displaced (NaN: it is not)
     std::vector<BodyState> last_;
     std::string history_;
     double start_ = 0.0, end_ = 0.0;

@@ -479,8 +479,8 @@ int settle_only(const RunRequest &r, const Scene &scene) {
     write_text_file(folder.claim("summary.json"), summary.dump(2) + "\n");
     if (layer.is_object())
         std::printf(
-            "run: settled layer: %d of %zu units in it (%d seaward of the face's foot, %d on top of the "
-            "layer), packing %.3g units/Dn^2, porosity %.3g, k_t %.3g -> %s\n",
+            "run: settled layer: %d of %zu units on the slope (%d seaward of the face's foot, %d resting on "
+            "top of the layer), packing %.3g units/Dn^2, porosity %.3g, k_t %.3g -> %s\n",
             layer["units_on_slope"].get<int>(), states.size(), layer["units_at_foot"].get<int>(),
             layer["units_on_top"].get<int>(), layer["packing_density"].get<double>(),
             layer["porosity"].get<double>(), layer["layer_coefficient"].get<double>(),

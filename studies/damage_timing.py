@@ -7,9 +7,10 @@ Description
     summary.json, damage_history.csv and damage.csv) and answers two
     questions about the damage they counted.
 
-    When: each displaced unit is put at the time the case's count of
-    displaced units first reached its number (damage_history.csv), as a
-    share u of the case's wave train at the toe (the incident-wave analysis'
+    When: each displaced unit is put at the time it left (damage.csv's
+    left_at_s: since when it has stayed displaced), or, where damage.csv
+    predates that column, at the time the case's count of displaced units
+    first reached its number (damage_history.csv), as a share u of the case's wave train at the toe (the incident-wave analysis'
     window in summary.json: u = 0 where its first wave starts, 1 at the end;
     a unit gone before the window counts at 0 and is reported apart). Van der
     Meer's formula for cubes, Ns = (6.7 N_od^0.4 / N^0.3 + 1.0) s_om^-0.1
@@ -19,7 +20,8 @@ Description
     first half. A layer that loses its units in the first large waves and
     then holds lies above that. The shares come with 95 % intervals from
     resampling the cases (units leave with their neighbours, so a case, not
-    a unit, is one draw; 2000 resamples, a fixed seed).
+    a unit, is one draw; 2000 resamples, a fixed seed; a draw with nothing
+    displaced is left out).
 
     From where: each unit's settled centre (damage.csv: n_m out of the face,
     at_foot) against the layer's measured thickness (summary.json:
@@ -69,20 +71,41 @@ def read_case(run):
     names = ("summary.json", "damage_history.csv", "damage.csv")
     if not all(os.path.isfile(os.path.join(run, n)) for n in names):
         return None
-    with open(os.path.join(run, "summary.json")) as f:
-        summary = json.load(f)
-    start, end = summary["waves"]["window"]
-    displaced = int(summary["units_displaced"])
-    times, count = [], 0
-    for row in read_rows(os.path.join(run, "damage_history.csv")):
-        while count < min(int(row["units_displaced"]), displaced):
-            count += 1
-            times.append(float(row["time_s"]))
+    path = os.path.join(run, "summary.json")
+    try:
+        with open(path) as f:
+            summary = json.load(f)
+        key = "waves.window"
+        start, end = (float(v) for v in summary["waves"]["window"])
+        key = "units_displaced"
+        displaced = int(summary["units_displaced"])
+        key = "damage.settled_layer.layer_thickness"
+        layer = (summary.get("damage") or {}).get("settled_layer") or {}
+        thickness = layer.get("layer_thickness")
+    except json.JSONDecodeError as e:
+        fail(f"{path}: not JSON ({e})")
+    except (KeyError, TypeError, ValueError):
+        fail(f"{path}: key '{key}': missing or not a number (not a coupled damage run's summary)")
+    if end <= start:
+        fail(f"{path}: key 'waves.window' [{start:g}, {end:g}] s holds no waves")
+    rows = read_rows(os.path.join(run, "damage.csv"))
+    gone = [r for r in rows if r.get("displaced") == "1"]
+    if len(gone) != displaced:
+        fail(f"{os.path.join(run, 'damage.csv')}: {len(gone)} units displaced where summary.json says {displaced}")
+    if rows and "left_at_s" in rows[0]:
+        times = sorted(float(r["left_at_s"]) for r in gone)
+    else:  # written before left_at_s: when the count first reached each number
+        times, count = [], 0
+        for row in read_rows(os.path.join(run, "damage_history.csv")):
+            while count < min(int(row["units_displaced"]), displaced):
+                count += 1
+                times.append(float(row["time_s"]))
+        if len(times) < displaced:
+            fail(f"{os.path.join(run, 'damage_history.csv')}: the count reaches {len(times)}, "
+                 f"summary.json's units_displaced is {displaced}")
     shares = [min(max((t - start) / (end - start), 0.0), 1.0) for t in times]
     case = {"shares": shares, "before_waves": sum(t < start for t in times), "seats": None}
-    rows = read_rows(os.path.join(run, "damage.csv"))
-    if rows and "n_m" in rows[0]:
-        thickness = summary["damage"]["settled_layer"]["layer_thickness"]
+    if rows and "n_m" in rows[0] and "at_foot" in rows[0] and thickness is not None:
         case["seats"] = [(("foot" if r["at_foot"] == "1" else "face"),
                           ("on top" if float(r["n_m"]) > thickness else "in the layer"),
                           r["displaced"] == "1") for r in rows]
@@ -102,7 +125,8 @@ def share_by(shares, cut):
 
 
 def interval(cases, cut, rng):
-    """95 % interval of the pooled share by `cut`, the cases resampled with replacement."""
+    """95 % interval of the pooled share by `cut`, the cases resampled with replacement (a draw with
+    nothing displaced has no share and is left out)."""
     draws = []
     for _ in range(RESAMPLES):
         picked = rng.integers(0, len(cases), len(cases))
@@ -182,11 +206,11 @@ def main():
         fail(f"--label: {len(args.label)} given for {len(args.curves)} curves (one each, or none)")
     if args.out and os.path.exists(args.out) and not os.path.isdir(args.out):
         fail(f"--out {args.out}: exists and is not a folder")
-    rng = np.random.default_rng(1)
     results, curves = [], []
     for i, folder in enumerate(args.curves):
         label = args.label[i] if args.label else folder
-        result, shares = describe(label, read_curve(folder), rng)
+        # Each curve its own fixed seed: its interval does not depend on the curves before it.
+        result, shares = describe(label, read_curve(folder), np.random.default_rng(1))
         print_result(result)
         results.append(result)
         curves.append((label, shares))
@@ -196,7 +220,7 @@ def main():
         with open(os.path.join(args.out, "summary.json"), "w") as f:
             json.dump({"command": "damage_timing", "exponent": EXPONENT, "curves": results,
                        "files": {"chart": "timing.png"},
-                       "units": "shares and counts, dimensionless"}, f, indent=2)
+                       "units": "shares and counts, dimensionless"}, f, indent=2, allow_nan=False)
             f.write("\n")
 
 

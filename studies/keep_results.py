@@ -132,8 +132,12 @@ def put(dest, name, written, text=None, source=None):
         os.replace(partial, path)
     finally:
         # Interrupted (Ctrl-C, a full disk): the temporary file goes, the old DEST/name stays.
-        if os.path.exists(partial):
+        try:
             os.remove(partial)
+        except FileNotFoundError:
+            pass  # renamed over DEST/name: nothing left
+        except OSError:
+            pass  # left behind rather than hide the error that stopped the write
     written.add(name)
 
 

@@ -581,8 +581,9 @@ TEST(Damage, SyntheticTrajectoriesGiveTheirKnownFigures) {
     for (std::string line; std::getline(csv, line);)
         lines.push_back(line);
     ASSERT_EQ(lines.size(), 2u + 20u); // comment, header, one row per unit
-    EXPECT_EQ(lines[2 + 2].substr(lines[2 + 2].rfind(',', lines[2 + 2].size() - 3)), ",2,0"); // 2 rocks
-    EXPECT_EQ(lines[2 + 5].back(), '1');                                                      // displaced
+    // rocking_events, displaced, left_at_s: unit 2 rocked twice and stays; unit 5 left at 2.5 s.
+    EXPECT_EQ(lines[2 + 2].substr(lines[2 + 2].rfind(',', lines[2 + 2].size() - 4)), ",2,0,");
+    EXPECT_EQ(lines[2 + 5].substr(lines[2 + 5].size() - 6), ",1,2.5");
     EXPECT_TRUE(std::filesystem::is_regular_file(out / "damage_history.csv"));
     EXPECT_GT(std::filesystem::file_size(out / "damage.png"), 1000u);
     std::filesystem::remove_all(out);
@@ -687,19 +688,23 @@ TEST(Damage, UnitsSeawardOfTheFacesFootAreCountedApart) {
 // of cubes lying flat, a thick) is on top of it: flagged in damage.csv's
 // on_top, counted in the settled layer's units_on_top, and when it washes
 // off, in units_displaced_on_top and the result line; the layer's own cubes
-// (centres 0.5 a out) are not.
+// (centres 0.5 a out) are not. Its left_at_s is when it went for good.
 TEST(Damage, UnitsRestingOnTheLayerAreCountedApart) {
     CubeSlope c = damage_slope(2.0);
     c.layer(4, 4, 1.1 * kA, 0.5 * kA);
+    c.place(0.2 * kA, 2.2 * kA, 1.5 * kA); // as high, but seaward of the face's foot: at_foot, not on_top
     c.place(2.0 * kA, 0.0, 1.5 * kA);
     const std::filesystem::path out = temporary("armour_test_damage_on_top");
     std::filesystem::remove_all(out);
     std::filesystem::create_directories(out);
     const auto analysis = armour::make_analysis({c.scene, c.setup, out.string(), ""});
+    // The top cube washes off at 1 s, is set back at 2 s and washes off again at 3 s: it left at 3 s.
     std::vector<BodyState> now = c.states;
     analysis->sample(0.0, now);
-    now.back().pose.position += 10.0 * c.frame.across;
-    analysis->sample(1.0, now);
+    for (const double t : {1.0, 2.0, 3.0}) {
+        now.back().pose.position = c.states.back().pose.position + (t == 2.0 ? 0.0 : 10.0) * c.frame.across;
+        analysis->sample(t, now);
+    }
     nlohmann::json summary = nlohmann::json::object();
     const std::string result = analysis->write(summary);
     const double thickness = summary["damage"]["settled_layer"]["layer_thickness"].get<double>();
@@ -708,10 +713,10 @@ TEST(Damage, UnitsRestingOnTheLayerAreCountedApart) {
     EXPECT_EQ(summary["damage"]["settled_layer"]["units_on_top"].get<int>(), 1);
     EXPECT_EQ(summary["units_displaced"].get<int>(), 1);
     EXPECT_EQ(summary["units_displaced_on_top"].get<int>(), 1);
-    EXPECT_EQ(result.rfind("1 of 17 units displaced (1 from on top of the layer), N_od ", 0), 0u) << result;
+    EXPECT_EQ(result.rfind("1 of 18 units displaced (1 from on top of the layer), N_od ", 0), 0u) << result;
 
     std::ifstream csv(out / "damage.csv");
-    std::vector<std::string> flags; // on_top, a row per unit
+    std::vector<std::string> flags, left; // on_top and left_at_s, a row per unit
     for (std::string line; std::getline(csv, line);) {
         if (line.empty() || line[0] == '#')
             continue;
@@ -720,11 +725,15 @@ TEST(Damage, UnitsRestingOnTheLayerAreCountedApart) {
         for (std::string cell; std::getline(in, cell, ',');)
             cells.push_back(cell);
         flags.push_back(cells[6]);
+        left.push_back(cells.size() > 12 ? cells[12] : "");
     }
-    ASSERT_EQ(flags.size(), 18u); // header, 17 units
+    ASSERT_EQ(flags.size(), 19u); // header, 18 units
     EXPECT_EQ(flags[0], "on_top");
     EXPECT_EQ(std::count(flags.begin() + 1, flags.end(), "1"), 1);
     EXPECT_EQ(flags.back(), "1");
+    EXPECT_EQ(left[0], "left_at_s");
+    EXPECT_EQ(left.back(), "3");
+    EXPECT_EQ(std::count(left.begin() + 1, left.end(), ""), 17); // the others stayed
     std::filesystem::remove_all(out);
 }
 

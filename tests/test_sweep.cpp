@@ -1215,38 +1215,61 @@ TEST_F(SweepTest, DamageTimingPutsEachDepartureInTheTrainAndOnItsSeat) {
     write(b / "damage_history.csv", history + "0,0,0,0\n3,1,0,1\n12,2,0,1\n");
     write(b / "damage.csv", "# per unit\nbody,unit,s_m,y_m,displaced\n0,cube,0.1,0,1\n1,cube,0.2,0,1\n");
     write(dir_ / "k" / "cases" / "c" / "run" / "summary.json", summary(0)); // no history: not a case here
+    // d: its damage.csv says when its one unit left for good (left_at_s 13 s: u 0.9), which the
+    // count's first rise (5 s: it had left and come back before) would not.
+    const fs::path d = dir_ / "k" / "cases" / "d" / "run";
+    write(d / "summary.json", summary(1));
+    write(d / "damage_history.csv", history + "0,0,0,0\n5,1,0,1\n6,0,0,0.5\n13,1,0,1\n");
+    write(d / "damage.csv", "# per unit\nbody,unit,s_m,y_m,n_m,at_foot,on_top,displaced,left_at_s\n"
+                            "0,cube,0.1,0,0.02,0,0,1,13\n");
 
     const std::string script = "/usr/bin/python3 " + kSource + "/studies/damage_timing.py ";
     const Result r = run(script + (dir_ / "k").string() + " --label K --out " + (dir_ / "t").string());
     ASSERT_EQ(r.status, 0) << r.output;
-    // Pooled shares 0.05, 0.2, 0, 0.8: 3 of 4 gone by a quarter and by half of the waves. Resampled,
-    // a draw holds a and a (4 of 4), a and b (6 of 8) or b and b (2 of 4): the interval 50-100 %.
-    EXPECT_NE(r.output.find("K: 2 cases, 4 displaced (1 before the first wave)"), std::string::npos)
+    // Pooled shares 0.05, 0.2, 0, 0.8, 0.9: 3 of 5 gone by a quarter and by half of the waves.
+    // Resampled, three draws of d alone (0 of 3, chance 1/27 = 3.7 %) and of a alone (6 of 6, 3.7 %)
+    // lie beyond the 2.5 % tails: the interval 0-100 %.
+    EXPECT_NE(r.output.find("K: 3 cases, 5 displaced (1 before the first wave)"), std::string::npos)
         << r.output;
-    EXPECT_NE(r.output.find("gone by 25% of the waves: 75% (95 % 50%-100%); Van der Meer 35%"),
+    EXPECT_NE(r.output.find("gone by 25% of the waves: 60% (95 % 0%-100%); Van der Meer 35%"),
               std::string::npos)
         << r.output;
-    EXPECT_NE(r.output.find("gone by 50% of the waves: 75% (95 % 50%-100%); Van der Meer 59%"),
+    EXPECT_NE(r.output.find("gone by 50% of the waves: 60% (95 % 0%-100%); Van der Meer 59%"),
               std::string::npos)
         << r.output;
-    EXPECT_NE(r.output.find("seats (1 cases with n_m)"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("seats (2 cases with n_m)"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("face, on top                 1 / 1"), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find("face, in the layer           2 / 1"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("face, in the layer           3 / 2"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("foot, in the layer           1 / 0"), std::string::npos) << r.output;
     EXPECT_GT(fs::file_size(dir_ / "t" / "timing.png"), 10000u);
     const auto out = nlohmann::json::parse(read_text(dir_ / "t" / "summary.json"));
     const auto &curve = out["curves"][0];
-    EXPECT_EQ(curve["displaced"].get<int>(), 4);
+    EXPECT_EQ(curve["displaced"].get<int>(), 5);
     EXPECT_NEAR(curve["by_share_of_waves"]["0.25"]["van_der_meer"].get<double>(), std::pow(0.25, 0.75),
                 1e-12);
-    EXPECT_NEAR(curve["by_share_of_waves"]["0.5"]["share_displaced"].get<double>(), 0.75, 1e-12);
+    EXPECT_NEAR(curve["by_share_of_waves"]["0.5"]["share_displaced"].get<double>(), 0.6, 1e-12);
 
-    // Bad input: a folder with no case, and labels that do not pair with the folders.
-    for (const std::string &args :
-         {(dir_ / "none").string(), (dir_ / "k").string() + " --label A --label B"}) {
+    // Bad input, one line each: a folder with no case; labels that do not pair with the folders;
+    // a history whose count never reaches the summary's; a wave window of no length.
+    write(dir_ / "short" / "cases" / "a" / "run" / "summary.json", summary(3));
+    write(dir_ / "short" / "cases" / "a" / "run" / "damage_history.csv", history + "0,0,0,0\n5,1,0,1\n");
+    write(dir_ / "short" / "cases" / "a" / "run" / "damage.csv",
+          "# per unit\nbody,unit,s_m,y_m,displaced\n0,cube,0,0,1\n1,cube,0,0,1\n2,cube,0,0,1\n");
+    write(dir_ / "flat" / "cases" / "a" / "run" / "summary.json",
+          "{\"waves\": {\"window\": [4.0, 4.0]}, \"units_displaced\": 0}\n");
+    write(dir_ / "flat" / "cases" / "a" / "run" / "damage_history.csv", history);
+    write(dir_ / "flat" / "cases" / "a" / "run" / "damage.csv", "# per unit\nbody,unit,s_m,y_m,displaced\n");
+    const std::vector<std::pair<std::string, std::string>> bad_inputs = {
+        {(dir_ / "none").string(), "no case with summary.json"},
+        {(dir_ / "k").string() + " --label A --label B", "--label: 2 given for 1 curves"},
+        {(dir_ / "short").string(),
+         "damage_history.csv: the count reaches 1, summary.json's units_displaced is 3"},
+        {(dir_ / "flat").string(), "key 'waves.window' [4, 4] s holds no waves"}};
+    for (const auto &[args, reason] : bad_inputs) {
         const Result bad = run(script + args);
         EXPECT_EQ(bad.status, 2) << args << "\n" << bad.output;
         EXPECT_EQ(bad.output.rfind("armour: error: ", 0), 0u) << bad.output;
+        EXPECT_NE(bad.output.find(reason), std::string::npos) << bad.output;
         EXPECT_EQ(std::count(bad.output.begin(), bad.output.end(), '\n'), 1) << bad.output;
     }
 }
