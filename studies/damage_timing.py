@@ -29,7 +29,9 @@ Description
     centre lies farther out of the face than the layer is thick (more than
     half of the unit outside the double layer: a unit resting on it, not in
     it), in the layer otherwise; at the foot or on the face as the damage
-    analysis flags it. Per class, the units and the displaced. Cases whose
+    analysis flags it. Per class, the units and the displaced, in all and per
+    point of the curve (the case folders' names less their _seed-N, with the
+    points' mean Ns and Van der Meer's expected count summed). Cases whose
     damage.csv has no n_m column (written before it) count in the timing only.
 
     Prints a table per curve; with --out writes OUT/summary.json (the
@@ -46,6 +48,7 @@ import csv
 import glob
 import json
 import os
+import re
 import sys
 
 import numpy as np
@@ -104,7 +107,8 @@ def read_case(run):
             fail(f"{os.path.join(run, 'damage_history.csv')}: the count reaches {len(times)}, "
                  f"summary.json's units_displaced is {displaced}")
     shares = [min(max((t - start) / (end - start), 0.0), 1.0) for t in times]
-    case = {"shares": shares, "before_waves": sum(t < start for t in times), "seats": None}
+    case = {"shares": shares, "before_waves": sum(t < start for t in times), "seats": None,
+            "Ns": summary.get("Ns"), "expected": summary.get("units_displaced_van_der_meer")}
     if rows and "n_m" in rows[0] and "at_foot" in rows[0] and thickness is not None:
         case["seats"] = [(("foot" if r["at_foot"] == "1" else "face"),
                           ("on top" if float(r["n_m"]) > thickness else "in the layer"),
@@ -113,8 +117,13 @@ def read_case(run):
 
 
 def read_curve(folder):
-    cases = [c for c in (read_case(run) for run in sorted(glob.glob(os.path.join(folder, "cases", "*", "run"))))
-             if c is not None]
+    cases = []
+    for run in sorted(glob.glob(os.path.join(folder, "cases", "*", "run"))):
+        case = read_case(run)
+        if case is not None:
+            # The point: the case's folder name less its seed (density-1685_seed-2 -> density-1685).
+            case["point"] = re.sub(r"_seed-\d+$", "", os.path.basename(os.path.dirname(run)))
+            cases.append(case)
     if not cases:
         fail(f"{folder}: no case with summary.json, damage_history.csv and damage.csv under cases/*/run/")
     return cases
@@ -146,11 +155,26 @@ def seat_table(cases):
     return table
 
 
+def by_point(cases):
+    """Per point of the curve (its cases with seats): mean Ns, Van der Meer's expected count, the seats."""
+    points = {}
+    for case in cases:
+        if case["seats"] is not None:
+            points.setdefault(case["point"], []).append(case)
+    return {point: {"cases": len(group),
+                    "Ns": (sum(c["Ns"] for c in group) / len(group)
+                           if all(c["Ns"] is not None for c in group) else None),
+                    "van_der_meer_units": (sum(c["expected"] for c in group)
+                                           if all(c["expected"] is not None for c in group) else None),
+                    "seats": seat_table(group)} for point, group in sorted(points.items())}
+
+
 def describe(label, cases, rng):
     shares = [u for c in cases for u in c["shares"]]
     result = {"label": label, "cases": len(cases), "displaced": len(shares),
               "before_waves": sum(c["before_waves"] for c in cases), "by_share_of_waves": {},
-              "seats": seat_table(cases), "cases_with_seats": sum(c["seats"] is not None for c in cases)}
+              "seats": seat_table(cases), "cases_with_seats": sum(c["seats"] is not None for c in cases),
+              "seats_by_point": by_point(cases)}
     for cut in SHARES:
         result["by_share_of_waves"][f"{cut:g}"] = {
             "share_displaced": share_by(shares, cut), "interval_95": interval(cases, cut, rng),
@@ -170,6 +194,11 @@ def print_result(r):
         print(f"  seats ({r['cases_with_seats']} cases with n_m): units / displaced")
         for key in sorted(r["seats"]):
             print(f"    {key:24s} {r['seats'][key]['units']:5d} / {r['seats'][key]['displaced']}")
+        for point, p in r["seats_by_point"].items():
+            seats = ", ".join(f"{key} {v['displaced']} of {v['units']}" for key, v in sorted(p["seats"].items()))
+            ns = f"Ns {p['Ns']:.2f}" if p["Ns"] is not None else "Ns -"
+            vdm = f"{p['van_der_meer_units']:.1f}" if p["van_der_meer_units"] is not None else "-"
+            print(f"    {point} ({p['cases']} cases, {ns}, Van der Meer {vdm}): {seats}")
 
 
 def chart(curves, path):

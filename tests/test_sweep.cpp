@@ -1241,6 +1241,15 @@ TEST_F(SweepTest, DamageTimingPutsEachDepartureInTheTrainAndOnItsSeat) {
     EXPECT_NE(r.output.find("face, on top                 1 / 1"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("face, in the layer           3 / 2"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("foot, in the layer           1 / 0"), std::string::npos) << r.output;
+    // Per point (the case's folder less its seed; these summaries give no Ns or expected count).
+    EXPECT_NE(
+        r.output.find("a (1 cases, Ns -, Van der Meer -): face, in the layer 1 of 2, face, on top 1 of 1, "
+                      "foot, in the layer 0 of 1"),
+        std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("d (1 cases, Ns -, Van der Meer -): face, in the layer 1 of 1\n"),
+              std::string::npos)
+        << r.output;
     EXPECT_GT(fs::file_size(dir_ / "t" / "timing.png"), 10000u);
     const auto out = nlohmann::json::parse(read_text(dir_ / "t" / "summary.json"));
     const auto &curve = out["curves"][0];
