@@ -226,8 +226,7 @@ class DamageAnalysis : public Analysis {
 
     // damage.csv's rows: each unit from its settled pose; counts the displaced and the rocking.
     // left_at_s, for a displaced unit: the record from which it has stayed displaced (when it left).
-    // A unit on the face whose settled centre lies farther out of it than the
-    // layer is thick (`thickness`, m) rests on the double layer, not in it: on_top.
+    // on_top: the unit's settled centre rests on the layer `thickness` m thick (SlopeFrame::rests_on_layer).
     std::string unit_rows(Counts &counts, std::optional<double> thickness) const {
         std::string rows =
             "# damage per unit from its settled pose (SI; displacements in Dn)\n"
@@ -238,7 +237,7 @@ class DamageAnalysis : public Analysis {
             const bool is_displaced = u.displacement() >= scene_.displaced_threshold;
             const bool foot = frame_.seaward_of_foot(u.reference().position);
             const Eigen::Vector3d at = frame_.local(u.reference().position);
-            const bool on_top = thickness && !foot && at.z() > *thickness;
+            const bool on_top = thickness && frame_.rests_on_layer(u.reference().position, *thickness);
             counts.displaced += is_displaced ? 1 : 0;
             counts.displaced_at_foot += is_displaced && foot ? 1 : 0;
             counts.on_top += on_top ? 1 : 0;

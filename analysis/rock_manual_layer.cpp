@@ -88,10 +88,8 @@ nlohmann::json settled_layer_record(const Scene &scene, const SceneSetup &setup,
     record["units_at_foot"] = std::count_if(states.begin(), states.end(), [&](const BodyState &s) {
         return frame.seaward_of_foot(s.pose.position);
     });
-    // Units on the face whose centre lies farther out of it than the layer is
-    // thick: resting on the double layer, not in it (the damage analysis' on_top).
     record["units_on_top"] = std::count_if(states.begin(), states.end(), [&](const BodyState &s) {
-        return !frame.seaward_of_foot(s.pose.position) && frame.local(s.pose.position).z() > layer->thickness;
+        return frame.rests_on_layer(s.pose.position, layer->thickness);
     });
     record["units"] = states.size();
     return record;

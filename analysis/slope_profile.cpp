@@ -16,6 +16,10 @@ bool SlopeFrame::seaward_of_foot(const Eigen::Vector3d &world) const {
     return (world - origin).dot(landward) < 0.0;
 }
 
+bool SlopeFrame::rests_on_layer(const Eigen::Vector3d &world, double thickness) const {
+    return !seaward_of_foot(world) && local(world).z() > thickness;
+}
+
 std::optional<SlopeFrame> slope_frame(const Scene &scene) {
     for (const SceneWall &w : scene.walls) {
         if (w.type != "slope")

@@ -46,6 +46,10 @@ struct SlopeFrame {
     // bed in front of it, not over the face): a laboratory that counts the
     // units on the face alone leaves out those whose centres lie there.
     bool seaward_of_foot(const Eigen::Vector3d &world) const;
+    // Whether a unit's centre at `world` rests on a double layer `thickness`
+    // m thick rather than in it: over the face (not seaward of its foot) and
+    // farther out of it than the layer is thick.
+    bool rests_on_layer(const Eigen::Vector3d &world, double thickness) const;
 };
 
 // The scene's first "slope" wall; nullopt when it has none.

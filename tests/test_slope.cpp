@@ -637,6 +637,26 @@ TEST(Damage, NodCountsTheLayersStripsAndVanDerMeersRangeIsStated) {
     }
 }
 
+namespace {
+
+// A CSV file's rows as cells, its '#' comment lines and empty lines left out.
+std::vector<std::vector<std::string>> csv_cells(const std::filesystem::path &path) {
+    std::ifstream csv(path);
+    std::vector<std::vector<std::string>> rows;
+    for (std::string line; std::getline(csv, line);) {
+        if (line.empty() || line[0] == '#')
+            continue;
+        std::vector<std::string> cells;
+        std::stringstream in(line);
+        for (std::string cell; std::getline(in, cell, ',');)
+            cells.push_back(cell);
+        rows.push_back(cells);
+    }
+    return rows;
+}
+
+} // namespace
+
 // The units at the foot: a cube whose settled centre lies seaward of the
 // face's foot (0.2 a up the face but 1.5 a out of it: x = a (0.2 cos - 1.5
 // sin) < 0, over the toe) is counted apart from one on the face (2.5 a up,
@@ -662,17 +682,7 @@ TEST(Damage, UnitsSeawardOfTheFacesFootAreCountedApart) {
     EXPECT_EQ(summary["units_displaced_at_foot"].get<int>(), 1);
     EXPECT_EQ(result.rfind("2 of 3 units displaced (1 at the foot), N_od ", 0), 0u) << result;
 
-    std::ifstream csv(out / "damage.csv");
-    std::vector<std::vector<std::string>> rows;
-    for (std::string line; std::getline(csv, line);) {
-        if (line.empty() || line[0] == '#')
-            continue;
-        std::vector<std::string> cells;
-        std::stringstream in(line);
-        for (std::string cell; std::getline(in, cell, ',');)
-            cells.push_back(cell);
-        rows.push_back(cells);
-    }
+    const auto rows = csv_cells(out / "damage.csv");
     ASSERT_EQ(rows.size(), 4u); // header, three units
     EXPECT_EQ(rows[0][4], "n_m");
     EXPECT_EQ(rows[0][5], "at_foot");
@@ -715,15 +725,8 @@ TEST(Damage, UnitsRestingOnTheLayerAreCountedApart) {
     EXPECT_EQ(summary["units_displaced_on_top"].get<int>(), 1);
     EXPECT_EQ(result.rfind("1 of 18 units displaced (1 from on top of the layer), N_od ", 0), 0u) << result;
 
-    std::ifstream csv(out / "damage.csv");
     std::vector<std::string> flags, left; // on_top and left_at_s, a row per unit
-    for (std::string line; std::getline(csv, line);) {
-        if (line.empty() || line[0] == '#')
-            continue;
-        std::vector<std::string> cells;
-        std::stringstream in(line);
-        for (std::string cell; std::getline(in, cell, ',');)
-            cells.push_back(cell);
+    for (const auto &cells : csv_cells(out / "damage.csv")) {
         flags.push_back(cells[6]);
         left.push_back(cells.size() > 12 ? cells[12] : "");
     }
