@@ -69,6 +69,26 @@ def read_rows(path):
         return list(csv.DictReader(line for line in f if not line.startswith("#")))
 
 
+def departures(run, displaced):
+    """The times (s) the case's displaced units left, and damage.csv's rows."""
+    rows = read_rows(os.path.join(run, "damage.csv"))
+    gone = [r for r in rows if r.get("displaced") == "1"]
+    if len(gone) != displaced:
+        fail(f"{os.path.join(run, 'damage.csv')}: {len(gone)} units displaced where summary.json says {displaced}")
+    if rows and "left_at_s" in rows[0]:
+        times = sorted(float(r["left_at_s"]) for r in gone)
+    else:  # written before left_at_s: when the count first reached each number
+        times, count = [], 0
+        for row in read_rows(os.path.join(run, "damage_history.csv")):
+            while count < min(int(row["units_displaced"]), displaced):
+                count += 1
+                times.append(float(row["time_s"]))
+        if len(times) < displaced:
+            fail(f"{os.path.join(run, 'damage_history.csv')}: the count reaches {len(times)}, "
+                 f"summary.json's units_displaced is {displaced}")
+    return times, rows
+
+
 def read_case(run):
     """A case's departures (shares of its wave train) and its units' seats, or None without its files."""
     names = ("summary.json", "damage_history.csv", "damage.csv")
@@ -91,28 +111,20 @@ def read_case(run):
         fail(f"{path}: key '{key}': missing or not a number (not a coupled damage run's summary)")
     if end <= start:
         fail(f"{path}: key 'waves.window' [{start:g}, {end:g}] s holds no waves")
-    rows = read_rows(os.path.join(run, "damage.csv"))
-    gone = [r for r in rows if r.get("displaced") == "1"]
-    if len(gone) != displaced:
-        fail(f"{os.path.join(run, 'damage.csv')}: {len(gone)} units displaced where summary.json says {displaced}")
-    if rows and "left_at_s" in rows[0]:
-        times = sorted(float(r["left_at_s"]) for r in gone)
-    else:  # written before left_at_s: when the count first reached each number
-        times, count = [], 0
-        for row in read_rows(os.path.join(run, "damage_history.csv")):
-            while count < min(int(row["units_displaced"]), displaced):
-                count += 1
-                times.append(float(row["time_s"]))
-        if len(times) < displaced:
-            fail(f"{os.path.join(run, 'damage_history.csv')}: the count reaches {len(times)}, "
-                 f"summary.json's units_displaced is {displaced}")
+    try:
+        times, rows = departures(run, displaced)
+    except (KeyError, ValueError) as e:
+        fail(f"{run}: damage.csv or damage_history.csv: a column missing or not a number ({e})")
     shares = [min(max((t - start) / (end - start), 0.0), 1.0) for t in times]
     case = {"shares": shares, "before_waves": sum(t < start for t in times), "seats": None,
             "Ns": summary.get("Ns"), "expected": summary.get("units_displaced_van_der_meer")}
     if rows and "n_m" in rows[0] and "at_foot" in rows[0] and thickness is not None:
-        case["seats"] = [(("foot" if r["at_foot"] == "1" else "face"),
-                          ("on top" if float(r["n_m"]) > thickness else "in the layer"),
-                          r["displaced"] == "1") for r in rows]
+        try:
+            case["seats"] = [(("foot" if r["at_foot"] == "1" else "face"),
+                              ("on top" if float(r["n_m"]) > thickness else "in the layer"),
+                              r["displaced"] == "1") for r in rows]
+        except ValueError as e:
+            fail(f"{os.path.join(run, 'damage.csv')}: column 'n_m': not a number ({e})")
     return case
 
 
