@@ -15,6 +15,14 @@ Description
     displacement of its centre, Dn). A unit whose swing never reached its
     resistance was never pulled out of its seat the way the test pulls.
 
+    Each unit's seat, from the run's damage.csv and summary.json: at the
+    foot (centre seaward of the face's foot), on top of the layer (centre
+    farther out of the face than the layer is thick,
+    damage.settled_layer.layer_thickness) or in the layer; per seat the
+    summary gives the hold, the swing, and the margin: the factor the waves'
+    load would have to grow by to reach a unit's hold, resistance / swing
+    (a unit that held the test's largest pull: at least that).
+
     Forces in unit weights (-), displacements in Dn (-), times in s; writes
     OUT/summary.json, OUT/pull_vs_loads.csv and OUT/pull_vs_loads.png.
 
@@ -30,6 +38,46 @@ import tomllib
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "analysis"))
 from armour_results import read_bodies, read_summary  # noqa: E402
+
+
+SEATS = ("in the layer", "on top of the layer", "at the foot")
+
+
+def seat_of(run, damage):
+    """Each body's seat (one of SEATS) from the run's damage.csv: its on_top column, or for a run written before
+    it, the centre's distance out of the face (n_m) against the layer's thickness."""
+    import csv as csv_module
+
+    thickness = (damage.get("settled_layer") or {}).get("layer_thickness")
+    path = os.path.join(run, "damage.csv")
+    with open(path) as f:
+        rows = list(csv_module.DictReader(line for line in f if not line.startswith("#")))
+    seats = {}
+    for r in rows:
+        if r["at_foot"] == "1":
+            seats[int(r["body"])] = SEATS[2]
+        elif "on_top" in r:
+            seats[int(r["body"])] = SEATS[1] if r["on_top"] == "1" else SEATS[0]
+        elif thickness is not None:
+            seats[int(r["body"])] = SEATS[1] if float(r["n_m"]) > thickness else SEATS[0]
+        else:
+            sys.exit(f"pull_vs_loads: {os.path.join(run, 'summary.json')}: no damage.settled_layer.layer_thickness "
+                     "to place the units on top of the layer")
+    return seats
+
+
+def by_seat(rows, pull_max):
+    """The hold, the waves' swing and the margin between them of the pulled units of one seat."""
+    import numpy as np
+
+    held = [r["resistance_weights"] if r["resistance_weights"] is not None else pull_max for r in rows]
+    swing = [r["peak_swing_out_weights"] for r in rows]
+    margin = sorted(h / max(w, 1e-9) for h, w in zip(held, swing))
+    return {"units": len(rows), "resistance_median": float(np.median(held)),
+            "held_the_whole_pull": sum(r["stayed_in_pull"] for r in rows),
+            "peak_swing_out_median": float(np.median(swing)), "peak_swing_out_largest": float(max(swing)),
+            "margins_smallest_three": [float(m) for m in margin[:3]], "margin_median": float(np.median(margin)),
+            "moved_0.25_Dn_in_run": sum(1 for r in rows if r["largest_move_in_run_Dn"] >= 0.25)}
 
 
 def main():
@@ -71,6 +119,7 @@ def main():
     window = (b.time >= a.start) & (b.time <= until)
     if still.sum() < 2 or window.sum() < 2:
         sys.exit("pull_vs_loads: fewer than 2 records in the still-water window or the window")
+    seats = seat_of(a.run, damage)
     rows = []
     for r in pulled:
         i = int(r["body"])
@@ -79,7 +128,7 @@ def main():
         swing = (b.external_force[window, i] - f_still) @ normal / seat
         moved = np.linalg.norm(b.position[b.time <= until, i] - b.position[0, i], axis=1).max() / dn
         resistance = float(r["resistance_weights"]) if r["resistance_weights"] else None
-        rows.append({"body": i, "s_over_Dn": float(r["s_over_Dn"]), "resistance_weights": resistance,
+        rows.append({"body": i, "seat": seats[i], "s_over_Dn": float(r["s_over_Dn"]), "resistance_weights": resistance,
                      "stayed_in_pull": r["stayed"] == "1", "seat_weight_N": float(seat),
                      "peak_swing_out_weights": float(swing.max()), "largest_move_in_run_Dn": float(moved)})
     reached = [r for r in rows if r["resistance_weights"] is not None and r["peak_swing_out_weights"] >= r["resistance_weights"]]
@@ -91,8 +140,10 @@ def main():
         "units_whose_swing_reached_their_resistance": len(reached),
         "of_those_moved_0.25_Dn_in_run": sum(1 for r in reached if r["largest_move_in_run_Dn"] >= 0.25),
         "units_that_moved_0.25_Dn_in_run": sum(1 for r in rows if r["largest_move_in_run_Dn"] >= 0.25),
+        "by_seat": {seat: by_seat([r for r in rows if r["seat"] == seat], pull_summary.get("pull_max"))
+                    for seat in SEATS if any(r["seat"] == seat for r in rows)},
         "si_units": {"forces": "unit weights on the seat at rest (-)", "seat_weight_N": "N", "moves": "Dn (-)",
-                     "window": "s"},
+                     "window": "s", "margins": "resistance / largest swing (-)"},
     }
     json.dump(summary, open(os.path.join(a.out, "summary.json"), "w"), indent=2)
     with open(os.path.join(a.out, "pull_vs_loads.csv"), "w", newline="") as f:

@@ -19,7 +19,9 @@ Description
     writes (a case or a chart the sweep no longer has) and nothing else, so a
     file of one's own in DEST stays. (A DEST kept before that list: the
     files of the names a keep writes, and the charts its report.md shows,
-    count as its own.)
+    count as its own.) Every file is written beside its place first and
+    renamed over it once all are written: a keep cut short (a file it cannot
+    read, a full disk, Ctrl-C) leaves DEST as it was.
 
 Usage
     python3 studies/keep_results.py RUN docs/results/stability_curve
@@ -27,6 +29,7 @@ Usage
 """
 import csv
 import fcntl
+import functools
 import json
 import os
 import re
@@ -117,28 +120,86 @@ def remove_stale(dest, stale):
             folder = os.path.dirname(folder)
 
 
-def put(dest, name, written, text=None, source=None):
-    """Writes DEST/name whole or not at all (a temporary file renamed over it), from `text` or a copy of the file
-    `source`, and counts it in `written`: a keep cut short leaves no file half written."""
-    path = os.path.join(dest, name)
-    os.makedirs(os.path.dirname(path), exist_ok=True)
-    partial = path + ".keeping"
+def put(dest, name, text):
+    """Writes DEST/name whole or not at all (a temporary file renamed over it)."""
+    staged = {}
     try:
-        if source is None:
-            with open(partial, "w") as f:
-                f.write(text)
-        else:
-            shutil.copyfile(source, partial)
-        os.replace(partial, path)
+        stage(dest, name, staged, set(), text=text)
+        commit(dest, staged)
     finally:
-        # Interrupted (Ctrl-C, a full disk): the temporary file goes, the old DEST/name stays.
+        discard(dest, staged, set())
+
+
+def stage(dest, name, staged, made, text=None, source=None):
+    """Writes DEST/name.keeping from `text` or a copy of the file `source`, and counts it in `staged` (name ->
+    the temporary file) and the folders it made in `made`; `commit` renames every staged file over its place
+    at the end of the keep, so a keep cut short (a file it cannot read, a full disk, Ctrl-C) changes no file
+    in DEST."""
+    path = os.path.join(dest, name)
+    folder = os.path.dirname(path)
+    while folder and not os.path.isdir(folder):
+        made.add(folder)
+        folder = os.path.dirname(folder)
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    staged[name] = path + ".keeping"  # counted before it is written: a write cut short is cleaned up too
+    if source is None:
+        with open(staged[name], "w") as f:
+            f.write(text)
+    else:
+        shutil.copyfile(source, staged[name])
+
+
+def commit(dest, staged):
+    """Renames every staged file over DEST/name: a file is never half written, and the keep's files change
+    together (renames within one folder tree, after every copy has succeeded)."""
+    for name in list(staged):
+        os.replace(staged[name], os.path.join(dest, name))
+        del staged[name]
+
+
+def discard(dest, staged, made):
+    """A keep cut short: the temporary files go, and the folders it made under DEST that hold nothing now."""
+    for partial in staged.values():
         try:
             os.remove(partial)
-        except FileNotFoundError:
-            pass  # renamed over DEST/name: nothing left
         except OSError:
-            pass  # left behind rather than hide the error that stopped the write
-    written.add(name)
+            pass  # not written yet, or left behind rather than hide the error that stopped the keep
+    for folder in sorted(made, key=len, reverse=True):
+        try:
+            os.rmdir(folder)
+        except OSError:
+            pass  # not empty: it holds files of its own
+
+
+def stage_all(run, dest, summary, root, staged, made):
+    """Stages every file a keep writes (the sweep's tables, charts and each finished case's files); returns the
+    number of cases kept."""
+    put = functools.partial(stage, dest, staged=staged, made=made)
+    put("summary.json", text=json.dumps(summary, indent=2) + "\n")
+    for name in TOP:
+        if os.path.exists(os.path.join(run, name)):
+            with open(os.path.join(run, name)) as f:
+                text = f.read()
+            if name == "results.csv":
+                text = finished_rows(text)
+            # The report names the scene: as a path in the source tree, as summary.json does.
+            put(name, text=text.replace(root + os.sep, "") if root else text)
+    figures = os.path.join(run, "figures")
+    for name in sorted(os.listdir(figures)) if os.path.isdir(figures) else []:
+        if name.endswith(".png"):
+            put(os.path.join("figures", name), source=os.path.join(figures, name))
+    kept = 0
+    for case in summary["cases"]:
+        source = os.path.join(run, case["folder"], "run")
+        files = [n for n in PER_CASE if os.path.exists(os.path.join(source, n))]
+        if case["status"] != "done" or not files:
+            continue
+        for name in files:
+            put(os.path.join(case["folder"], "run", name), source=os.path.join(source, name))
+        # The record lets `armour sweep` resume from the kept cases elsewhere.
+        put(os.path.join(case["folder"], "case.json"), source=os.path.join(run, case["folder"], "case.json"))
+        kept += 1
+    return kept
 
 
 def keep(run, dest):
@@ -151,35 +212,23 @@ def keep(run, dest):
         summary = json.load(f)
     root = source_tree(summary)
     summary = relative_to_source(summary, root)
-    before, written = written_before(dest), set()
-    os.makedirs(os.path.join(dest, "figures"), exist_ok=True)
-    put(dest, "summary.json", written, text=json.dumps(summary, indent=2) + "\n")
-    for name in TOP:
-        if os.path.exists(os.path.join(run, name)):
-            with open(os.path.join(run, name)) as f:
-                text = f.read()
-            if name == "results.csv":
-                text = finished_rows(text)
-            # The report names the scene: as a path in the source tree, as summary.json does.
-            put(dest, name, written, text=text.replace(root + os.sep, "") if root else text)
-    figures = os.path.join(run, "figures")
-    for name in sorted(os.listdir(figures)) if os.path.isdir(figures) else []:
-        if name.endswith(".png"):
-            put(dest, os.path.join("figures", name), written, source=os.path.join(figures, name))
-    kept = 0
-    for case in summary["cases"]:
-        source = os.path.join(run, case["folder"], "run")
-        files = [n for n in PER_CASE if os.path.exists(os.path.join(source, n))]
-        if case["status"] != "done" or not files:
-            continue
-        for name in files:
-            put(dest, os.path.join(case["folder"], "run", name), written, source=os.path.join(source, name))
-        # The record lets `armour sweep` resume from the kept cases elsewhere.
-        put(dest, os.path.join(case["folder"], "case.json"), written,
-            source=os.path.join(run, case["folder"], "case.json"))
-        kept += 1
+    before, staged, made = written_before(dest), {}, set()
+    try:
+        kept = stage_all(run, dest, summary, root, staged, made)
+    except OSError as e:
+        discard(dest, staged, made)
+        print(f"armour: error: {e.filename or dest}: {e.strerror or e}; {dest} left as it was", file=sys.stderr)
+        sys.exit(2)
+    except BaseException:
+        discard(dest, staged, made)
+        raise
+    written = set(staged)
+    try:
+        commit(dest, staged)
+    finally:
+        discard(dest, staged, set())
     remove_stale(dest, before - written)
-    put(dest, MANIFEST, set(), text="".join(name + "\n" for name in sorted(written)))
+    put(dest, MANIFEST, "".join(name + "\n" for name in sorted(written)))
     print(f"kept {kept} of {len(summary['cases'])} cases' results in {dest}")
 
 

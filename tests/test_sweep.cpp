@@ -127,6 +127,14 @@ class SweepTest : public ::testing::Test {
         return file;
     }
 
+    // friction_sweep's cases run into `out`; the sweep's output where one failed.
+    std::string failed_friction_sweep(const std::string &name, const std::string &duration,
+                                      const std::string &frictions, const fs::path &out) {
+        const Result r = run(kArmour + " sweep " + friction_sweep(name, duration, frictions).string() +
+                             " --out " + out.string());
+        return r.status == 0 ? std::string() : r.output;
+    }
+
     // The shipped stability scene CI-sized (5 rows), its settle cut to 1 s, at
     // three densities of one seed: three layers for `--settle-only`.
     fs::path layers_sweep() {
@@ -670,14 +678,8 @@ TEST_F(SweepTest, KeepResultsRefusesASweepStillRunning) {
 // and the charts its report.md shows, count as its own.
 TEST_F(SweepTest, KeepingAgainRemovesOnlyWhatAKeepWrote) {
     const fs::path two = dir_ / "two", one = dir_ / "one", dest = dir_ / "kept";
-    ASSERT_EQ(run(kArmour + " sweep " + friction_sweep("two.toml", "0.5", "0.3, 0.5").string() + " --out " +
-                  two.string())
-                  .status,
-              0);
-    ASSERT_EQ(run(kArmour + " sweep " + friction_sweep("one.toml", "0.5", "0.5").string() + " --out " +
-                  one.string())
-                  .status,
-              0);
+    ASSERT_EQ(failed_friction_sweep("two.toml", "0.5", "0.3, 0.5", two), "");
+    ASSERT_EQ(failed_friction_sweep("one.toml", "0.5", "0.5", one), "");
     const std::string keep = "/usr/bin/python3 " + kSource + "/studies/keep_results.py ";
     for (const bool listed : {true, false}) {
         SCOPED_TRACE(listed ? "with kept_files.txt" : "kept before kept_files.txt");
@@ -700,6 +702,40 @@ TEST_F(SweepTest, KeepingAgainRemovesOnlyWhatAKeepWrote) {
         EXPECT_EQ(listed_files.find("mine.png"), std::string::npos) << listed_files;
         EXPECT_EQ(read_csv(dest / "results.csv").size(), 1u);
     }
+}
+
+// A keep cut short leaves DEST as it was: here a case's file it cannot read
+// (a folder where summary.json should be) stops it after it has written the
+// tables and the other files; one error line naming the file, exit 2, every
+// file of the earlier keep as it was, no temporary file, no new folder.
+TEST_F(SweepTest, KeepCutShortLeavesTheKeptFolderAsItWas) {
+    const fs::path two = dir_ / "two", three = dir_ / "three", dest = dir_ / "kept";
+    ASSERT_EQ(failed_friction_sweep("two.toml", "0.5", "0.3, 0.5", two), "");
+    ASSERT_EQ(failed_friction_sweep("three.toml", "0.5", "0.3, 0.5, 0.7", three), "");
+    const std::string keep = "/usr/bin/python3 " + kSource + "/studies/keep_results.py ";
+    ASSERT_EQ(run(keep + two.string() + " " + dest.string()).status, 0);
+    std::map<std::string, std::string> before;
+    for (const auto &entry : fs::recursive_directory_iterator(dest))
+        if (entry.is_regular_file())
+            before[fs::relative(entry.path(), dest).string()] = read_text(entry.path());
+
+    const fs::path unreadable = three / "cases" / "friction-0.7" / "run" / "summary.json";
+    fs::remove(unreadable);
+    fs::create_directory(unreadable);
+    const Result cut = run(keep + three.string() + " " + dest.string());
+    EXPECT_EQ(cut.status, 2) << cut.output;
+    EXPECT_NE(cut.output.find("armour: error: " + unreadable.string() + ": "), std::string::npos)
+        << cut.output;
+    EXPECT_NE(cut.output.find(dest.string() + " left as it was"), std::string::npos) << cut.output;
+    EXPECT_EQ(cut.output.find("Traceback"), std::string::npos) << cut.output;
+    std::map<std::string, std::string> after;
+    for (const auto &entry : fs::recursive_directory_iterator(dest)) {
+        EXPECT_FALSE(entry.is_directory() && entry.path().filename() == "friction-0.7") << entry.path();
+        if (entry.is_regular_file())
+            after[fs::relative(entry.path(), dest).string()] = read_text(entry.path());
+    }
+    EXPECT_EQ(after, before) << "every file as the first keep wrote it, no .keeping file left";
+    EXPECT_EQ(read_csv(dest / "results.csv").size(), 2u);
 }
 
 // A sweep rewrites report.md as each case ends, not only at its own end: a
