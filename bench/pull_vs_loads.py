@@ -156,15 +156,24 @@ def main():
     import matplotlib.pyplot as plt
     fig, ax = plt.subplots(figsize=(5.5, 5))
     top = max([r["resistance_weights"] or 0 for r in rows] + [r["peak_swing_out_weights"] for r in rows]) * 1.1
-    for r in rows:
-        # A unit that held the test's largest pull sits at it (a lower bound).
-        y = r["resistance_weights"] if r["resistance_weights"] is not None else pull_summary.get("pull_max", top)
-        ax.scatter(r["peak_swing_out_weights"], y, marker="^" if r["stayed_in_pull"] else "o",
-                   color="tab:red" if r["largest_move_in_run_Dn"] >= 0.25 else "tab:blue", s=22)
+    colours, labelled = dict(zip(SEATS, ("tab:blue", "tab:orange", "tab:green"))), set()
+    for seat in SEATS:
+        for moved in (False, True):
+            for stayed in (False, True):
+                part = [r for r in rows if r["seat"] == seat and r["stayed_in_pull"] == stayed
+                        and (r["largest_move_in_run_Dn"] >= 0.25) == moved]
+                if not part:
+                    continue
+                # A unit that held the test's largest pull sits at it (a lower bound).
+                y = [r["resistance_weights"] if not stayed else pull_summary.get("pull_max", top) for r in part]
+                ax.scatter([r["peak_swing_out_weights"] for r in part], y, marker="^" if stayed else "o", s=24,
+                           facecolors=colours[seat] if moved else "none", edgecolors=colours[seat],
+                           label=None if seat in labelled else seat)
+                labelled.add(seat)
     ax.plot([0, top], [0, top], "k--", lw=0.8, label="load = resistance")
     ax.set_xlabel("largest wave load out of the face [unit weights]")
     ax.set_ylabel("pull held in the pull test [unit weights]")
-    ax.set_title("red: moved >= 0.25 Dn in the run; triangles: held the test's largest pull", fontsize=8)
+    ax.set_title("filled: moved >= 0.25 Dn in the run; triangles: held the test's largest pull", fontsize=8)
     ax.legend(fontsize=8)
     ax.grid(True, lw=0.3)
     fig.tight_layout()
