@@ -40,43 +40,47 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 from armour_results import read_bodies, read_summary  # noqa: E402
 
 
-SEATS = ("in the layer", "on top of the layer", "at the foot")
+SEATS = ("in the layer", "on top of the layer", "at the foot", "unknown")
 
 
 def seat_of(run, damage):
     """Each body's seat (one of SEATS) from the run's damage.csv: its on_top column, or for a run written before
-    it, the centre's distance out of the face (n_m) against the layer's thickness."""
+    it, the centre's distance out of the face (n_m) against the layer's thickness; "unknown" where damage.csv
+    does not say (a run older than the at_foot and n_m columns, or none)."""
     import csv as csv_module
 
     thickness = (damage.get("settled_layer") or {}).get("layer_thickness")
     path = os.path.join(run, "damage.csv")
+    if not os.path.isfile(path):
+        return {}
     with open(path) as f:
         rows = list(csv_module.DictReader(line for line in f if not line.startswith("#")))
     seats = {}
     for r in rows:
-        if r["at_foot"] == "1":
+        if r.get("at_foot") == "1":
             seats[int(r["body"])] = SEATS[2]
-        elif "on_top" in r:
+        elif r.get("on_top") in ("0", "1"):
             seats[int(r["body"])] = SEATS[1] if r["on_top"] == "1" else SEATS[0]
-        elif thickness is not None:
+        elif r.get("at_foot") == "0" and r.get("n_m") and thickness is not None:
             seats[int(r["body"])] = SEATS[1] if float(r["n_m"]) > thickness else SEATS[0]
-        else:
-            sys.exit(f"pull_vs_loads: {os.path.join(run, 'summary.json')}: no damage.settled_layer.layer_thickness "
-                     "to place the units on top of the layer")
     return seats
 
 
 def by_seat(rows, pull_max):
-    """The hold, the waves' swing and the margin between them of the pulled units of one seat."""
+    """The hold, the waves' swing and the margin between them (hold / swing, where the swing is out of the
+    face at all) of the pulled units of one seat. A unit that held the whole pull counts as pull_max: its hold
+    and margin are lower bounds, and so are the medians where such units reach them."""
     import numpy as np
 
     held = [r["resistance_weights"] if r["resistance_weights"] is not None else pull_max for r in rows]
     swing = [r["peak_swing_out_weights"] for r in rows]
-    margin = sorted(h / max(w, 1e-9) for h, w in zip(held, swing))
+    margin = sorted(h / w for h, w in zip(held, swing) if w > 0)
     return {"units": len(rows), "resistance_median": float(np.median(held)),
             "held_the_whole_pull": sum(r["stayed_in_pull"] for r in rows),
             "peak_swing_out_median": float(np.median(swing)), "peak_swing_out_largest": float(max(swing)),
-            "margins_smallest_three": [float(m) for m in margin[:3]], "margin_median": float(np.median(margin)),
+            "margins_smallest_three": [float(m) for m in margin[:3]],
+            "margin_median": float(np.median(margin)) if margin else None,
+            "never_loaded_out_of_the_face": sum(1 for w in swing if w <= 0),
             "moved_0.25_Dn_in_run": sum(1 for r in rows if r["largest_move_in_run_Dn"] >= 0.25)}
 
 
@@ -109,6 +113,10 @@ def main():
     except OSError:
         pull_summary = {}
     beta = np.radians(pull_summary.get("pull_angle_deg", 0.0))
+    # A unit that held the whole pull held pull_max (without the test's summary: at least the largest pull any
+    # unit of it held).
+    pull_max = pull_summary.get("pull_max", max(
+        (float(r["resistance_weights"]) for r in pulled if r["resistance_weights"]), default=0.0))
     normal = np.cos(beta) * np.array([-np.sin(alpha), 0.0, np.cos(alpha)]) - np.sin(beta) * np.array(
         [np.cos(alpha), 0.0, np.sin(alpha)])
     g = float(np.linalg.norm(scene["run"]["gravity"]))
@@ -128,7 +136,7 @@ def main():
         swing = (b.external_force[window, i] - f_still) @ normal / seat
         moved = np.linalg.norm(b.position[b.time <= until, i] - b.position[0, i], axis=1).max() / dn
         resistance = float(r["resistance_weights"]) if r["resistance_weights"] else None
-        rows.append({"body": i, "seat": seats[i], "s_over_Dn": float(r["s_over_Dn"]), "resistance_weights": resistance,
+        rows.append({"body": i, "seat": seats.get(i, SEATS[3]), "s_over_Dn": float(r["s_over_Dn"]), "resistance_weights": resistance,
                      "stayed_in_pull": r["stayed"] == "1", "seat_weight_N": float(seat),
                      "peak_swing_out_weights": float(swing.max()), "largest_move_in_run_Dn": float(moved)})
     reached = [r for r in rows if r["resistance_weights"] is not None and r["peak_swing_out_weights"] >= r["resistance_weights"]]
@@ -140,7 +148,7 @@ def main():
         "units_whose_swing_reached_their_resistance": len(reached),
         "of_those_moved_0.25_Dn_in_run": sum(1 for r in reached if r["largest_move_in_run_Dn"] >= 0.25),
         "units_that_moved_0.25_Dn_in_run": sum(1 for r in rows if r["largest_move_in_run_Dn"] >= 0.25),
-        "by_seat": {seat: by_seat([r for r in rows if r["seat"] == seat], pull_summary.get("pull_max"))
+        "by_seat": {seat: by_seat([r for r in rows if r["seat"] == seat], pull_max)
                     for seat in SEATS if any(r["seat"] == seat for r in rows)},
         "si_units": {"forces": "unit weights on the seat at rest (-)", "seat_weight_N": "N", "moves": "Dn (-)",
                      "window": "s", "margins": "resistance / largest swing (-)"},
@@ -156,7 +164,7 @@ def main():
     import matplotlib.pyplot as plt
     fig, ax = plt.subplots(figsize=(5.5, 5))
     top = max([r["resistance_weights"] or 0 for r in rows] + [r["peak_swing_out_weights"] for r in rows]) * 1.1
-    colours, labelled = dict(zip(SEATS, ("tab:blue", "tab:orange", "tab:green"))), set()
+    colours, labelled = dict(zip(SEATS, ("tab:blue", "tab:orange", "tab:green", "tab:grey"))), set()
     for seat in SEATS:
         for moved in (False, True):
             for stayed in (False, True):
@@ -165,7 +173,7 @@ def main():
                 if not part:
                     continue
                 # A unit that held the test's largest pull sits at it (a lower bound).
-                y = [r["resistance_weights"] if not stayed else pull_summary.get("pull_max", top) for r in part]
+                y = [r["resistance_weights"] if not stayed else pull_max for r in part]
                 ax.scatter([r["peak_swing_out_weights"] for r in part], y, marker="^" if stayed else "o", s=24,
                            facecolors=colours[seat] if moved else "none", edgecolors=colours[seat],
                            label=None if seat in labelled else seat)

@@ -28,12 +28,14 @@ Usage
     armour sweep STUDY --out NEW_RUN --kept docs/results/stability_curve   # elsewhere: the other cases
 """
 import csv
+import errno
 import fcntl
 import functools
 import json
 import os
 import re
 import shutil
+import signal
 import sys
 
 TOP = ("results.csv", "report.md", "sweep.toml")
@@ -142,11 +144,16 @@ def stage(dest, name, staged, made, text=None, source=None):
         folder = os.path.dirname(folder)
     os.makedirs(os.path.dirname(path), exist_ok=True)
     staged[name] = path + ".keeping"  # counted before it is written: a write cut short is cleaned up too
-    if source is None:
-        with open(staged[name], "w") as f:
-            f.write(text)
-    else:
-        shutil.copyfile(source, staged[name])
+    try:
+        if source is None:
+            with open(staged[name], "w") as f:
+                f.write(text)
+        else:
+            shutil.copyfile(source, staged[name])
+    except OSError as e:
+        if e.filename is None:  # a full disk names no file: name the one being written
+            raise OSError(e.errno, e.strerror, staged[name]) from e
+        raise
 
 
 def commit(dest, staged):
@@ -212,21 +219,34 @@ def keep(run, dest):
         summary = json.load(f)
     root = source_tree(summary)
     summary = relative_to_source(summary, root)
-    before, staged, made = written_before(dest), {}, set()
+    staged, made = {}, set()
+    # SIGTERM (a kill, a scheduler) ends the keep as Ctrl-C does: through the clean-up below.
+    signal.signal(signal.SIGTERM, lambda *_: sys.exit(143))
     try:
+        before = written_before(dest)
         kept = stage_all(run, dest, summary, root, staged, made)
+        for name in staged:  # a folder where a file goes: refused before anything is renamed
+            if os.path.isdir(os.path.join(dest, name)):
+                raise IsADirectoryError(errno.EISDIR, "a folder where the keep writes a file", os.path.join(dest, name))
     except OSError as e:
         discard(dest, staged, made)
         print(f"armour: error: {e.filename or dest}: {e.strerror or e}; {dest} left as it was", file=sys.stderr)
         sys.exit(2)
+    except KeyboardInterrupt:
+        discard(dest, staged, made)
+        print(f"armour: error: interrupted; {dest} left as it was", file=sys.stderr)
+        sys.exit(130)
     except BaseException:
         discard(dest, staged, made)
         raise
     written = set(staged)
     try:
         commit(dest, staged)
-    finally:
-        discard(dest, staged, set())
+    except OSError as e:  # between renames: a few files new, the rest and kept_files.txt old
+        discard(dest, staged, made)
+        print(f"armour: error: {e.filename or dest}: {e.strerror or e}; {dest} partly kept: keep again",
+              file=sys.stderr)
+        sys.exit(2)
     remove_stale(dest, before - written)
     put(dest, MANIFEST, "".join(name + "\n" for name in sorted(written)))
     print(f"kept {kept} of {len(summary['cases'])} cases' results in {dest}")

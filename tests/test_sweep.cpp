@@ -128,8 +128,8 @@ class SweepTest : public ::testing::Test {
     }
 
     // friction_sweep's cases run into `out`; the sweep's output where one failed.
-    std::string failed_friction_sweep(const std::string &name, const std::string &duration,
-                                      const std::string &frictions, const fs::path &out) {
+    std::string friction_sweep_error(const std::string &name, const std::string &duration,
+                                     const std::string &frictions, const fs::path &out) {
         const Result r = run(kArmour + " sweep " + friction_sweep(name, duration, frictions).string() +
                              " --out " + out.string());
         return r.status == 0 ? std::string() : r.output;
@@ -678,8 +678,8 @@ TEST_F(SweepTest, KeepResultsRefusesASweepStillRunning) {
 // and the charts its report.md shows, count as its own.
 TEST_F(SweepTest, KeepingAgainRemovesOnlyWhatAKeepWrote) {
     const fs::path two = dir_ / "two", one = dir_ / "one", dest = dir_ / "kept";
-    ASSERT_EQ(failed_friction_sweep("two.toml", "0.5", "0.3, 0.5", two), "");
-    ASSERT_EQ(failed_friction_sweep("one.toml", "0.5", "0.5", one), "");
+    ASSERT_EQ(friction_sweep_error("two.toml", "0.5", "0.3, 0.5", two), "");
+    ASSERT_EQ(friction_sweep_error("one.toml", "0.5", "0.5", one), "");
     const std::string keep = "/usr/bin/python3 " + kSource + "/studies/keep_results.py ";
     for (const bool listed : {true, false}) {
         SCOPED_TRACE(listed ? "with kept_files.txt" : "kept before kept_files.txt");
@@ -707,11 +707,12 @@ TEST_F(SweepTest, KeepingAgainRemovesOnlyWhatAKeepWrote) {
 // A keep cut short leaves DEST as it was: here a case's file it cannot read
 // (a folder where summary.json should be) stops it after it has written the
 // tables and the other files; one error line naming the file, exit 2, every
-// file of the earlier keep as it was, no temporary file, no new folder.
+// file of the earlier keep as it was, no temporary file, no new folder. So
+// does a folder in DEST where the keep writes a file.
 TEST_F(SweepTest, KeepCutShortLeavesTheKeptFolderAsItWas) {
     const fs::path two = dir_ / "two", three = dir_ / "three", dest = dir_ / "kept";
-    ASSERT_EQ(failed_friction_sweep("two.toml", "0.5", "0.3, 0.5", two), "");
-    ASSERT_EQ(failed_friction_sweep("three.toml", "0.5", "0.3, 0.5, 0.7", three), "");
+    ASSERT_EQ(friction_sweep_error("two.toml", "0.5", "0.3, 0.5", two), "");
+    ASSERT_EQ(friction_sweep_error("three.toml", "0.5", "0.3, 0.5, 0.7", three), "");
     const std::string keep = "/usr/bin/python3 " + kSource + "/studies/keep_results.py ";
     ASSERT_EQ(run(keep + two.string() + " " + dest.string()).status, 0);
     std::map<std::string, std::string> before;
@@ -736,6 +737,23 @@ TEST_F(SweepTest, KeepCutShortLeavesTheKeptFolderAsItWas) {
     }
     EXPECT_EQ(after, before) << "every file as the first keep wrote it, no .keeping file left";
     EXPECT_EQ(read_csv(dest / "results.csv").size(), 2u);
+
+    // A folder where the keep writes a file: refused before any file is renamed over DEST's.
+    fs::remove(unreadable);
+    ASSERT_EQ(friction_sweep_error("three.toml", "0.5", "0.3, 0.5, 0.7", three), "");
+    fs::remove(dest / "report.md");
+    fs::create_directory(dest / "report.md");
+    before.erase("report.md");
+    const Result blocked = run(keep + three.string() + " " + dest.string());
+    EXPECT_EQ(blocked.status, 2) << blocked.output;
+    EXPECT_NE(blocked.output.find("armour: error: " + (dest / "report.md").string() + ": "),
+              std::string::npos)
+        << blocked.output;
+    after.clear();
+    for (const auto &entry : fs::recursive_directory_iterator(dest))
+        if (entry.is_regular_file())
+            after[fs::relative(entry.path(), dest).string()] = read_text(entry.path());
+    EXPECT_EQ(after, before) << "summary.json and the rest untouched";
 }
 
 // A sweep rewrites report.md as each case ends, not only at its own end: a
