@@ -47,14 +47,12 @@ def seat_of(run, damage):
     """Each body's seat (one of SEATS) from the run's damage.csv: its on_top column, or for a run written before
     it, the centre's distance out of the face (n_m) against the layer's thickness; "unknown" where damage.csv
     does not say (a run older than the at_foot and n_m columns, or none)."""
-    import csv as csv_module
-
     thickness = (damage.get("settled_layer") or {}).get("layer_thickness")
     path = os.path.join(run, "damage.csv")
     if not os.path.isfile(path):
         return {}
     with open(path) as f:
-        rows = list(csv_module.DictReader(line for line in f if not line.startswith("#")))
+        rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
     seats = {}
     for r in rows:
         if r.get("at_foot") == "1":
