@@ -129,7 +129,7 @@ def put(dest, name, text):
         stage(dest, name, staged, set(), text=text)
         commit(dest, staged)
     finally:
-        discard(dest, staged, set())
+        discard(staged, set())
 
 
 def stage(dest, name, staged, made, text=None, source=None):
@@ -164,7 +164,7 @@ def commit(dest, staged):
         del staged[name]
 
 
-def discard(dest, staged, made):
+def discard(staged, made):
     """A keep cut short: the temporary files go, and the folders it made under DEST that hold nothing now."""
     for partial in staged.values():
         try:
@@ -229,21 +229,21 @@ def keep(run, dest):
             if os.path.isdir(os.path.join(dest, name)):
                 raise IsADirectoryError(errno.EISDIR, "a folder where the keep writes a file", os.path.join(dest, name))
     except OSError as e:
-        discard(dest, staged, made)
+        discard(staged, made)
         print(f"armour: error: {e.filename or dest}: {e.strerror or e}; {dest} left as it was", file=sys.stderr)
         sys.exit(2)
     except KeyboardInterrupt:
-        discard(dest, staged, made)
+        discard(staged, made)
         print(f"armour: error: interrupted; {dest} left as it was", file=sys.stderr)
         sys.exit(130)
     except BaseException:
-        discard(dest, staged, made)
+        discard(staged, made)
         raise
     written = set(staged)
     try:
         commit(dest, staged)
     except OSError as e:  # between renames: a few files new, the rest and kept_files.txt old
-        discard(dest, staged, made)
+        discard(staged, made)
         print(f"armour: error: {e.filename or dest}: {e.strerror or e}; {dest} partly kept: keep again",
               file=sys.stderr)
         sys.exit(2)
