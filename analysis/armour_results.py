@@ -22,9 +22,13 @@ Usage
     b = read_bodies("out/run")                # a run folder, or the bodies.h5 itself
     z = b.position[:, 0, 2]                   # heave of body 0, m
     s = read_summary("out/run")               # summary.json as a dict
+    seats = unit_seats("out/run")             # body -> Seat(at_foot, above_layer), from damage.csv
+    seat_name(seats[0])                       # "in the layer", "on top of the layer", "at the foot" or "unknown"
 """
+import csv
 import json
 import os
+from collections import namedtuple
 
 SERIES = ("position", "orientation", "velocity", "angular_velocity", "external_force", "external_torque",
           "contact_force")
@@ -86,3 +90,47 @@ if __name__ == "__main__":
           f"{b.time[-1] if b.steps else 0:g} s, attributes {sorted(b.attributes)}")
     if b.steps:
         print("last position of body 0 (m):", np.array2string(b.position[-1, 0]))
+
+
+# A settled unit's seat on the slope: at_foot, its centre seaward of the face's foot; above_layer, its centre
+# farther out of the face than the settled layer is thick (more than half of it outside the double layer). Either
+# is None where the run's damage.csv does not say.
+Seat = namedtuple("Seat", "at_foot above_layer")
+SEATS = ("in the layer", "on top of the layer", "at the foot", "unknown")
+
+
+def unit_seats(path):
+    """Each body's Seat in a damage run's settled layer (a run folder), from damage.csv and summary.json: at_foot
+    from the at_foot column; above_layer from n_m against damage.settled_layer.layer_thickness (the test of
+    SlopeFrame::rests_on_layer, here for units at the foot too), else from the on_top column (the face's units
+    only). {} without damage.csv. Raises ValueError naming the file and column where a figure is not a number."""
+    table = _in_run(path, "damage.csv")
+    if not os.path.isfile(table):
+        return {}
+    try:
+        layer = (read_summary(path).get("damage") or {}).get("settled_layer") or {}
+        thickness = layer.get("layer_thickness")
+    except (OSError, ValueError):
+        thickness = None
+    with open(table, newline="") as f:
+        rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
+    seats = {}
+    for r in rows:
+        foot = {"1": True, "0": False}.get(r.get("at_foot"))
+        above = {"1": True, "0": False}.get(r.get("on_top")) if foot is False else None
+        if r.get("n_m") and thickness is not None:
+            try:
+                above = float(r["n_m"]) > thickness
+            except ValueError as e:
+                raise ValueError(f"{table}: column 'n_m': not a number ({e})") from None
+        seats[int(r["body"])] = Seat(foot, above)
+    return seats
+
+
+def seat_name(seat):
+    """A Seat as one of SEATS: the foot first, then on top of the layer or in it."""
+    if seat is None or seat.at_foot is None:
+        return SEATS[3]
+    if seat.at_foot:
+        return SEATS[2]
+    return SEATS[3] if seat.above_layer is None else SEATS[1] if seat.above_layer else SEATS[0]

@@ -37,31 +37,7 @@ import sys
 import tomllib
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "analysis"))
-from armour_results import read_bodies, read_summary  # noqa: E402
-
-
-SEATS = ("in the layer", "on top of the layer", "at the foot", "unknown")
-
-
-def seat_of(run, damage):
-    """Each body's seat (one of SEATS) from the run's damage.csv: its on_top column, or for a run written before
-    it, the centre's distance out of the face (n_m) against the layer's thickness; "unknown" where damage.csv
-    does not say (a run older than the at_foot and n_m columns, or none)."""
-    thickness = (damage.get("settled_layer") or {}).get("layer_thickness")
-    path = os.path.join(run, "damage.csv")
-    if not os.path.isfile(path):
-        return {}
-    with open(path) as f:
-        rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
-    seats = {}
-    for r in rows:
-        if r.get("at_foot") == "1":
-            seats[int(r["body"])] = SEATS[2]
-        elif r.get("on_top") in ("0", "1"):
-            seats[int(r["body"])] = SEATS[1] if r["on_top"] == "1" else SEATS[0]
-        elif r.get("at_foot") == "0" and r.get("n_m") and thickness is not None:
-            seats[int(r["body"])] = SEATS[1] if float(r["n_m"]) > thickness else SEATS[0]
-    return seats
+from armour_results import SEATS, read_bodies, read_summary, seat_name, unit_seats  # noqa: E402
 
 
 def by_seat(rows, pull_max):
@@ -125,7 +101,10 @@ def main():
     window = (b.time >= a.start) & (b.time <= until)
     if still.sum() < 2 or window.sum() < 2:
         sys.exit("pull_vs_loads: fewer than 2 records in the still-water window or the window")
-    seats = seat_of(a.run, damage)
+    try:
+        seats = {body: seat_name(seat) for body, seat in unit_seats(a.run).items()}
+    except ValueError as e:
+        sys.exit(f"armour: error: {e}")
     rows = []
     for r in pulled:
         i = int(r["body"])

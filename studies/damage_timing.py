@@ -53,6 +53,9 @@ import sys
 
 import numpy as np
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "analysis"))
+from armour_results import unit_seats  # noqa: E402
+
 EXPONENT = 0.75  # N_od ~ N^(0.3/0.4) at one Ns: Van der Meer (1988), cubes
 SHARES = (0.25, 0.5)
 RESAMPLES = 2000
@@ -120,11 +123,12 @@ def read_case(run):
             "Ns": summary.get("Ns"), "expected": summary.get("units_displaced_van_der_meer")}
     if rows and "n_m" in rows[0] and "at_foot" in rows[0] and thickness is not None:
         try:
-            case["seats"] = [(("foot" if r["at_foot"] == "1" else "face"),
-                              ("on top" if float(r["n_m"]) > thickness else "in the layer"),
-                              r["displaced"] == "1") for r in rows]
+            seats = unit_seats(run)
         except ValueError as e:
-            fail(f"{os.path.join(run, 'damage.csv')}: column 'n_m': not a number ({e})")
+            fail(str(e))
+        case["seats"] = [(("foot" if seats[int(r["body"])].at_foot else "face"),
+                          ("on top" if seats[int(r["body"])].above_layer else "in the layer"),
+                          r["displaced"] == "1") for r in rows]
     return case
 
 

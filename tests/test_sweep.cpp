@@ -1860,10 +1860,17 @@ with h5py.File(sys.argv[1], "w") as f:
 // passes 1 Dn at 1.35, 1.85 and 3.35 s; the first two are neighbours (1.5 Dn
 // apart), the third far. Their seaward loads: 5 N long before and 10 N in the
 // move (2 x), 8 N before and 4 N in the move (0.5 x), and 6 N with none before.
+// Their ways out, over their last move (from the record at 0.15 Dn to the pass:
+// 0.9 Dn in 0.3 s): the first, at the foot, does not turn (slid); the second,
+// in the layer (1.5 Dn under its 2 Dn thickness), turns at 90 deg/s, 30 deg per
+// Dn (slid and turned), touching nothing; the third, on top of the layer, at
+// 270 deg/s, 90 deg per Dn (rolled: a cube's roll over an edge), its upward
+// load 5 N (half its buoyancy) below the still water's at its pass.
 TEST_F(SweepTest, DeparturesTellTheLoadEachUnitLeftUnderAndWhoLeftTogether) {
     const fs::path run_dir = dir_ / "run";
     fs::create_directories(run_dir);
-    write(run_dir / "summary.json", R"({"damage": {"Dn": 0.1, "delta": 1.0, "displaced_threshold": 1.0}})");
+    write(run_dir / "summary.json", R"({"damage": {"Dn": 0.1, "delta": 1.0, "displaced_threshold": 1.0,
+                                        "settled_layer": {"layer_thickness": 0.2}}})");
     const std::string scene =
         "[run]\ngravity = [0.0, 0.0, -10.0]\n[fluid]\nfluid_density = 1000.0\n"
         "[[material]]\nname = \"rough\"\nfriction = 0.9\n[[unit]]\nname = \"cube\"\nmaterial = \"rough\"\n"
@@ -1871,18 +1878,24 @@ TEST_F(SweepTest, DeparturesTellTheLoadEachUnitLeftUnderAndWhoLeftTogether) {
         "floor_z = -0.05\n";
     write(run_dir / "scene.resolved.toml", scene);
     write(run_dir / "damage.csv",
-          "# damage per unit\nbody,unit,s_m,y_m,displaced\n0,cube,0.0,0,1\n1,cube,0.15,0,1\n"
-          "2,cube,1.0,0,1\n3,cube,0.5,0,0\n");
+          "# damage per unit\nbody,unit,s_m,y_m,n_m,at_foot,displaced\n0,cube,0.0,0,0.05,1,1\n"
+          "1,cube,0.15,0,0.05,0,1\n2,cube,1.0,0,0.25,0,1\n3,cube,0.5,0,0.05,0,0\n");
     const std::string make = R"(
 import sys, h5py, numpy as np
 t = np.arange(81) * 0.05
 x = np.zeros((81, 4, 3)); F = np.zeros((81, 4, 3)); F[1:, :, 2] = 10.0  # buoyancy; none at 0 s, as in a run
-for b, seat, start in ((0, 0.0, 1.0), (1, 0.15, 1.5), (2, 1.0, 3.0), (3, 0.5, 99.0)):
-    x[:, b, 0] = seat - 0.3 * np.clip(t - start, 0.0, None)
+q = np.zeros((81, 4, 4)); C = np.zeros((81, 4, 3)); C[:, :, 2] = 10.0  # resting on the layer
+for b, seat, start, deg_per_s in ((0, 0.0, 1.0, 0), (1, 0.15, 1.5, 90), (2, 1.0, 3.0, 270), (3, 0.5, 99.0, 0)):
+    moving = np.clip(t - start, 0.0, None)
+    x[:, b, 0] = seat - 0.3 * moving
+    half = np.radians(deg_per_s * moving) / 2  # turning about y
+    q[:, b, 0] = np.cos(half); q[:, b, 2] = np.sin(half)
 def push(b, at, newtons): F[int(round(at / 0.05)), b, 0] = -newtons
 push(0, 0.5, 5.0); push(0, 1.2, 10.0); push(1, 0.5, 8.0); push(1, 1.7, 4.0); push(2, 3.2, 6.0)
+C[30:, 1] = 0.0; F[67, 2, 2] = 5.0
 with h5py.File(sys.argv[1], "w") as f:
     f["time"] = t; f["bodies/position"] = x; f["bodies/external_force"] = F
+    f["bodies/orientation"] = q; f["bodies/contact_force"] = C
 )";
     write(dir_ / "make.py", make);
     ASSERT_EQ(run("/usr/bin/python3 " + (dir_ / "make.py").string() + " " + (run_dir / "bodies.h5").string())
@@ -1913,10 +1926,25 @@ with h5py.File(sys.argv[1], "w") as f:
                   "face, +0.58 Dn out of it"),
               std::string::npos)
         << r.output;
+    EXPECT_NE(r.output.find(
+                  "moved down the face in its plane (down it >= 3/4 of the threshold, out of it < 1/4; slid "
+                  "or rolled): 0 of 3; of the 0 with load figures, 0 met no load along their move beyond "
+                  "the still water's"),
+              std::string::npos)
+        << r.output;
     EXPECT_NE(
-        r.output.find("slid down the face in its plane (down it >= 3/4 of the threshold, out of it < 1/4): "
-                      "0 of 3; of the 0 with load figures, 0 met no load along their move beyond the still "
-                      "water's"),
+        r.output.find("+0.58 Dn out of it; seat at the foot; slid: turned 0 deg over its last 0.90 Dn (0 "
+                      "deg per Dn), touching nothing in 0 % of its records, the upward load 0.00 of its "
+                      "buoyancy below the still water's"),
+        std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("seat in the layer; slid and turned: turned 27 deg over its last 0.90 Dn (30 deg "
+                            "per Dn), touching nothing in 100 % of its records"),
+              std::string::npos)
+        << r.output;
+    EXPECT_NE(
+        r.output.find("seat on top of the layer; rolled: turned 81 deg over its last 0.90 Dn (90 deg per "
+                      "Dn), touching nothing in 0 % of its records, the upward load 0.50 of its buoyancy"),
         std::string::npos)
         << r.output;
     const json summary = json::parse(read_text(dir_ / "out" / "summary.json"));
@@ -1936,6 +1964,16 @@ with h5py.File(sys.argv[1], "w") as f:
     EXPECT_NEAR(summary["chance_of_as_many"].get<double>(), 1.0 / 3.0, 0.025);
     const std::string table = read_text(dir_ / "out" / "departures.csv");
     EXPECT_EQ(std::count(table.begin(), table.end(), '\n'), 5) << table; // a comment, the header, 3 units
+    const json &seats = summary["by_seat"];
+    EXPECT_EQ(seats.size(), 3U) << seats.dump();
+    EXPECT_EQ(seats["at the foot"]["slid"], 1);
+    EXPECT_EQ(seats["in the layer"]["slid_and_turned"], 1);
+    EXPECT_NEAR(seats["in the layer"]["turn_per_Dn_median_deg"].get<double>(), 30.0, 1e-6);
+    EXPECT_EQ(seats["in the layer"]["off_contact_share_median"], 1.0);
+    EXPECT_EQ(seats["on top of the layer"]["rolled"], 1);
+    EXPECT_NEAR(seats["on top of the layer"]["turn_per_Dn_median_deg"].get<double>(), 90.0, 1e-6);
+    EXPECT_NEAR(seats["on top of the layer"]["upward_load_drop_median"].get<double>(), 0.5, 1e-9);
+    EXPECT_EQ(seats["on top of the layer"]["down_the_face"], 1);
 
     // A unit that slides down the face in its plane (along (-1.5, 0, -1) / sqrt(3.25), 0.3 m/s from 1 s)
     // with no water load on it: 1.05 Dn down the face, none out of it, by its pass at 1.35 s, needing
@@ -1952,8 +1990,10 @@ import sys, h5py, numpy as np
 t = np.arange(81) * 0.05
 x = np.zeros((81, 2, 3)); F = np.zeros((81, 2, 3)); F[1:, 1] = [-10.0, 0.0, 10.0]
 x[:, 0, :] = np.outer(0.3 * np.clip(t - 1.0, 0.0, None), np.array([-1.5, 0.0, -1.0]) / np.sqrt(3.25))
+q = np.zeros((81, 2, 4)); q[:, :, 0] = 1.0; C = np.zeros((81, 2, 3)); C[:, :, 2] = 10.0
 with h5py.File(sys.argv[1], "w") as f:
     f["time"] = t; f["bodies/position"] = x; f["bodies/external_force"] = F
+    f["bodies/orientation"] = q; f["bodies/contact_force"] = C
 )");
     ASSERT_EQ(
         run("/usr/bin/python3 " + (dir_ / "slide.py").string() + " " + (slide_dir / "bodies.h5").string())
@@ -1966,17 +2006,17 @@ with h5py.File(sys.argv[1], "w") as f:
                           "moved -1.05 Dn up the face, +0.00 Dn out of it"),
         std::string::npos)
         << slide.output;
-    EXPECT_NE(
-        slide.output.find("in its plane (down it >= 3/4 of the threshold, out of it < 1/4): 1 of 1; of the 1 "
-                          "with load figures, 1 met no load along their move beyond the still water's"),
-        std::string::npos)
+    EXPECT_NE(slide.output.find(
+                  "in its plane (down it >= 3/4 of the threshold, out of it < 1/4; slid or rolled): 1 of "
+                  "1; of the 1 with load figures, 1 met no load along their move beyond the still water's"),
+              std::string::npos)
         << slide.output;
     const json slid = json::parse(read_text(dir_ / "slide_out" / "summary.json"));
-    EXPECT_EQ(slid["slid_down_the_face"], 1);
-    EXPECT_EQ(slid["slid_down_the_face_unpushed"], 1);
-    EXPECT_EQ(slid["hold_angle_slid_past_the_wall"], 0);
-    EXPECT_EQ(slid["slid_inner_layer"], 1);
-    EXPECT_NEAR(slid["hold_angle_slid_inner_median_deg"].get<double>(), 33.69, 0.01);
+    EXPECT_EQ(slid["in_plane_down_the_face"], 1);
+    EXPECT_EQ(slid["in_plane_down_the_face_unpushed"], 1);
+    EXPECT_EQ(slid["hold_angle_in_plane_past_the_wall"], 0);
+    EXPECT_EQ(slid["in_plane_inner_layer"], 1);
+    EXPECT_NEAR(slid["hold_angle_in_plane_inner_median_deg"].get<double>(), 33.69, 0.01);
     EXPECT_NEAR(slid["hold_angle_stayed_inner_same_stretches_median_deg"].get<double>(), 78.69, 0.01);
     EXPECT_EQ(slid["stayed_inner_past_the_wall_share"], 1.0);
     // Read against still water at 2 s, it passed while the layer settled: no load figures, still counted.
@@ -1989,7 +2029,8 @@ with h5py.File(sys.argv[1], "w") as f:
         << settling.output;
     const json settled = json::parse(read_text(dir_ / "settling" / "summary.json"));
     EXPECT_EQ(settled["passed_before_the_still_record"], 1);
-    EXPECT_EQ(settled["slid_down_the_face"], 1);
+    EXPECT_EQ(settled["in_plane_down_the_face"], 1);
+    EXPECT_EQ(settled["by_seat"]["unknown"]["slid"], 1); // damage.csv without at_foot: no seat
 
     const Result bad = run(script + (dir_ / "missing").string() + " --out " + (dir_ / "bad").string());
     EXPECT_EQ(bad.status, 2) << bad.output;
