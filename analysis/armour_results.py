@@ -102,8 +102,10 @@ SEATS = ("in the layer", "on top of the layer", "at the foot", "unknown")
 def unit_seats(path):
     """Each body's Seat in a damage run's settled layer (a run folder), from damage.csv and summary.json: at_foot
     from the at_foot column; above_layer from n_m against damage.settled_layer.layer_thickness (the test of
-    SlopeFrame::rests_on_layer, here for units at the foot too), else from the on_top column (the face's units
-    only). {} without damage.csv. Raises ValueError naming the file and column where a figure is not a number."""
+    SlopeFrame::rests_on_layer, whose on_top column it repeats, here for units at the foot too). None where
+    damage.csv has no such column or an empty cell, or summary.json no thickness (the damage analysis then writes
+    on_top 0 for every unit). {} without damage.csv. Raises ValueError naming the file and column where a cell
+    is not a number."""
     table = _in_run(path, "damage.csv")
     if not os.path.isfile(table):
         return {}
@@ -116,14 +118,14 @@ def unit_seats(path):
         rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
     seats = {}
     for r in rows:
-        foot = {"1": True, "0": False}.get(r.get("at_foot"))
-        above = {"1": True, "0": False}.get(r.get("on_top")) if foot is False else None
-        if r.get("n_m") and thickness is not None:
-            try:
-                above = float(r["n_m"]) > thickness
-            except ValueError as e:
-                raise ValueError(f"{table}: column 'n_m': not a number ({e})") from None
-        seats[int(r["body"])] = Seat(foot, above)
+        try:
+            column = "body"
+            body = int(r["body"])
+            column = "n_m"
+            above = float(r["n_m"]) > thickness if r.get("n_m") and thickness is not None else None
+        except (KeyError, TypeError, ValueError) as e:
+            raise ValueError(f"{table}: column '{column}': missing or not a number ({e})") from None
+        seats[body] = Seat({"1": True, "0": False}.get(r.get("at_foot")), above)
     return seats
 
 

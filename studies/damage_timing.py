@@ -123,12 +123,13 @@ def read_case(run):
             "Ns": summary.get("Ns"), "expected": summary.get("units_displaced_van_der_meer")}
     if rows and "n_m" in rows[0] and "at_foot" in rows[0] and thickness is not None:
         try:
-            seats = unit_seats(run)
+            by_body = unit_seats(run)
+            seats = [by_body[int(r["body"])] for r in rows]
         except ValueError as e:
             fail(str(e))
-        case["seats"] = [(("foot" if seats[int(r["body"])].at_foot else "face"),
-                          ("on top" if seats[int(r["body"])].above_layer else "in the layer"),
-                          r["displaced"] == "1") for r in rows]
+        if all(s.at_foot is not None and s.above_layer is not None for s in seats):
+            case["seats"] = [(("foot" if s.at_foot else "face"), ("on top" if s.above_layer else "in the layer"),
+                              r["displaced"] == "1") for s, r in zip(seats, rows)]
     return case
 
 

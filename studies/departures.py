@@ -52,7 +52,8 @@ Description
     - its seat in the settled layer: at the foot, on top of the layer or in
       it (analysis/armour_results.py's unit_seats: damage.csv's at_foot, and
       n_m against the layer's thickness, or its on_top column), "unknown"
-      where damage.csv does not say. Per seat the summary counts the ways out.
+      where damage.csv does not say. Per seat the summary counts the ways out
+      and the units whose move at the pass went down the face at all.
     A unit that passed the threshold before --still s (a layer still settling)
     has no load figures.
     Over all runs: how many displaced units left within --window s of a
@@ -113,7 +114,7 @@ def read_run(folder, still):
     with h5py.File(paths["bodies.h5"], "r") as f:
         missing = [n for n in ("orientation", "contact_force") if "bodies/" + n not in f]
         if missing:
-            fail(f"{paths['bodies.h5']}: no bodies/{missing[0]} (a record older than the body recorder's)")
+            fail(f"{paths['bodies.h5']}: no bodies/{missing[0]} (not a body record that armour run writes)")
         record = {"time": f["time"][:], "position": f["bodies/position"][:],
                   "orientation": f["bodies/orientation"][:], "contact": f["bodies/contact_force"][:],
                   "force": f["bodies/external_force"][:]}
@@ -410,7 +411,7 @@ def ways_by_seat(units):
                               if any(r[key] is not None for r in rows) else None)
         figures = {"units": len(rows), **{way.replace(" ", "_"): sum(r["way_out"] == way for r in rows)
                                           for way in ("rolled", "slid and turned", "slid")},
-                   "down_the_face": sum(1 for r in rows if (r["up_face_over_Dn"] or 0.0) < 0.0),
+                   "moved_down_the_face": sum(1 for r in rows if (r["up_face_over_Dn"] or 0.0) < 0.0),
                    "turn_per_Dn_median_deg": median("turn_per_Dn_deg"),
                    "off_contact_share_median": median("off_contact_share"),
                    "upward_load_drop_median": median("upward_load_drop_over_buoyancy")}
@@ -426,7 +427,7 @@ def ways_by_seat(units):
         if figures["upward_load_drop_median"] is not None:
             text += (f", the upward load a median {figures['upward_load_drop_median']:.2f} of their buoyancy below "
                      f"the still water's")
-        print(text + f"; {figures['down_the_face']} down the face")
+        print(text + f"; {figures['moved_down_the_face']} moved down the face")
     return result
 
 

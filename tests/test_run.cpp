@@ -620,8 +620,9 @@ TEST_F(Run, CubeOnACubeTipsOverItsNeighboursEdge) {
     // 26.1 deg; the analysis reads the tilt a sample or two after the onset).
     // The scene's 118-sphere clump tips over the same edge well before that
     // (docs/validation/stability.md, "A cube on a cube": 18.5 deg), the way
-    // units resting on top of a layer leave: if the clump changes so that this
-    // fails, the docs' figure is to be measured again.
+    // units resting on top of a layer leave. This asserts that early tip, not
+    // its figure: if a change to the clump makes it fail, measure the docs'
+    // figures again.
     std::ifstream in(fs::path(ARMOUR_SOURCE_DIR) / "scenes" / "tilt_cube_pair.toml");
     std::stringstream scene;
     scene << in.rdbuf();

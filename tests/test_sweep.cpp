@@ -1973,7 +1973,7 @@ with h5py.File(sys.argv[1], "w") as f:
     EXPECT_EQ(seats["on top of the layer"]["rolled"], 1);
     EXPECT_NEAR(seats["on top of the layer"]["turn_per_Dn_median_deg"].get<double>(), 90.0, 1e-6);
     EXPECT_NEAR(seats["on top of the layer"]["upward_load_drop_median"].get<double>(), 0.5, 1e-9);
-    EXPECT_EQ(seats["on top of the layer"]["down_the_face"], 1);
+    EXPECT_EQ(seats["on top of the layer"]["moved_down_the_face"], 1);
 
     // A unit that slides down the face in its plane (along (-1.5, 0, -1) / sqrt(3.25), 0.3 m/s from 1 s)
     // with no water load on it: 1.05 Dn down the face, none out of it, by its pass at 1.35 s, needing
