@@ -23,6 +23,11 @@ namespace {
 using nlohmann::json;
 
 constexpr double kPi = 3.14159265358979323846;
+// A unit's way out is read over its last move: from its last record under a fifth of the displaced
+// threshold to its pass of it. A cube rolled over an edge turns 90 deg while its centre moves 1 Dn;
+// a unit that turned at least half of that per Dn it moved rolled out (docs/analysis.md).
+constexpr double kMoveStart = 0.2;       // of the displaced threshold
+constexpr double kRolledDegPerDn = 45.0; // deg turned per Dn moved
 
 json nullable(const std::optional<double> &v) {
     return v ? json(*v) : json(nullptr);
@@ -120,12 +125,20 @@ class DamageAnalysis : public Analysis {
         int displaced = 0;
         double largest = 0.0;
         for (std::size_t i = 0; i < states.size(); ++i) {
-            units_[i].sample(t, states[i].pose);
+            const Pose &pose = states[i].pose;
+            units_[i].sample(t, pose);
             const bool out = units_[i].displacement() >= scene_.displaced_threshold;
-            if (!out)
+            if (units_[i].displacement() < kMoveStart * scene_.displaced_threshold)
+                move_start_[i] = pose;
+            if (!out) {
                 left_at_[i] = std::nan(""); // back within the threshold: not gone (yet)
-            else if (std::isnan(left_at_[i]))
+            } else if (std::isnan(left_at_[i])) {
                 left_at_[i] = t;
+                const double moved = (pose.position - move_start_[i].position).norm() / units_[i].Dn();
+                turn_per_Dn_[i] =
+                    moved > 0.0 ? rotation_between_deg(move_start_[i].orientation, pose.orientation) / moved
+                                : std::nan("");
+            }
             displaced += out ? 1 : 0;
             largest = std::max(largest, units_[i].displacement());
         }
@@ -154,6 +167,7 @@ class DamageAnalysis : public Analysis {
         summary["units_displaced"] = counts.displaced;
         summary["units_displaced_at_foot"] = counts.displaced_at_foot;
         summary["units_displaced_on_top"] = thickness ? json(counts.displaced_on_top) : json(nullptr);
+        summary["units_displaced_rolled"] = counts.displaced_rolled;
         summary["N_od"] = N_od;
         summary["rocking_units"] = counts.rocking;
         summary["Ns"] = nullable(p.Ns);
@@ -222,16 +236,19 @@ class DamageAnalysis : public Analysis {
     struct Counts {
         int displaced = 0, displaced_at_foot = 0, rocking = 0; // units
         int on_top = 0, displaced_on_top = 0;                  // units
+        int displaced_rolled = 0;                              // units
     };
 
     // damage.csv's rows: each unit from its settled pose; counts the displaced and the rocking.
     // left_at_s, for a displaced unit: the record from which it has stayed displaced (when it left).
     // on_top: the unit's settled centre rests on the layer `thickness` m thick (SlopeFrame::rests_on_layer).
+    // turn_per_Dn_deg, for a displaced unit: how far it turned per Dn it moved over its last move
+    // (kMoveStart).
     std::string unit_rows(Counts &counts, std::optional<double> thickness) const {
         std::string rows =
             "# damage per unit from its settled pose (SI; displacements in Dn)\n"
             "body,unit,s_m,y_m,n_m,at_foot,on_top,max_displacement_over_Dn,final_displacement_over_Dn,"
-            "max_rotation_deg,rocking_events,displaced,left_at_s\n";
+            "max_rotation_deg,rocking_events,displaced,left_at_s,turn_per_Dn_deg\n";
         for (std::size_t i = 0; i < units_.size(); ++i) {
             const UnitDamageTracker &u = units_[i];
             const bool is_displaced = u.displacement() >= scene_.displaced_threshold;
@@ -243,11 +260,13 @@ class DamageAnalysis : public Analysis {
             counts.on_top += on_top ? 1 : 0;
             counts.displaced_on_top += is_displaced && on_top ? 1 : 0;
             counts.rocking += u.rocking_events() > 0 ? 1 : 0;
+            counts.displaced_rolled += is_displaced && turn_per_Dn_[i] >= kRolledDegPerDn ? 1 : 0;
             rows += std::to_string(i) + "," + setup_.units[unit(i)].name + "," + num(at.x()) + "," +
                     num(at.y()) + "," + num(at.z()) + "," + (foot ? "1" : "0") + "," + (on_top ? "1" : "0") +
                     "," + num(u.max_displacement()) + "," + num(u.displacement()) + "," +
                     num(u.max_rotation_deg()) + "," + std::to_string(u.rocking_events()) + "," +
-                    (is_displaced ? "1," + num(left_at_[i]) : "0,") + "\n";
+                    (is_displaced ? "1," + num(left_at_[i]) + "," + nullable_cell(turn_per_Dn_[i]) : "0,,") +
+                    "\n";
         }
         return rows;
     }
@@ -316,6 +335,7 @@ class DamageAnalysis : public Analysis {
         std::snprintf(text, sizeof text, "%.6g", v);
         return text;
     }
+    static std::string nullable_cell(double v) { return std::isnan(v) ? "" : num(v); } // empty: not known
     std::size_t unit(std::size_t body) const { return static_cast<std::size_t>(setup_.bodies[body].unit); }
     double Dn() const { return setup_.unit_Dn[unit(0)]; }
     double unit_density() const { return density_of(scene_, setup_.units[unit(0)].name); }
@@ -338,6 +358,10 @@ class DamageAnalysis : public Analysis {
             units_.emplace_back(states[i].pose, setup_.unit_Dn[unit(i)], scene_.rocking_threshold_deg,
                                 rest_time(scene_));
         left_at_.assign(states.size(), std::nan(""));
+        turn_per_Dn_.assign(states.size(), std::nan(""));
+        move_start_.clear();
+        for (const BodyState &b : states)
+            move_start_.push_back(b.pose);
         history_.clear();
         start_ = t;
         region_ = layer_region(frame_, setup_, states);
@@ -353,7 +377,9 @@ class DamageAnalysis : public Analysis {
     SettleWatch settle_;
     bool wait_for_settle_ = true, settled_ = false;
     std::vector<UnitDamageTracker> units_;
-    std::vector<double> left_at_; // s: since when each unit has stayed displaced (NaN: it is not)
+    std::vector<double> left_at_;     // s: since when each unit has stayed displaced (NaN: it is not)
+    std::vector<Pose> move_start_;    // each unit's last pose under kMoveStart of the threshold
+    std::vector<double> turn_per_Dn_; // deg per Dn over the move that displaced it (NaN: none yet)
     std::vector<BodyState> last_;
     std::string history_;
     double start_ = 0.0, end_ = 0.0;

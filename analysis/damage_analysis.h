@@ -60,6 +60,7 @@ class UnitDamageTracker {
     double displacement() const { return displacement_; }         // Dn, now
     double max_displacement() const { return max_displacement_; } // Dn
     double max_rotation_deg() const { return max_rotation_; }
+    double Dn() const { return Dn_; } // m
     int rocking_events() const { return rocking_events_; }
     double largest_record_gap() const { return largest_gap_; } // s, between samples
     const Pose &reference() const { return reference_; }

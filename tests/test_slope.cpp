@@ -581,9 +581,10 @@ TEST(Damage, SyntheticTrajectoriesGiveTheirKnownFigures) {
     for (std::string line; std::getline(csv, line);)
         lines.push_back(line);
     ASSERT_EQ(lines.size(), 2u + 20u); // comment, header, one row per unit
-    // rocking_events, displaced, left_at_s: unit 2 rocked twice and stays; unit 5 left at 2.5 s.
-    EXPECT_EQ(lines[2 + 2].substr(lines[2 + 2].rfind(',', lines[2 + 2].size() - 4)), ",2,0,");
-    EXPECT_EQ(lines[2 + 5].substr(lines[2 + 5].size() - 6), ",1,2.5");
+    // rocking_events, displaced, left_at_s, turn_per_Dn_deg: unit 2 rocked twice and stays; unit 5
+    // left at 2.5 s without turning.
+    EXPECT_EQ(lines[2 + 2].substr(lines[2 + 2].size() - 6), ",2,0,,");
+    EXPECT_EQ(lines[2 + 5].substr(lines[2 + 5].size() - 8), ",1,2.5,0");
     EXPECT_TRUE(std::filesystem::is_regular_file(out / "damage_history.csv"));
     EXPECT_GT(std::filesystem::file_size(out / "damage.png"), 1000u);
     std::filesystem::remove_all(out);
@@ -737,6 +738,43 @@ TEST(Damage, UnitsRestingOnTheLayerAreCountedApart) {
     EXPECT_EQ(left[0], "left_at_s");
     EXPECT_EQ(left.back(), "3");
     EXPECT_EQ(std::count(left.begin() + 1, left.end(), ""), 17); // the others stayed
+    std::filesystem::remove_all(out);
+}
+
+// A displaced unit's way out over its last move, from its last record under a
+// fifth of the threshold (0.1 Dn here) to its pass (1.1 Dn): two cubes of the
+// layer move 1 Dn across the face in the same records; the first keeps its
+// pose's turn (0 deg per Dn: slid), the second turns about the across axis 45
+// deg and then 90 deg from that start (90 deg per Dn: a cube's roll over an
+// edge), so it counts in units_displaced_rolled; the others stay (no figure).
+TEST(Damage, EachDisplacedUnitSaysHowFarItTurnedPerDnItMoved) {
+    CubeSlope c = damage_slope(2.0);
+    c.layer(4, 4, 1.1 * kA, 0.5 * kA);
+    const std::filesystem::path out = temporary("armour_test_damage_way_out");
+    std::filesystem::remove_all(out);
+    std::filesystem::create_directories(out);
+    const auto analysis = armour::make_analysis({c.scene, c.setup, out.string(), ""});
+    std::vector<BodyState> now = c.states;
+    analysis->sample(0.0, now);
+    const double moved[] = {0.1, 0.6, 1.1}, turned[] = {0.0, 45.0, 90.0}; // Dn, deg at 1, 2 and 3 s
+    for (int k = 0; k < 3; ++k) {
+        for (const int b : {0, 1})
+            now[b].pose.position = c.states[b].pose.position + moved[k] * kA * c.frame.across;
+        now[1].pose.orientation = Eigen::AngleAxisd(turned[k] * M_PI / 180.0, c.frame.across) * c.turn;
+        analysis->sample(1.0 + k, now);
+    }
+    nlohmann::json summary = nlohmann::json::object();
+    analysis->write(summary);
+    EXPECT_EQ(summary["units_displaced"].get<int>(), 2);
+    EXPECT_EQ(summary["units_displaced_rolled"].get<int>(), 1);
+    const auto rows = csv_cells(out / "damage.csv");
+    ASSERT_EQ(rows.size(), 17u); // header, 16 units
+    ASSERT_EQ(rows[0].size(), 14u);
+    EXPECT_EQ(rows[0][13], "turn_per_Dn_deg");
+    EXPECT_NEAR(std::stod(rows[1][13]), 0.0, 1e-6);
+    EXPECT_NEAR(std::stod(rows[2][13]), 90.0, 1e-6);
+    for (std::size_t r = 3; r < rows.size(); ++r)
+        EXPECT_TRUE(rows[r].size() < 14 || rows[r][13].empty()) << "unit " << r - 1;
     std::filesystem::remove_all(out);
 }
 
