@@ -207,15 +207,16 @@ class DamageAnalysis : public Analysis {
                                                    history_);
         std::string line =
             std::to_string(counts.displaced) + " of " + std::to_string(units_.size()) + " units displaced";
-        if (counts.displaced_at_foot > 0 || counts.displaced_on_top > 0) {
-            std::string where;
-            if (counts.displaced_at_foot > 0)
-                where = std::to_string(counts.displaced_at_foot) + " at the foot";
-            if (counts.displaced_on_top > 0)
-                where += (where.empty() ? "" : ", ") + std::to_string(counts.displaced_on_top) +
-                         " from on top of the layer";
+        std::string where;
+        if (counts.displaced_at_foot > 0)
+            where = std::to_string(counts.displaced_at_foot) + " at the foot";
+        if (counts.displaced_on_top > 0)
+            where += (where.empty() ? "" : ", ") + std::to_string(counts.displaced_on_top) +
+                     " from on top of the layer";
+        if (counts.displaced_rolled > 0)
+            where += (where.empty() ? "" : "; ") + std::to_string(counts.displaced_rolled) + " rolled out";
+        if (!where.empty())
             line += " (" + where + ")";
-        }
         line += ", N_od " + num(N_od) + ", " + std::to_string(counts.rocking) + " rocking";
         if (!outside.empty() && p.vdm_ns) {
             line += "; outside Van der Meer's tested range:";

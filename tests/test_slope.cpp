@@ -764,7 +764,8 @@ TEST(Damage, EachDisplacedUnitSaysHowFarItTurnedPerDnItMoved) {
         analysis->sample(1.0 + k, now);
     }
     nlohmann::json summary = nlohmann::json::object();
-    analysis->write(summary);
+    const std::string result = analysis->write(summary);
+    EXPECT_EQ(result.rfind("2 of 16 units displaced (1 rolled out), N_od ", 0), 0u) << result;
     EXPECT_EQ(summary["units_displaced"].get<int>(), 2);
     EXPECT_EQ(summary["units_displaced_rolled"].get<int>(), 1);
     const auto rows = csv_cells(out / "damage.csv");
