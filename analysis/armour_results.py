@@ -116,6 +116,12 @@ def unit_seats(path):
         thickness = None
     with open(table, newline="") as f:
         rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
+    return seats_of_rows(rows, thickness, table)
+
+
+def seats_of_rows(rows, thickness, table="damage.csv"):
+    """unit_seats for damage.csv's rows already read (dicts) and the layer's thickness (m, or None); `table`
+    names the file in an error."""
     seats = {}
     for r in rows:
         try:

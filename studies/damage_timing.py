@@ -54,7 +54,7 @@ import sys
 import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "analysis"))
-from armour_results import unit_seats  # noqa: E402
+from armour_results import seats_of_rows  # noqa: E402
 
 EXPONENT = 0.75  # N_od ~ N^(0.3/0.4) at one Ns: Van der Meer (1988), cubes
 SHARES = (0.25, 0.5)
@@ -123,7 +123,7 @@ def read_case(run):
             "Ns": summary.get("Ns"), "expected": summary.get("units_displaced_van_der_meer")}
     if rows and "n_m" in rows[0] and "at_foot" in rows[0] and thickness is not None:
         try:
-            by_body = unit_seats(run)
+            by_body = seats_of_rows(rows, thickness, os.path.join(run, "damage.csv"))
             seats = [by_body[int(r["body"])] for r in rows]
         except ValueError as e:
             fail(str(e))

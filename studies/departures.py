@@ -82,7 +82,7 @@ import h5py
 import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "analysis"))
-from armour_results import SEATS, seat_name, unit_seats  # noqa: E402
+from armour_results import SEATS, seat_name, seats_of_rows  # noqa: E402
 
 SHUFFLES = 4000  # enough for a chance of 1e-3 to be told from 0 (seeded: the same figure every run)
 PUSH = 0.05  # submerged weights: a load along a move below this is no push (the record's noise is ~1e-3 W')
@@ -129,7 +129,8 @@ def read_run(folder, still):
     off_wall = (record["position"][0] - origin) @ face[1] / dn if face and origin is not None else None
     weight_in_air = (1.0 + damage["delta"]) * scene["fluid"]["fluid_density"] * g * dn ** 3
     try:
-        seats = unit_seats(folder)
+        thickness = (damage.get("settled_layer") or {}).get("layer_thickness")
+        seats = seats_of_rows(rows, thickness, paths["damage.csv"])
     except ValueError as e:
         fail(str(e))
     return {"k_still": k_still, "wall_friction": wall_friction(scene), "off_wall": off_wall,

@@ -241,6 +241,14 @@ std::filesystem::path temporary(const std::string &name) {
     return std::filesystem::temp_directory_path() / (std::to_string(::getpid()) + "_" + name);
 }
 
+// temporary(name) as an empty folder: an analysis's output folder.
+std::filesystem::path empty_folder(const std::string &name) {
+    const std::filesystem::path out = temporary(name);
+    std::filesystem::remove_all(out);
+    std::filesystem::create_directories(out);
+    return out;
+}
+
 armour::Scene write_and_load(const std::string &name, const std::string &text) {
     const std::filesystem::path file = temporary(name);
     std::ofstream(file) << text;
@@ -530,9 +538,7 @@ TEST(Damage, WavesActFromTheFrontsArrivalAtTheToe) {
 TEST(Damage, SyntheticTrajectoriesGiveTheirKnownFigures) {
     CubeSlope c = damage_slope(2.0);
     c.layer(4, 5, kA, 0.5 * kA);
-    const std::filesystem::path out = temporary("armour_test_damage");
-    std::filesystem::remove_all(out);
-    std::filesystem::create_directories(out);
+    const std::filesystem::path out = empty_folder("armour_test_damage");
     const auto analysis = armour::make_analysis({c.scene, c.setup, out.string(), ""});
     const auto spun = [&](const BodyState &s, double deg) {
         BodyState t = s;
@@ -605,9 +611,7 @@ TEST(Damage, NodCountsTheLayersStripsAndVanDerMeersRangeIsStated) {
             c.turn = Eigen::AngleAxisd(-std::atan2(1.0, 2.0), Vector3d::UnitY());
         }
         c.layer(3, columns, kA, 0.5 * kA);
-        const std::filesystem::path out = temporary("armour_test_damage_strips");
-        std::filesystem::remove_all(out);
-        std::filesystem::create_directories(out);
+        const std::filesystem::path out = empty_folder("armour_test_damage_strips");
         const auto analysis = armour::make_analysis({c.scene, c.setup, out.string(), ""});
         std::vector<BodyState> now = c.states;
         analysis->sample(0.0, now);
@@ -668,9 +672,7 @@ TEST(Damage, UnitsSeawardOfTheFacesFootAreCountedApart) {
     c.place(0.2 * kA, 0.0, 1.5 * kA);
     c.place(2.5 * kA, 0.0, 0.5 * kA);
     c.place(2.5 * kA, 2.0 * kA, 0.5 * kA); // stays
-    const std::filesystem::path out = temporary("armour_test_damage_foot");
-    std::filesystem::remove_all(out);
-    std::filesystem::create_directories(out);
+    const std::filesystem::path out = empty_folder("armour_test_damage_foot");
     const auto analysis = armour::make_analysis({c.scene, c.setup, out.string(), ""});
     std::vector<BodyState> now = c.states;
     analysis->sample(0.0, now);
@@ -705,9 +707,7 @@ TEST(Damage, UnitsRestingOnTheLayerAreCountedApart) {
     c.layer(4, 4, 1.1 * kA, 0.5 * kA);
     c.place(0.2 * kA, 2.2 * kA, 1.5 * kA); // as high, but seaward of the face's foot: at_foot, not on_top
     c.place(2.0 * kA, 0.0, 1.5 * kA);
-    const std::filesystem::path out = temporary("armour_test_damage_on_top");
-    std::filesystem::remove_all(out);
-    std::filesystem::create_directories(out);
+    const std::filesystem::path out = empty_folder("armour_test_damage_on_top");
     const auto analysis = armour::make_analysis({c.scene, c.setup, out.string(), ""});
     // The top cube washes off at 1 s, is set back at 2 s and washes off again at 3 s: it left at 3 s.
     std::vector<BodyState> now = c.states;
@@ -750,9 +750,7 @@ TEST(Damage, UnitsRestingOnTheLayerAreCountedApart) {
 TEST(Damage, EachDisplacedUnitSaysHowFarItTurnedPerDnItMoved) {
     CubeSlope c = damage_slope(2.0);
     c.layer(4, 4, 1.1 * kA, 0.5 * kA);
-    const std::filesystem::path out = temporary("armour_test_damage_way_out");
-    std::filesystem::remove_all(out);
-    std::filesystem::create_directories(out);
+    const std::filesystem::path out = empty_folder("armour_test_damage_way_out");
     const auto analysis = armour::make_analysis({c.scene, c.setup, out.string(), ""});
     std::vector<BodyState> now = c.states;
     analysis->sample(0.0, now);
