@@ -44,6 +44,14 @@ class NoAnalysis : public Analysis {
 // sqrt(g w / (2 cos theta)) per second (w: tilt rate, rad/s), within a factor
 // of 2: a soft clump that creeps into its slide (sqrt(v) growing 4 times
 // slower at 20 deg/s) keeps the last still sample.
+// Besides, the angle at which the unit leaves its seat, whichever way: the
+// last still sample (from 1 degree on) before it first stands 0.1 Dn away
+// from where it was placed, across the plane, or turned 10 degrees from it.
+// A unit on another unit may creep a few tenths of a millimetre long before
+// it goes (the slide angle then reads that creep), and one placed where it
+// cannot rest falls off while it lands: the slide and topple angles would
+// then be read on whatever caught it, so the run says it left while landing
+// and reports neither.
 class TiltAnalysis : public Analysis {
   public:
     explicit TiltAnalysis(const AnalysisContext &c)
@@ -65,6 +73,11 @@ class TiltAnalysis : public Analysis {
     void sample(double t, const std::vector<BodyState> &states) override {
         const BodyState &s = states[0];
         const double theta = angle(t);
+        watch_seat(theta, s);
+        if (leave_ && !reference_) { // left while landing: no seat to read angles from
+            finished_ = true;
+            return;
+        }
         if (!reference_) {
             // The reference is the unit at rest on the plane: a unit placed
             // above it lands and rocks for a while, and that motion is not sliding.
@@ -97,11 +110,40 @@ class TiltAnalysis : public Analysis {
         summary["slide_angle_deg"] = nullable(slide_);
         summary["topple_angle_deg"] = nullable(topple_);
         summary["slide_angle_analytic_deg"] = std::atan(mu_) * 180.0 / kPi;
-        return "";
+        summary["leave_angle_deg"] = nullable(leave_);
+        summary["left_by"] = leave_ ? json(left_by_) : json(nullptr);
+        summary["left_while_landing"] = leave_ && !reference_;
+        if (leave_ && !reference_)
+            return "the unit fell off while it landed, before any tilt: it has no seat there";
+        char line[96];
+        if (leave_)
+            std::snprintf(line, sizeof line, "the unit left its seat at %.2f deg (%s)", *leave_,
+                          left_by_.c_str());
+        else
+            std::snprintf(line, sizeof line, "the unit stayed on its seat up to %.1f deg", max_);
+        return line;
     }
 
   private:
     double angle(double t) const { return std::min(rate_ * t, max_); } // deg
+
+    // The seat is where the unit was placed: a unit dropped onto it lands
+    // straight down, so only moves across the plane and turns count.
+    void watch_seat(double theta, const BodyState &s) {
+        if (!placed_)
+            placed_ = s.pose;
+        if (leave_)
+            return;
+        const Eigen::Vector3d moved = s.pose.position - placed_->position;
+        const double across = std::hypot(moved.x(), moved.y()),
+                     turned = rotation_deg(s.pose.orientation, placed_->orientation);
+        if (across > 0.1 * Dn_ || turned > 10.0) {
+            leave_ = last_still_seat_ ? *last_still_seat_ : theta;
+            left_by_ = turned > 10.0 ? "tipped" : "slid";
+        } else if (theta >= 1.0 && s.velocity.norm() < 5e-3 && s.angular_velocity.norm() < 5e-2) {
+            last_still_seat_ = theta;
+        }
+    }
 
     // theta0 from the first two moving samples (see above), kept between one
     // degree before the last still sample and that sample.
@@ -126,6 +168,9 @@ class TiltAnalysis : public Analysis {
     double last_still_slide_ = 0.0, last_still_turn_ = 0.0;
     std::vector<std::pair<double, double>> moving_; // (deg, m/s) since the last still sample, first two
     std::optional<double> slide_, topple_;
+    std::optional<Pose> placed_;
+    std::optional<double> last_still_seat_, leave_;
+    std::string left_by_;
     bool finished_ = false;
 };
 
@@ -244,8 +289,8 @@ AnalysisStyle none_analysis_style() {
 
 AnalysisStyle tilt_analysis_style() {
     return {"tilt",
-            "gravity turns about +y; the angles at which the first unit slides and topples",
-            {"slide_angle_deg", "topple_angle_deg"},
+            "gravity turns about +y; the angles at which the first unit slides, topples and leaves its seat",
+            {"slide_angle_deg", "topple_angle_deg", "leave_angle_deg"},
             {{"slide_angle_deg", "slide_angle_analytic_deg"}},
             true,
             [](const AnalysisContext &c) { return std::make_unique<TiltAnalysis>(c); }};

@@ -119,9 +119,9 @@ std::map<std::string, double> parse_tolerances(const std::string &text) {
 double default_tolerance(const std::string &key, double reference) {
     // What an engineer would call "the same" for each figure (docs/comparison.md).
     static const std::map<std::string, double> table = {
-        {"slide_angle_deg", 0.5},   {"topple_angle_deg", 1.0},     {"packing_density", 0.05},
-        {"porosity", 0.02},         {"bounce_height_ratio", 0.05}, {"layer_thickness", 0.01},
-        {"layer_coefficient", 0.05}};
+        {"slide_angle_deg", 0.5},    {"topple_angle_deg", 1.0},     {"packing_density", 0.05},
+        {"porosity", 0.02},          {"bounce_height_ratio", 0.05}, {"layer_thickness", 0.01},
+        {"layer_coefficient", 0.05}, {"leave_angle_deg", 1.0}};
     const auto it = table.find(key);
     if (it != table.end())
         return it->second;

@@ -228,6 +228,7 @@ TEST(CompareStats, TolerancesParseAndBadTextIsOneClearError) {
     }
     EXPECT_DOUBLE_EQ(armour::default_tolerance("slide_angle_deg", 26.6), 0.5);
     EXPECT_DOUBLE_EQ(armour::default_tolerance("topple_angle_deg", 45.0), 1.0);
+    EXPECT_DOUBLE_EQ(armour::default_tolerance("leave_angle_deg", 31.0), 1.0);
     EXPECT_DOUBLE_EQ(armour::default_tolerance("draft", 0.2), 0.01); // 5 % of the reference
 }
 

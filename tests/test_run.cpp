@@ -234,6 +234,11 @@ TEST_F(Run, TiltSceneSlidesAtTheFrictionAngle) {
     ASSERT_TRUE(s["slide_angle_deg"].is_number()) << s.dump();
     EXPECT_TRUE(s["topple_angle_deg"].is_null());
     EXPECT_NEAR(s["slide_angle_deg"].get<double>(), s["slide_angle_analytic_deg"].get<double>(), 0.5);
+    // It leaves its seat by that slide, read at the last still sample: after
+    // the onset, by 0.26-0.51 deg at this rate (the analysis' comment).
+    EXPECT_EQ(s["left_by"], "slid") << s.dump();
+    EXPECT_GE(s["leave_angle_deg"].get<double>(), s["slide_angle_deg"].get<double>()) << s.dump();
+    EXPECT_LE(s["leave_angle_deg"].get<double>(), s["slide_angle_deg"].get<double>() + 0.75) << s.dump();
 }
 
 TEST_F(Run, TiltSceneTopplesAtFortyFiveDegreesWhenFrictionHolds) {
@@ -637,6 +642,8 @@ TEST_F(Run, CubeOnACubeTipsOverItsNeighboursEdge) {
         const auto s = nlohmann::json::parse(summary_in);
         ASSERT_TRUE(s["topple_angle_deg"].is_number()) << s.dump();
         EXPECT_NEAR(s["topple_angle_deg"].get<double>(), exact, 1.0) << s.dump();
+        EXPECT_EQ(s["left_by"], "tipped") << s.dump();
+        EXPECT_NEAR(s["leave_angle_deg"].get<double>(), exact, 1.0) << s.dump();
         fs::remove_all(out());
     }
     ASSERT_EQ(run(scene.str(), {"--set", "body.0.position=[0.01, 0.0, 0.065]"}), 0) << err_;
@@ -645,4 +652,31 @@ TEST_F(Run, CubeOnACubeTipsOverItsNeighboursEdge) {
     EXPECT_EQ(s["spheres_per_unit"]["cube"], 118) << s.dump();
     ASSERT_TRUE(s["topple_angle_deg"].is_number()) << s.dump();
     EXPECT_LT(s["topple_angle_deg"].get<double>(), exact - 4.0) << s.dump();
+}
+
+TEST_F(Run, ACubeThatCannotRestOnItsNeighbourFallsWhileLandingAndSaysSo) {
+    // The free cube's centre 5 mm past its neighbour's edge: an exact cube
+    // has no seat there and tips off as it lands, before any tilt. The tilt
+    // analysis must say so and read no slide or topple angle on whatever
+    // caught it (the floor), for either unit model.
+    std::ifstream in(fs::path(ARMOUR_SOURCE_DIR) / "scenes" / "tilt_cube_pair.toml");
+    std::stringstream scene;
+    scene << in.rdbuf();
+    std::vector<std::vector<std::string>> models = {{}};
+    if (const armour::EngineStyle *hulls = armour::find_engine_style(
+            [](const armour::EngineCapabilities &c) { return c.shape == armour::ShapeModel::convex_hulls; }))
+        models.push_back({"--engine", hulls->name});
+    for (std::vector<std::string> extra : models) {
+        fs::remove_all(out());
+        extra.insert(extra.end(), {"--set", "body.0.position=[0.025, 0.0, 0.065]"});
+        ASSERT_EQ(run(scene.str(), extra), 0) << err_;
+        std::ifstream summary_in(out() / "summary.json");
+        const auto s = nlohmann::json::parse(summary_in);
+        EXPECT_EQ(s["left_while_landing"], true) << s.dump();
+        EXPECT_EQ(s["left_by"], "tipped") << s.dump();
+        EXPECT_LT(s["leave_angle_deg"].get<double>(), 1.0) << s.dump();
+        EXPECT_TRUE(s["slide_angle_deg"].is_null()) << s.dump();
+        EXPECT_TRUE(s["topple_angle_deg"].is_null()) << s.dump();
+        EXPECT_NE(err_.find("fell off while it landed"), std::string::npos) << err_;
+    }
 }

@@ -1,0 +1,130 @@
+#!/usr/bin/env bash
+# Where a cube leaves its neighbour, for each unit model, over many seats.
+# The shipped cube-on-a-cube tilt (scenes/tilt_cube_pair.toml: a free 0.04 m
+# cube on a held one, gravity turning about +y at 5 deg/s, friction 0.6) with
+# the free cube placed at x = 0, 3, ..., 18 mm and y = 0, 5, 10 mm off its
+# neighbour's centre (21 seats), for exact hulls (Bullet) and sphere clumps of
+# 47, 64, 118 (the scene's), 200 and 500 spheres (LIGGGHTS). Each run reports
+# the tilt at which the cube leaves its seat (leave_angle_deg, docs/analysis.md)
+# and how (slid or tipped). An exact cube leaves at the smaller of the slide,
+# atan(0.6) = 30.96 deg, and its tip over the downhill edge,
+# atan((a/2 - x) / (a/2)); so the error of each model is its leave angle less
+# that, seat by seat. Writes OUT/summary.json (per model: the error's mean,
+# rms and worst in deg, seats whose way out differs from the exact cube's, the
+# DEM's step and its wall seconds per simulated second, whose ratios alone are
+# figures on a shared machine), OUT/seats.csv (one row per run),
+# OUT/cube_on_cube.png and the runs. About 10 minutes on 2 cores (clumps of
+# 200 and 500 spheres are built once, then cached).
+# Usage: bash bench/run_cube_on_cube.sh [--build DIR] [--out DIR]
+#   --build  default the repo's build/ (bash scripts/build.sh armour)
+#   --out    default ${TMPDIR:-/tmp}/armour-bench/cube_on_cube
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+bench_name=cube_on_cube bench_targets=armour bench_options=""
+source "$root/bench/common.sh"
+bench_args "$@"
+armour="$build/apps/armour"
+# name|spheres|armour run options choosing the model
+models=(
+  "hulls|0|--engine bullet"
+  "clump_47|47|--set unit.0.tol_surface=0.02"
+  "clump_64|64|--set unit.0.tol_surface=0.015"
+  "clump_118|118|"
+  "clump_200|200|--set unit.0.spheres=200"
+  "clump_500|500|--set unit.0.spheres=500"
+)
+for model in "${models[@]}"; do
+  IFS='|' read -r name spheres options <<<"$model"
+  for x in 0.0 0.003 0.006 0.009 0.012 0.015 0.018; do
+    for y in 0.0 0.005 0.01; do
+      run="$out/runs/$name/x${x}_y$y"
+      rm -rf "$run"
+      mkdir -p "$(dirname "$run")"
+      # shellcheck disable=SC2086 # the model's options are words
+      "$armour" run "$root/scenes/tilt_cube_pair.toml" --out "$run" $options \
+        --set "body.0.position=[$x, $y, 0.065]" >"$run.log" 2>&1 ||
+        bench_fail "armour run failed: $run.log"
+    done
+  done
+done
+/usr/bin/python3 - "$out" "${models[@]}" <<'PY'
+import csv, json, math, sys
+import matplotlib
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+from armour_results import read_summary
+out, models = sys.argv[1], [m.split("|") for m in sys.argv[2:]]
+a, mu = 0.04, 0.6  # the scene's cube edge (m) and friction
+slide = math.degrees(math.atan(mu))
+
+def exact(x):
+    tip = math.degrees(math.atan((a / 2 - x) / (a / 2)))
+    return (tip, "tipped") if tip < slide else (slide, "slid")
+
+rows, figures = [], {}
+for name, spheres, _ in models:
+    errors, differ, landing, cost, dt = [], 0, 0, [], None
+    for x in (0.0, 0.003, 0.006, 0.009, 0.012, 0.015, 0.018):
+        for y in (0.0, 0.005, 0.01):
+            s = read_summary(f"{out}/runs/{name}/x{x}_y{y}")
+            reference, way = exact(x)
+            left, by = s["leave_angle_deg"], s["left_by"]
+            if s["left_while_landing"]:
+                landing += 1
+                left = 0.0  # it has no seat: it leaves before any tilt
+            if left is None:
+                raise SystemExit(f"{name} x={x} y={y}: the cube stayed on its seat to the end of the tilt")
+            errors.append(left - reference)
+            differ += by != way
+            cost.append(s["wall_seconds"] / s["simulated_seconds"])
+            dt = s["dt"]
+            rows.append({"model": name, "spheres": int(spheres), "x_m": x, "y_m": y, "leave_angle_deg": left,
+                         "left_by": by, "exact_deg": reference, "exact_by": way, "error_deg": left - reference})
+    n = len(errors)
+    figures[name] = {
+        "spheres": int(spheres), "seats": n,
+        "mean_error_deg": sum(errors) / n,
+        "rms_error_deg": math.sqrt(sum(e * e for e in errors) / n),
+        "worst_error_deg": max(errors, key=abs),
+        "seats_left_another_way": differ,
+        "seats_fallen_while_landing": landing,
+        "dt": dt,
+        "wall_seconds_per_simulated_second": sum(cost) / n,
+    }
+    f = figures[name]
+    print(f"{name:10s} error mean {f['mean_error_deg']:+5.1f} rms {f['rms_error_deg']:4.1f} worst "
+          f"{f['worst_error_deg']:+5.1f} deg; another way out at {differ} of {n} seats, fell while landing at "
+          f"{landing}; dt {dt:.3g} s, {f['wall_seconds_per_simulated_second']:.3g} wall s per simulated s")
+with open(f"{out}/seats.csv", "w", newline="") as handle:
+    writer = csv.DictWriter(handle, fieldnames=list(rows[0]))
+    writer.writeheader()
+    writer.writerows(rows)
+json.dump({"units": "angles deg, positions m, dt s, wall_seconds_per_simulated_second s/s",
+           "reference": "an exact cube leaves at min(atan(0.6), atan((a/2 - x) / (a/2)))",
+           "models": figures}, open(f"{out}/summary.json", "w"), indent=2)
+
+fig, (angles, cost) = plt.subplots(1, 2, figsize=(11, 4.3))
+xs = [i * 0.0005 for i in range(37)]
+angles.plot([1000 * x for x in xs], [exact(x)[0] for x in xs], "k-", lw=2, label="exact cube")
+for k, ((name, _, _), marker) in enumerate(zip(models, "s^ovDP")):
+    mine = [r for r in rows if r["model"] == name]
+    # Side by side at each x, so that the models' points do not hide each other.
+    angles.plot([1000 * r["x_m"] + 0.25 * (k - 2.5) for r in mine],
+                [r["leave_angle_deg"] for r in mine], marker, ms=4, alpha=0.75,
+                label=name.replace("_", " ") + ("" if name == "hulls" else " spheres"))
+    f = figures[name]
+    cost.plot(f["wall_seconds_per_simulated_second"], f["rms_error_deg"], marker, ms=7,
+              label=name.replace("_", " "))
+angles.set_xlabel("free cube's centre off its neighbour's, downhill x [mm]")
+angles.set_ylabel("tilt at which it leaves its seat [deg]")
+angles.legend(fontsize=7)
+angles.grid(True, lw=0.3)
+cost.set_xscale("log")
+cost.set_xlabel("wall seconds per simulated second (one run, shared machine: ratios only)")
+cost.set_ylabel("rms error of the leave angle over 21 seats [deg]")
+cost.grid(True, which="both", lw=0.3)
+cost.legend(fontsize=7)
+fig.suptitle("scenes/tilt_cube_pair.toml: where a cube leaves its neighbour, y = 0, 5, 10 mm", fontsize=10)
+fig.tight_layout()
+fig.savefig(f"{out}/cube_on_cube.png", dpi=110)
+PY
