@@ -45,13 +45,15 @@ class NoAnalysis : public Analysis {
 // of 2: a soft clump that creeps into its slide (sqrt(v) growing 4 times
 // slower at 20 deg/s) keeps the last still sample.
 // Besides, the angle at which the unit leaves its seat, whichever way: the
-// last still sample (from 1 degree on) before it first stands 0.1 Dn away
-// from where it was placed, across the plane, or turned 10 degrees from it.
-// A unit on another unit may creep a few tenths of a millimetre long before
-// it goes (the slide angle then reads that creep), and one placed where it
-// cannot rest falls off while it lands: the slide and topple angles would
-// then be read on whatever caught it, so the run says it left while landing
-// and reports neither.
+// last still sample before it first stands 0.1 Dn from its seat or has
+// turned 10 degrees from it. Its seat is where it first comes to rest;
+// before that (a unit placed above the plane drops straight onto it) only a
+// move of 0.1 Dn across the plane, a fall deeper than Dn or a turn counts. A
+// unit on another unit may creep a few tenths of a millimetre long before it
+// goes, which the slide angle reads as its slide. A unit placed where it
+// cannot rest leaves before it ever comes to rest (left_before_resting): the
+// slide and topple angles, read from the rest at 1 degree on, would then be
+// read on whatever caught it, so neither is reported.
 class TiltAnalysis : public Analysis {
   public:
     explicit TiltAnalysis(const AnalysisContext &c)
@@ -74,15 +76,17 @@ class TiltAnalysis : public Analysis {
         const BodyState &s = states[0];
         const double theta = angle(t);
         watch_seat(theta, s);
-        if (leave_ && !reference_) { // left while landing: no seat to read angles from
+        if (leave_ && !reference_) { // gone before the reference: nothing to read the angles from
             finished_ = true;
             return;
         }
         if (!reference_) {
             // The reference is the unit at rest on the plane: a unit placed
             // above it lands and rocks for a while, and that motion is not sliding.
-            if (theta >= 1.0 && s.velocity.norm() < 5e-3 && s.angular_velocity.norm() < 5e-2)
+            if (theta >= 1.0 && s.velocity.norm() < 5e-3 && s.angular_velocity.norm() < 5e-2) {
                 reference_ = s.pose;
+                last_still_slide_ = last_still_turn_ = theta;
+            }
             return;
         }
         const double moved = s.pose.position.x() - reference_->position.x();
@@ -112,13 +116,23 @@ class TiltAnalysis : public Analysis {
         summary["slide_angle_analytic_deg"] = std::atan(mu_) * 180.0 / kPi;
         summary["leave_angle_deg"] = nullable(leave_);
         summary["left_by"] = leave_ ? json(left_by_) : json(nullptr);
-        summary["left_while_landing"] = leave_ && !reference_;
-        if (leave_ && !reference_)
-            return "the unit fell off while it landed, before any tilt: it has no seat there";
-        char line[96];
-        if (leave_)
-            std::snprintf(line, sizeof line, "the unit left its seat at %.2f deg (%s)", *leave_,
-                          left_by_.c_str());
+        summary["left_before_resting"] = leave_ && !seat_;
+        char line[192];
+        if (leave_ && !seat_)
+            std::snprintf(
+                line, sizeof line,
+                "the unit never came to rest on its seat: it %s off at %.2f deg, still moving from its "
+                "landing; no slide or topple angle",
+                left_by_.c_str(), *leave_);
+        else if (leave_ && !reference_)
+            std::snprintf(
+                line, sizeof line,
+                "the unit %s off its seat at %.2f deg, before the 1 deg from which the slide and topple "
+                "are read: neither is reported",
+                left_by_.c_str(), *leave_);
+        else if (leave_)
+            std::snprintf(line, sizeof line, "the unit %s off its seat at %.2f deg", left_by_.c_str(),
+                          *leave_);
         else
             std::snprintf(line, sizeof line, "the unit stayed on its seat up to %.1f deg", max_);
         return line;
@@ -127,20 +141,28 @@ class TiltAnalysis : public Analysis {
   private:
     double angle(double t) const { return std::min(rate_ * t, max_); } // deg
 
-    // The seat is where the unit was placed: a unit dropped onto it lands
-    // straight down, so only moves across the plane and turns count.
+    // The first sample is where the unit was placed; its seat, where it
+    // first rests after that. Before it rests the unit drops straight down
+    // as it lands, so only moves across the plane, a fall deeper than Dn and
+    // turns count.
     void watch_seat(double theta, const BodyState &s) {
-        if (!placed_)
+        if (!placed_) {
             placed_ = s.pose;
+            return;
+        }
         if (leave_)
             return;
-        const Eigen::Vector3d moved = s.pose.position - placed_->position;
-        const double across = std::hypot(moved.x(), moved.y()),
-                     turned = rotation_deg(s.pose.orientation, placed_->orientation);
-        if (across > 0.1 * Dn_ || turned > 10.0) {
-            leave_ = last_still_seat_ ? *last_still_seat_ : theta;
-            left_by_ = turned > 10.0 ? "tipped" : "slid";
-        } else if (theta >= 1.0 && s.velocity.norm() < 5e-3 && s.angular_velocity.norm() < 5e-2) {
+        const Pose &from = seat_ ? *seat_ : *placed_;
+        const Eigen::Vector3d moved = s.pose.position - from.position;
+        const double turned = rotation_deg(s.pose.orientation, from.orientation);
+        const bool fell = !seat_ && -moved.z() > Dn_,
+                   shifted = seat_ ? moved.norm() > 0.1 * Dn_ : std::hypot(moved.x(), moved.y()) > 0.1 * Dn_;
+        if (turned > 10.0 || fell || shifted) {
+            leave_ = seat_ ? last_still_seat_ : theta;
+            left_by_ = turned > 10.0 ? "toppled" : fell ? "fell" : "slid";
+        } else if (s.velocity.norm() < 5e-3 && s.angular_velocity.norm() < 5e-2) {
+            if (!seat_)
+                seat_ = s.pose;
             last_still_seat_ = theta;
         }
     }
@@ -168,8 +190,9 @@ class TiltAnalysis : public Analysis {
     double last_still_slide_ = 0.0, last_still_turn_ = 0.0;
     std::vector<std::pair<double, double>> moving_; // (deg, m/s) since the last still sample, first two
     std::optional<double> slide_, topple_;
-    std::optional<Pose> placed_;
-    std::optional<double> last_still_seat_, leave_;
+    std::optional<Pose> placed_, seat_;
+    double last_still_seat_ = 0.0;
+    std::optional<double> leave_;
     std::string left_by_;
     bool finished_ = false;
 };

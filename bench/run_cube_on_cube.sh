@@ -6,13 +6,15 @@
 # neighbour's centre (21 seats), for exact hulls (Bullet) and sphere clumps of
 # 47, 64, 118 (the scene's), 200 and 500 spheres (LIGGGHTS). Each run reports
 # the tilt at which the cube leaves its seat (leave_angle_deg, docs/analysis.md)
-# and how (slid or tipped). An exact cube leaves at the smaller of the slide,
+# and how (slid or toppled). An exact cube leaves at the smaller of the slide,
 # atan(0.6) = 30.96 deg, and its tip over the downhill edge,
 # atan((a/2 - x) / (a/2)); so the error of each model is its leave angle less
 # that, seat by seat. Writes OUT/summary.json (per model: the error's mean,
-# rms and worst in deg, seats whose way out differs from the exact cube's, the
-# DEM's step and its wall seconds per simulated second, whose ratios alone are
-# figures on a shared machine), OUT/seats.csv (one row per run),
+# rms and worst in deg, over all seats and over those it came to rest on,
+# the seats it never rested on (left_before_resting) and those whose way out
+# differs from the exact cube's, the DEM's step and its wall seconds per
+# simulated second over all runs, whose ratios alone are figures on a shared
+# machine), OUT/seats.csv (one row per run),
 # OUT/cube_on_cube.png and the runs. About 10 minutes on 2 cores (clumps of
 # 200 and 500 spheres are built once, then cached).
 # Usage: bash bench/run_cube_on_cube.sh [--build DIR] [--out DIR]
@@ -59,42 +61,48 @@ slide = math.degrees(math.atan(mu))
 
 def exact(x):
     tip = math.degrees(math.atan((a / 2 - x) / (a / 2)))
-    return (tip, "tipped") if tip < slide else (slide, "slid")
+    return (tip, "toppled") if tip < slide else (slide, "slid")
+
+
+def spread(errors):
+    n = len(errors)
+    if not n:
+        return {"mean_error_deg": None, "rms_error_deg": None, "worst_error_deg": None}
+    return {"mean_error_deg": sum(errors) / n, "rms_error_deg": math.sqrt(sum(e * e for e in errors) / n),
+            "worst_error_deg": max(errors, key=abs)}
+
 
 rows, figures = [], {}
 for name, spheres, _ in models:
-    errors, differ, landing, cost, dt = [], 0, 0, [], None
+    errors, rested, differ, unrested, wall, simulated, dt = [], [], 0, 0, 0.0, 0.0, None
     for x in (0.0, 0.003, 0.006, 0.009, 0.012, 0.015, 0.018):
         for y in (0.0, 0.005, 0.01):
             s = read_summary(f"{out}/runs/{name}/x{x}_y{y}")
             reference, way = exact(x)
             left, by = s["leave_angle_deg"], s["left_by"]
-            if s["left_while_landing"]:
-                landing += 1
-                left = 0.0  # it has no seat: it leaves before any tilt
             if left is None:
                 raise SystemExit(f"{name} x={x} y={y}: the cube stayed on its seat to the end of the tilt")
             errors.append(left - reference)
+            if s["left_before_resting"]:
+                unrested += 1
+            else:
+                rested.append(left - reference)
             differ += by != way
-            cost.append(s["wall_seconds"] / s["simulated_seconds"])
+            wall += s["wall_seconds"]
+            simulated += s["simulated_seconds"]
             dt = s["dt"]
             rows.append({"model": name, "spheres": int(spheres), "x_m": x, "y_m": y, "leave_angle_deg": left,
-                         "left_by": by, "exact_deg": reference, "exact_by": way, "error_deg": left - reference})
-    n = len(errors)
-    figures[name] = {
-        "spheres": int(spheres), "seats": n,
-        "mean_error_deg": sum(errors) / n,
-        "rms_error_deg": math.sqrt(sum(e * e for e in errors) / n),
-        "worst_error_deg": max(errors, key=abs),
-        "seats_left_another_way": differ,
-        "seats_fallen_while_landing": landing,
-        "dt": dt,
-        "wall_seconds_per_simulated_second": sum(cost) / n,
-    }
-    f = figures[name]
+                         "left_by": by, "left_before_resting": s["left_before_resting"], "exact_deg": reference,
+                         "exact_by": way, "error_deg": left - reference})
+    figures[name] = {"spheres": int(spheres), "seats": len(errors), **spread(errors),
+                     "seats_rested_on": {"seats": len(rested), **spread(rested)},
+                     "seats_never_rested_on": unrested, "seats_left_another_way": differ, "dt": dt,
+                     "wall_seconds_per_simulated_second": wall / simulated}
+    f, r = figures[name], figures[name]["seats_rested_on"]
     print(f"{name:10s} error mean {f['mean_error_deg']:+5.1f} rms {f['rms_error_deg']:4.1f} worst "
-          f"{f['worst_error_deg']:+5.1f} deg; another way out at {differ} of {n} seats, fell while landing at "
-          f"{landing}; dt {dt:.3g} s, {f['wall_seconds_per_simulated_second']:.3g} wall s per simulated s")
+          f"{f['worst_error_deg']:+5.1f} deg (on the {r['seats']} seats it rested on: mean {r['mean_error_deg']:+5.1f}, "
+          f"rms {r['rms_error_deg']:4.1f}); never rested on {unrested}, another way out at {differ} of "
+          f"{len(errors)}; dt {dt:.3g} s, {f['wall_seconds_per_simulated_second']:.3g} wall s per simulated s")
 with open(f"{out}/seats.csv", "w", newline="") as handle:
     writer = csv.DictWriter(handle, fieldnames=list(rows[0]))
     writer.writeheader()

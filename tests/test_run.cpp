@@ -642,7 +642,7 @@ TEST_F(Run, CubeOnACubeTipsOverItsNeighboursEdge) {
         const auto s = nlohmann::json::parse(summary_in);
         ASSERT_TRUE(s["topple_angle_deg"].is_number()) << s.dump();
         EXPECT_NEAR(s["topple_angle_deg"].get<double>(), exact, 1.0) << s.dump();
-        EXPECT_EQ(s["left_by"], "tipped") << s.dump();
+        EXPECT_EQ(s["left_by"], "toppled") << s.dump();
         EXPECT_NEAR(s["leave_angle_deg"].get<double>(), exact, 1.0) << s.dump();
         fs::remove_all(out());
     }
@@ -654,11 +654,11 @@ TEST_F(Run, CubeOnACubeTipsOverItsNeighboursEdge) {
     EXPECT_LT(s["topple_angle_deg"].get<double>(), exact - 4.0) << s.dump();
 }
 
-TEST_F(Run, ACubeThatCannotRestOnItsNeighbourFallsWhileLandingAndSaysSo) {
+TEST_F(Run, ACubeThatCannotRestOnItsNeighbourLeavesBeforeItRestsAndSaysSo) {
     // The free cube's centre 5 mm past its neighbour's edge: an exact cube
-    // has no seat there and tips off as it lands, before any tilt. The tilt
-    // analysis must say so and read no slide or topple angle on whatever
-    // caught it (the floor), for either unit model.
+    // has no seat there and topples off as it lands, before it ever comes
+    // to rest. The tilt analysis must say so and read no slide or topple
+    // angle on whatever caught it (the floor), for either unit model.
     std::ifstream in(fs::path(ARMOUR_SOURCE_DIR) / "scenes" / "tilt_cube_pair.toml");
     std::stringstream scene;
     scene << in.rdbuf();
@@ -672,11 +672,11 @@ TEST_F(Run, ACubeThatCannotRestOnItsNeighbourFallsWhileLandingAndSaysSo) {
         ASSERT_EQ(run(scene.str(), extra), 0) << err_;
         std::ifstream summary_in(out() / "summary.json");
         const auto s = nlohmann::json::parse(summary_in);
-        EXPECT_EQ(s["left_while_landing"], true) << s.dump();
-        EXPECT_EQ(s["left_by"], "tipped") << s.dump();
+        EXPECT_EQ(s["left_before_resting"], true) << s.dump();
+        EXPECT_EQ(s["left_by"], "toppled") << s.dump();
         EXPECT_LT(s["leave_angle_deg"].get<double>(), 1.0) << s.dump();
         EXPECT_TRUE(s["slide_angle_deg"].is_null()) << s.dump();
         EXPECT_TRUE(s["topple_angle_deg"].is_null()) << s.dump();
-        EXPECT_NE(err_.find("fell off while it landed"), std::string::npos) << err_;
+        EXPECT_NE(err_.find("never came to rest on its seat"), std::string::npos) << err_;
     }
 }
