@@ -8,13 +8,16 @@
 # down the face by each of --angles degrees (the face then 33.7 deg + the
 # angle steep for the stability scene's 1:1.5; its slope must rise towards
 # +x, as that scene's does), once with clumps (LIGGGHTS) and once with exact
-# hulls (Bullet). The damage analysis counts the units each run displaced
-# (1 Dn from where they started), at the foot and resting on top of the
-# layer. Run again with the same --out, it keeps the runs that finished.
-# Writes OUT/summary.json (per unit model and angle: displaced per layer and
-# their mean; angles in deg, times in s), OUT/layer_tilt.csv (one row per
-# run), OUT/layer_tilt.png and the runs. About 1.5 minutes per layer and
-# angle on 2 cores.
+# hulls (Bullet). Each unit's move is read from the run's bodies.h5, first
+# record to last: displaced at 1 Dn, moved at 0.25 Dn. (Not the damage
+# analysis' count: in a dry run it counts from the moment the layer has
+# settled, which a layer made steeper reaches late or never, so the two
+# models would be counted from different moments.) Run again with the same
+# options and --out, it keeps the runs that finished; other options there
+# are refused. Writes OUT/summary.json (per unit model and angle: displaced,
+# moved and the median move per layer, and their means; angles in deg, moves
+# in Dn), OUT/layer_tilt.csv (one row per run), OUT/layer_tilt.png and the
+# runs. About 2.3 minutes per layer and angle on 2 cores.
 # Usage: bash bench/run_layer_tilt.sh --scenes 'SCENE...' [--angles 'DEG...'] [--duration S]
 #          [--build DIR] [--out DIR]
 #   --scenes    settled scenes, space-separated (required)
@@ -33,14 +36,23 @@ bench_check_options() {
   done
 }
 bench_args "$@"
-angles="${opt_angles:-0 4 8 12 16}" duration="${opt_duration:-3}"
+angles="" duration="${opt_duration:-3}"
+for angle in ${opt_angles:-0 4 8 12 16}; do
+  angles+="$(awk -v a="$angle" 'BEGIN { printf "%g ", a + 0 }')" # one name per angle: 8.0 and 8 are 8
+done
 armour="$build/apps/armour"
+# A folder resumed must hold a bench of the same layers and hold (its runs are kept as they are).
+settings="duration=$duration scenes="
+for scene in $opt_scenes; do settings+="$(cd "$(dirname "$scene")" && pwd)/$(basename "$scene") "; done
+if [ -f "$out/settings.txt" ] && [ "$(cat "$out/settings.txt")" != "$settings" ]; then
+  bench_fail "--out $out holds a bench of other layers or another --duration ($(cat "$out/settings.txt")): use a new --out"
+fi
+echo "$settings" >"$out/settings.txt"
 k=0
 for scene in $opt_scenes; do
   k=$((k + 1))
   layer="$out/layer_$k"
   mkdir -p "$layer"
-  echo "$(cd "$(dirname "$scene")" && pwd)/$(basename "$scene")" >"$layer/scene.txt"
   /usr/bin/python3 "$root/studies/dry_scene.py" "$scene" "$layer/dry.toml" >/dev/null ||
     bench_fail "--scenes $scene: cannot make its dry scene"
   for angle in $angles; do
@@ -56,10 +68,12 @@ for scene in $opt_scenes; do
   done
 done
 /usr/bin/python3 - "$out" "$k" "$angles" <<'PY'
-import csv, json, math, sys
+import csv, json, sys
+import h5py
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
+import numpy as np
 from armour_results import read_summary
 out, layers, angles = sys.argv[1], int(sys.argv[2]), [float(a) for a in sys.argv[3].split()]
 models = {"liggghts": "clumps (LIGGGHTS)", "bullet": "exact hulls (Bullet)"}
@@ -67,32 +81,39 @@ rows, figures = [], {}
 for engine in models:
     figures[engine] = []
     for angle in angles:
-        counts = []
+        point = {"extra_tilt_deg": angle, "units_displaced": [], "units_moved": [], "median_move_over_Dn": []}
         for k in range(1, layers + 1):
-            s = read_summary(f"{out}/layer_{k}/{engine}_{angle:g}")
-            counts.append(s["units_displaced"])
-            rows.append({"layer": k, "engine": engine, "extra_tilt_deg": angle, "units": s["units"],
-                         "units_displaced": s["units_displaced"],
-                         "units_displaced_on_top": s["units_displaced_on_top"],
-                         "units_displaced_at_foot": s["units_displaced_at_foot"]})
-        figures[engine].append({"extra_tilt_deg": angle, "units_displaced": counts,
-                                "mean": sum(counts) / len(counts)})
-        print(f"{models[engine]:22s} +{angle:4.1f} deg: displaced {counts}, mean {sum(counts) / len(counts):.1f}")
+            run = f"{out}/layer_{k}/{engine}_{angle:g}"
+            Dn = read_summary(run)["damage"]["Dn"]
+            with h5py.File(f"{run}/bodies.h5", "r") as f:
+                position = f["bodies/position"][:]
+            move = np.linalg.norm(position[-1] - position[0], axis=1) / Dn  # first record to last
+            figures_of_run = {"units_displaced": int((move >= 1.0).sum()), "units_moved": int((move >= 0.25).sum()),
+                              "median_move_over_Dn": float(np.median(move))}
+            for key, value in figures_of_run.items():
+                point[key].append(value)
+            rows.append({"layer": k, "engine": engine, "extra_tilt_deg": angle, "units": len(move), **figures_of_run})
+        for key in ("units_displaced", "units_moved", "median_move_over_Dn"):
+            point["mean_" + key] = sum(point[key]) / layers
+        figures[engine].append(point)
+        print(f"{models[engine]:22s} +{angle:4.1f} deg: displaced {point['units_displaced']} (mean "
+              f"{point['mean_units_displaced']:.1f}), moved 0.25 Dn {point['units_moved']}, median move "
+              f"{', '.join(f'{m:.2f}' for m in point['median_move_over_Dn'])} Dn")
 with open(f"{out}/layer_tilt.csv", "w", newline="") as handle:
     writer = csv.DictWriter(handle, fieldnames=list(rows[0]))
     writer.writeheader()
     writer.writerows(rows)
-json.dump({"units": "angles deg; counts of units", "layers": layers, "models": figures},
-          open(f"{out}/summary.json", "w"), indent=2)
+json.dump({"units": "angles deg; moves in Dn; counts of units, from the first record to the last",
+           "layers": layers, "models": figures}, open(f"{out}/summary.json", "w"), indent=2)
 fig, ax = plt.subplots(figsize=(6, 4.2))
 for (engine, label), marker in zip(models.items(), "os"):
     f = figures[engine]
-    ax.plot(angles, [p["mean"] for p in f], marker + "-", label=f"{label}: mean of {layers}")
+    ax.plot(angles, [p["mean_units_displaced"] for p in f], marker + "-", label=f"{label}: mean of {layers}")
     for p in f:
-        ax.plot([p["extra_tilt_deg"]] * len(p["units_displaced"]), p["units_displaced"], marker, ms=3,
-                alpha=0.4, color=ax.lines[-1].get_color())
+        ax.plot([p["extra_tilt_deg"]] * layers, p["units_displaced"], marker, ms=3, alpha=0.4,
+                color=ax.lines[-1].get_color())
 ax.set_xlabel("gravity turned down the face [deg] (face steepened by as much)")
-ax.set_ylabel("units displaced (1 Dn) in the dry hold")
+ax.set_ylabel("units displaced (1 Dn, first record to last)")
 ax.grid(True, lw=0.3)
 ax.legend(fontsize=8)
 ax.set_title("one settled layer, held dry by each unit model", fontsize=10)
