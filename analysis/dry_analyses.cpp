@@ -46,9 +46,10 @@ class NoAnalysis : public Analysis {
 // slower at 20 deg/s) keeps the last still sample.
 // Besides, the angle at which the unit leaves its seat, whichever way: the
 // last still sample before it first stands 0.1 Dn from its seat or has
-// turned 10 degrees from it. Its seat is where it first comes to rest;
-// before that (a unit placed above the plane drops straight onto it) only a
-// move of 0.1 Dn across the plane, a fall deeper than Dn or a turn counts. A
+// turned 10 degrees from it. Its seat is where it first comes to rest (two
+// still samples in a row); before that (a unit placed above the plane drops
+// straight onto it) only a move of 0.1 Dn across the plane, a fall deeper
+// than Dn or a turn counts. A
 // unit on another unit may creep a few tenths of a millimetre long before it
 // goes, which the slide angle reads as its slide. A unit placed where it
 // cannot rest leaves before it ever comes to rest (left_before_resting): the
@@ -83,7 +84,7 @@ class TiltAnalysis : public Analysis {
         if (!reference_) {
             // The reference is the unit at rest on the plane: a unit placed
             // above it lands and rocks for a while, and that motion is not sliding.
-            if (theta >= 1.0 && s.velocity.norm() < 5e-3 && s.angular_velocity.norm() < 5e-2) {
+            if (theta >= 1.0 && still(s)) {
                 reference_ = s.pose;
                 last_still_slide_ = last_still_turn_ = theta;
             }
@@ -117,6 +118,7 @@ class TiltAnalysis : public Analysis {
         summary["leave_angle_deg"] = nullable(leave_);
         summary["left_by"] = leave_ ? json(left_by_) : json(nullptr);
         summary["left_before_resting"] = leave_ && !seat_;
+        summary["came_to_rest"] = seat_.has_value();
         char line[192];
         if (leave_ && !seat_)
             std::snprintf(
@@ -133,6 +135,9 @@ class TiltAnalysis : public Analysis {
         else if (leave_)
             std::snprintf(line, sizeof line, "the unit %s off its seat at %.2f deg", left_by_.c_str(),
                           *leave_);
+        else if (!seat_)
+            std::snprintf(line, sizeof line, "the unit never came to rest, and never left, up to %.1f deg",
+                          max_);
         else
             std::snprintf(line, sizeof line, "the unit stayed on its seat up to %.1f deg", max_);
         return line;
@@ -140,6 +145,10 @@ class TiltAnalysis : public Analysis {
 
   private:
     double angle(double t) const { return std::min(rate_ * t, max_); } // deg
+    // At rest: slower than 5 mm/s and turning slower than 0.05 rad/s (above).
+    static bool still(const BodyState &s) {
+        return s.velocity.norm() < 5e-3 && s.angular_velocity.norm() < 5e-2;
+    }
 
     // The first sample is where the unit was placed; its seat, where it
     // first rests after that. Before it rests the unit drops straight down
@@ -160,10 +169,14 @@ class TiltAnalysis : public Analysis {
         if (turned > 10.0 || fell || shifted) {
             leave_ = seat_ ? last_still_seat_ : theta;
             left_by_ = turned > 10.0 ? "toppled" : fell ? "fell" : "slid";
-        } else if (s.velocity.norm() < 5e-3 && s.angular_velocity.norm() < 5e-2) {
-            if (!seat_)
+        } else if (still(s)) {
+            // Two still samples in a row: one may be the top of a bounce or the turn of a rock.
+            if (!seat_ && ++still_samples_ >= 2)
                 seat_ = s.pose;
-            last_still_seat_ = theta;
+            if (seat_)
+                last_still_seat_ = theta;
+        } else {
+            still_samples_ = 0;
         }
     }
 
@@ -192,6 +205,7 @@ class TiltAnalysis : public Analysis {
     std::optional<double> slide_, topple_;
     std::optional<Pose> placed_, seat_;
     double last_still_seat_ = 0.0;
+    int still_samples_ = 0; // in a row, before the seat
     std::optional<double> leave_;
     std::string left_by_;
     bool finished_ = false;
