@@ -49,12 +49,12 @@ class NoAnalysis : public Analysis {
 // turned 10 degrees from it. Its seat is where it first comes to rest (two
 // still samples in a row); before that (a unit placed above the plane drops
 // straight onto it) only a move of 0.1 Dn across the plane, a fall deeper
-// than Dn or a turn counts. A
-// unit on another unit may creep a few tenths of a millimetre long before it
-// goes, which the slide angle reads as its slide. A unit placed where it
-// cannot rest leaves before it ever comes to rest (left_before_resting): the
-// slide and topple angles, read from the rest at 1 degree on, would then be
-// read on whatever caught it, so neither is reported.
+// than Dn or a turn counts. A unit on another unit may creep a few tenths of
+// a millimetre long before it goes, which the slide angle reads as its
+// slide. A unit placed where it cannot rest leaves before it ever comes to
+// rest (left_before_resting): the slide and topple angles, read from the
+// rest at 1 degree on, would then be read on whatever caught it, so neither
+// is reported.
 class TiltAnalysis : public Analysis {
   public:
     explicit TiltAnalysis(const AnalysisContext &c)

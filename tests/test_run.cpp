@@ -67,6 +67,22 @@ class Run : public ::testing::Test {
         return o.code;
     }
     fs::path out() const { return dir_ / "out"; }
+    nlohmann::json summary() const {
+        std::ifstream in(out() / "summary.json");
+        return nlohmann::json::parse(in);
+    }
+    // A scene of scenes/ as shipped, as text for run().
+    static std::string shipped_scene(const std::string &file) {
+        std::ifstream in(fs::path(ARMOUR_SOURCE_DIR) / "scenes" / file);
+        std::stringstream text;
+        text << in.rdbuf();
+        return text.str();
+    }
+    // The exact-hull engine, or nullptr in a build without one.
+    static const armour::EngineStyle *hull_engine() {
+        return armour::find_engine_style(
+            [](const armour::EngineCapabilities &c) { return c.shape == armour::ShapeModel::convex_hulls; });
+    }
     std::string error_line() const {
         const std::size_t at = err_.find("armour: error: ");
         return at == std::string::npos ? "" : err_.substr(at, err_.find('\n', at) - at);
@@ -225,12 +241,9 @@ TEST_F(Run, TiltSceneSlidesAtTheFrictionAngle) {
     // The example scene as shipped: a 20-sphere cube lands on the plate from
     // 3 cm, settles, and gravity turns at 5 deg/s. It must slide, not topple,
     // within 0.5 deg of atan(mu) (the engine-level bracket in test_liggghts).
-    std::ifstream in(fs::path(ARMOUR_SOURCE_DIR) / "scenes" / "tilt_cube.toml");
-    std::stringstream scene;
-    scene << in.rdbuf();
-    ASSERT_EQ(run(scene.str()), 0) << err_;
-    std::ifstream summary_in(out() / "summary.json");
-    const auto s = nlohmann::json::parse(summary_in);
+    const std::string scene = shipped_scene("tilt_cube.toml");
+    ASSERT_EQ(run(scene), 0) << err_;
+    const nlohmann::json s = summary();
     ASSERT_TRUE(s["slide_angle_deg"].is_number()) << s.dump();
     EXPECT_TRUE(s["topple_angle_deg"].is_null());
     EXPECT_NEAR(s["slide_angle_deg"].get<double>(), s["slide_angle_analytic_deg"].get<double>(), 0.5);
@@ -246,12 +259,9 @@ TEST_F(Run, TiltSceneTopplesAtFortyFiveDegreesWhenFrictionHolds) {
     // downhill edge at atan(1) = 45 deg (sliding would need 50.2 deg). The
     // 20-sphere clump stands on its corner spheres (clump_support.h):
     // geometric topple angle 44.50 deg. Before them it toppled at 29.5 deg.
-    std::ifstream in(fs::path(ARMOUR_SOURCE_DIR) / "scenes" / "tilt_cube.toml");
-    std::stringstream scene;
-    scene << in.rdbuf();
-    ASSERT_EQ(run(scene.str(), {"--set", "material.0.friction=1.2"}), 0) << err_;
-    std::ifstream summary_in(out() / "summary.json");
-    const auto s = nlohmann::json::parse(summary_in);
+    const std::string scene = shipped_scene("tilt_cube.toml");
+    ASSERT_EQ(run(scene, {"--set", "material.0.friction=1.2"}), 0) << err_;
+    const nlohmann::json s = summary();
     ASSERT_TRUE(s["topple_angle_deg"].is_number()) << s.dump();
     EXPECT_NEAR(s["topple_angle_deg"].get<double>(), 45.0, 1.0);
 }
@@ -590,21 +600,17 @@ TEST_F(Run, ParaViewOpensEveryStepWithTheRecordedPoses) {
 // scene's 5 deg/s (measured: 16.73-16.75, 26.59-26.62 and 45.25-45.4 deg over
 // six landings).
 TEST_F(Run, ExactHullsSlideAndToppleAtTheAnalyticAnglesInTheTiltScene) {
-    const armour::EngineStyle *hulls = armour::find_engine_style(
-        [](const armour::EngineCapabilities &c) { return c.shape == armour::ShapeModel::convex_hulls; });
+    const armour::EngineStyle *hulls = hull_engine();
     if (!hulls)
         GTEST_SKIP() << "no exact-hull engine in this build";
-    std::ifstream in(fs::path(ARMOUR_SOURCE_DIR) / "scenes" / "tilt_cube.toml");
-    std::stringstream scene;
-    scene << in.rdbuf();
+    const std::string scene = shipped_scene("tilt_cube.toml");
     for (const char *mu : {"0.3", "0.5", "1.2"}) {
         fs::remove_all(out());
-        ASSERT_EQ(run(scene.str(), {"--set", "run.engine=\"" + hulls->name + "\"", "--set",
-                                    std::string("material.0.friction=") + mu}),
+        ASSERT_EQ(run(scene, {"--set", "run.engine=\"" + hulls->name + "\"", "--set",
+                              std::string("material.0.friction=") + mu}),
                   0)
             << err_;
-        std::ifstream summary_in(out() / "summary.json");
-        const auto s = nlohmann::json::parse(summary_in);
+        const nlohmann::json s = summary();
         if (std::string(mu) == "1.2") {
             ASSERT_TRUE(s["topple_angle_deg"].is_number()) << s.dump();
             EXPECT_NEAR(s["topple_angle_deg"].get<double>(), 45.0, 1.0);
@@ -628,27 +634,21 @@ TEST_F(Run, CubeOnACubeTipsOverItsNeighboursEdge) {
     // units resting on top of a layer leave. This asserts that early tip, not
     // its figure: if a change to the clump makes it fail, measure the docs'
     // figures again.
-    std::ifstream in(fs::path(ARMOUR_SOURCE_DIR) / "scenes" / "tilt_cube_pair.toml");
-    std::stringstream scene;
-    scene << in.rdbuf();
+    const std::string scene = shipped_scene("tilt_cube_pair.toml");
     const double exact = std::atan(0.5) * 57.29577951308232;
-    const armour::EngineStyle *hulls = armour::find_engine_style(
-        [](const armour::EngineCapabilities &c) { return c.shape == armour::ShapeModel::convex_hulls; });
+    const armour::EngineStyle *hulls = hull_engine();
     if (hulls) {
-        ASSERT_EQ(run(scene.str(), {"--set", "body.0.position=[0.01, 0.0, 0.065]", "--engine", hulls->name}),
-                  0)
+        ASSERT_EQ(run(scene, {"--set", "body.0.position=[0.01, 0.0, 0.065]", "--engine", hulls->name}), 0)
             << err_;
-        std::ifstream summary_in(out() / "summary.json");
-        const auto s = nlohmann::json::parse(summary_in);
+        const nlohmann::json s = summary();
         ASSERT_TRUE(s["topple_angle_deg"].is_number()) << s.dump();
         EXPECT_NEAR(s["topple_angle_deg"].get<double>(), exact, 1.0) << s.dump();
         EXPECT_EQ(s["left_by"], "toppled") << s.dump();
         EXPECT_NEAR(s["leave_angle_deg"].get<double>(), exact, 1.0) << s.dump();
         fs::remove_all(out());
     }
-    ASSERT_EQ(run(scene.str(), {"--set", "body.0.position=[0.01, 0.0, 0.065]"}), 0) << err_;
-    std::ifstream summary_in(out() / "summary.json");
-    const auto s = nlohmann::json::parse(summary_in);
+    ASSERT_EQ(run(scene, {"--set", "body.0.position=[0.01, 0.0, 0.065]"}), 0) << err_;
+    const nlohmann::json s = summary();
     EXPECT_EQ(s["spheres_per_unit"]["cube"], 118) << s.dump();
     ASSERT_TRUE(s["topple_angle_deg"].is_number()) << s.dump();
     EXPECT_LT(s["topple_angle_deg"].get<double>(), exact - 4.0) << s.dump();
@@ -659,19 +659,15 @@ TEST_F(Run, ACubeThatCannotRestOnItsNeighbourLeavesBeforeItRestsAndSaysSo) {
     // has no seat there and topples off as it lands, before it ever comes
     // to rest. The tilt analysis must say so and read no slide or topple
     // angle on whatever caught it (the floor), for either unit model.
-    std::ifstream in(fs::path(ARMOUR_SOURCE_DIR) / "scenes" / "tilt_cube_pair.toml");
-    std::stringstream scene;
-    scene << in.rdbuf();
+    const std::string scene = shipped_scene("tilt_cube_pair.toml");
     std::vector<std::vector<std::string>> models = {{}};
-    if (const armour::EngineStyle *hulls = armour::find_engine_style(
-            [](const armour::EngineCapabilities &c) { return c.shape == armour::ShapeModel::convex_hulls; }))
+    if (const armour::EngineStyle *hulls = hull_engine())
         models.push_back({"--engine", hulls->name});
     for (std::vector<std::string> extra : models) {
         fs::remove_all(out());
         extra.insert(extra.end(), {"--set", "body.0.position=[0.025, 0.0, 0.065]"});
-        ASSERT_EQ(run(scene.str(), extra), 0) << err_;
-        std::ifstream summary_in(out() / "summary.json");
-        const auto s = nlohmann::json::parse(summary_in);
+        ASSERT_EQ(run(scene, extra), 0) << err_;
+        const nlohmann::json s = summary();
         EXPECT_EQ(s["left_before_resting"], true) << s.dump();
         EXPECT_EQ(s["left_by"], "toppled") << s.dump();
         EXPECT_LT(s["leave_angle_deg"].get<double>(), 1.0) << s.dump();
