@@ -17,17 +17,18 @@
 # machine), OUT/seats.csv (one row per run),
 # OUT/cube_on_cube.png and the runs. About 10 minutes on 2 cores (clumps of
 # 200 and 500 spheres are built once, then cached).
-# Usage: bash bench/run_cube_on_cube.sh [--build DIR] [--out DIR]
-#   --build  default the repo's build/ (bash scripts/build.sh armour)
-#   --out    default ${TMPDIR:-/tmp}/armour-bench/cube_on_cube
+# Usage: bash bench/run_cube_on_cube.sh [--build DIR] [--out DIR] [--models 'NAME ...'] [--set 'KEY=VALUE ...']
+#   --build   default the repo's build/ (bash scripts/build.sh armour)
+#   --out     default ${TMPDIR:-/tmp}/armour-bench/cube_on_cube
+#   --models  the models to run, of hulls clump_47 clump_64 clump_118 clump_200
+#             clump_500 (default all)
+#   --set     scene keys set in every run, one suspect at a time (e.g.
+#             material.0.youngs_modulus=5e8: the contact 10 x stiffer)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-bench_name=cube_on_cube bench_targets=armour bench_options=""
-source "$root/bench/common.sh"
-bench_args "$@"
-armour="$build/apps/armour"
+bench_name=cube_on_cube bench_targets=armour bench_options="models set"
 # name|spheres|armour run options choosing the model
-models=(
+all_models=(
   "hulls|0|--engine bullet"
   "clump_47|47|--set unit.0.tol_surface=0.02"
   "clump_64|64|--set unit.0.tol_surface=0.015"
@@ -35,6 +36,29 @@ models=(
   "clump_200|200|--set unit.0.spheres=200"
   "clump_500|500|--set unit.0.spheres=500"
 )
+# The models and settings asked for, checked before --out is made (common.sh).
+bench_check_options() {
+  local names=() settings=() name model setting
+  read -ra names <<<"${opt_models-}"
+  read -ra settings <<<"${opt_set-}"
+  [ -z "${opt_models+x}" ] || [ ${#names[@]} -gt 0 ] || bench_fail "--models: no model named"
+  models=()
+  for model in "${all_models[@]}"; do
+    name="${model%%|*}"
+    if [ -z "${opt_models+x}" ] || [[ " ${names[*]} " == *" $name "* ]]; then models+=("$model"); fi
+  done
+  for name in "${names[@]}"; do
+    [[ " ${all_models[*]} " == *" $name|"* ]] || bench_fail "--models: no model '$name'"
+  done
+  sets=()
+  for setting in "${settings[@]}"; do
+    [[ "$setting" == *=* ]] || bench_fail "--set: '$setting' is not KEY=VALUE"
+    sets+=(--set "$setting")
+  done
+}
+source "$root/bench/common.sh"
+bench_args "$@"
+armour="$build/apps/armour"
 for model in "${models[@]}"; do
   IFS='|' read -r name spheres options <<<"$model"
   for x in 0.0 0.003 0.006 0.009 0.012 0.015 0.018; do
@@ -43,14 +67,14 @@ for model in "${models[@]}"; do
       rm -rf "$run"
       mkdir -p "$(dirname "$run")"
       # shellcheck disable=SC2086 # the model's options are words
-      "$armour" run "$root/scenes/tilt_cube_pair.toml" --out "$run" $options \
+      "$armour" run "$root/scenes/tilt_cube_pair.toml" --out "$run" $options "${sets[@]}" \
         --set "body.0.position=[$x, $y, 0.065]" >"$run.log" 2>&1 ||
         bench_fail "armour run failed: $run.log"
     done
   done
 done
-/usr/bin/python3 - "$out" "${models[@]}" <<'PY'
-import csv, json, math, sys
+BENCH_SET="${opt_set-}" /usr/bin/python3 - "$out" "${models[@]}" <<'PY'
+import csv, json, math, os, sys
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
@@ -108,6 +132,7 @@ with open(f"{out}/seats.csv", "w", newline="") as handle:
     writer.writeheader()
     writer.writerows(rows)
 json.dump({"units": "angles deg, positions m, dt s, wall_seconds_per_simulated_second s/s",
+           "set": os.environ["BENCH_SET"].split(),
            "reference": "an exact cube leaves at min(atan(0.6), atan((a/2 - x) / (a/2)))",
            "models": figures}, open(f"{out}/summary.json", "w"), indent=2)
 
@@ -132,7 +157,8 @@ cost.set_xlabel("wall seconds per simulated second (one run, shared machine: rat
 cost.set_ylabel("rms error of the leave angle over 21 seats [deg]")
 cost.grid(True, which="both", lw=0.3)
 cost.legend(fontsize=7)
-fig.suptitle("scenes/tilt_cube_pair.toml: where a cube leaves its neighbour, y = 0, 5, 10 mm", fontsize=10)
+fig.suptitle("scenes/tilt_cube_pair.toml: where a cube leaves its neighbour, y = 0, 5, 10 mm"
+             + "".join(f", {setting}" for setting in os.environ["BENCH_SET"].split()), fontsize=10)
 fig.tight_layout()
 fig.savefig(f"{out}/cube_on_cube.png", dpi=110)
 PY

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Keep the small results of an `armour sweep` folder in the repository.
+"""Keep the small results of an `armour sweep` folder, or of plain runs, in the repository.
 
 Description
     Copies what a reader of a study needs from a sweep's output folder (kept
@@ -23,20 +23,35 @@ Description
     renamed over it once all are written: a keep cut short (a file it cannot
     read, a full disk, Ctrl-C) leaves DEST as it was.
 
+    With --runs, the folders of plain `armour run`s of a damage analysis (the
+    realisations of one check run one by one, not as a sweep) are kept as a
+    sweep's cases would be: each run's summary.json, damage.csv and
+    damage_history.csv under DEST/cases/<the run folder's name>/run/, and
+    DEST/results.csv with a row per run (case, seed: the run's waves.seed,
+    unit.0.density in kg/m^3, and the figures of its summary.json, those of
+    its `waves` object as waves.<name>; SI as summary.json states them), so
+    that studies/compare_curves.py reads DEST as one curve of those
+    realisations. DEST/summary.json lists the runs and the units displaced
+    against Van der Meer's count over them. A folder without a damage run's
+    summary.json is refused before anything is written.
+
 Usage
     python3 studies/keep_results.py RUN docs/results/stability_curve
     armour sweep STUDY --out NEW_RUN --kept docs/results/stability_curve   # elsewhere: the other cases
+    python3 studies/keep_results.py --runs docs/results/severe_sea_shipped RUN_SEED1 RUN_SEED2 RUN_SEED3
 """
 import csv
 import errno
 import fcntl
 import functools
+import io
 import json
 import os
 import re
 import shutil
 import signal
 import sys
+import tomllib
 
 TOP = ("results.csv", "report.md", "sweep.toml")
 PER_CASE = ("summary.json", "damage.csv", "damage_history.csv")
@@ -209,29 +224,109 @@ def stage_all(run, dest, summary, root, staged, made):
     return kept
 
 
+def fail(message):
+    print(f"armour: error: {message}", file=sys.stderr)
+    sys.exit(2)
+
+
 def keep(run, dest):
     if not os.path.isfile(os.path.join(run, "summary.json")):
-        print(f"armour: error: {os.path.join(run, 'summary.json')}: not found (not an armour sweep folder)",
-              file=sys.stderr)
-        sys.exit(2)
+        fail(f"{os.path.join(run, 'summary.json')}: not found (not an armour sweep folder)")
     refuse_while_running(run)
     with open(os.path.join(run, "summary.json")) as f:
         summary = json.load(f)
     root = source_tree(summary)
     summary = relative_to_source(summary, root)
+    kept = write_kept(dest, lambda staged, made: stage_all(run, dest, summary, root, staged, made))
+    print(f"kept {kept} of {len(summary['cases'])} cases' results in {dest}")
+
+
+def is_number(value):
+    return isinstance(value, (int, float)) and not isinstance(value, bool)
+
+
+def run_row(run):
+    """A plain damage run's row of results.csv: its name, seed, unit density and summary figures."""
+    path, scene_path = os.path.join(run, "summary.json"), os.path.join(run, "scene.resolved.toml")
+    try:
+        with open(path) as f:
+            summary = json.load(f)
+    except OSError as e:
+        fail(f"{e.filename}: {e.strerror} (not a finished armour run)")
+    except ValueError as e:  # cut short, not JSON, not UTF-8
+        fail(f"{path}: unreadable ({e})")
+    try:
+        with open(scene_path, "rb") as f:
+            scene = tomllib.load(f)
+    except OSError as e:
+        fail(f"{e.filename}: {e.strerror} (not a finished armour run)")
+    except ValueError as e:
+        fail(f"{scene_path}: unreadable ({e})")
+    for key in ("units_displaced", "units_displaced_van_der_meer"):
+        if not isinstance(summary, dict) or not is_number(summary.get(key)):
+            fail(f"{path}: key '{key}': not a number (not the damage run of a wave train)")
+    waves = scene.get("waves") if isinstance(scene.get("waves"), dict) else {}
+    units = scene.get("unit") if isinstance(scene.get("unit"), list) else []
+    density = units[0].get("density", "") if units and isinstance(units[0], dict) else ""
+    row = {"case": os.path.basename(os.path.normpath(run)), "seed": waves.get("seed", ""), "status": "done",
+           "unit.0.density": density}
+    row.update({key: value for key, value in summary.items() if is_number(value)})
+    run_waves = summary.get("waves") if isinstance(summary.get("waves"), dict) else {}
+    row.update({"waves." + key: value for key, value in run_waves.items() if is_number(value)})
+    return row
+
+
+def stage_runs(runs, dest, staged, made):
+    """Stages each run's files under DEST/cases/<name>/run/, results.csv and summary.json; returns the count."""
+    names = [os.path.basename(os.path.normpath(r)) for r in runs]
+    twice = sorted({n for n in names if names.count(n) > 1})
+    if twice:
+        fail(f"--runs: more than one run folder is named {', '.join(twice)}: a run's folder name names its case")
+    rows = [run_row(run) for run in runs]  # every run read before any file is written
+    for run, row in zip(runs, rows):
+        for name in PER_CASE:
+            if os.path.exists(os.path.join(run, name)):
+                stage(dest, os.path.join("cases", row["case"], "run", name), staged, made,
+                      source=os.path.join(run, name))
+    columns = ["case", "seed", "status", "unit.0.density"]
+    columns += sorted({k for r in rows for k in r} - set(columns))
+    table = io.StringIO()
+    writer = csv.writer(table, lineterminator="\n")
+    writer.writerow(columns)
+    writer.writerows([f"{r[c]:.10g}" if isinstance(r.get(c), float) else r.get(c, "") for c in columns]
+                     for r in rows)
+    stage(dest, "results.csv", staged, made, text=table.getvalue())
+    summary = {"command": "keep_results.py --runs", "cases": [r["case"] for r in rows],
+               "units_displaced": sum(r["units_displaced"] for r in rows),
+               "units_displaced_van_der_meer": sum(r["units_displaced_van_der_meer"] for r in rows),
+               "si_units": {"units_displaced": "-", "units_displaced_van_der_meer": "-"}}
+    stage(dest, "summary.json", staged, made, text=json.dumps(summary, indent=2) + "\n")
+    return len(rows)
+
+
+def keep_runs(dest, runs):
+    for run in runs:
+        refuse_while_running(run)
+    kept = write_kept(dest, lambda staged, made: stage_runs(runs, dest, staged, made))
+    print(f"kept {kept} runs' results in {dest}")
+
+
+def write_kept(dest, stage_files):
+    """Stages the keep's files with stage_files(staged, made), renames them over DEST's together, removes what
+    an earlier keep wrote there and this one no longer writes, and lists the files; returns stage_files' count.
+    Any error before the renames leaves DEST as it was."""
     staged, made = {}, set()
     # SIGTERM (a kill, a scheduler) ends the keep as Ctrl-C does: through the clean-up below.
     signal.signal(signal.SIGTERM, lambda *_: sys.exit(143))
     try:
         before = written_before(dest)
-        kept = stage_all(run, dest, summary, root, staged, made)
+        kept = stage_files(staged, made)
         for name in staged:  # a folder where a file goes: refused before anything is renamed
             if os.path.isdir(os.path.join(dest, name)):
                 raise IsADirectoryError(errno.EISDIR, "a folder where the keep writes a file", os.path.join(dest, name))
     except OSError as e:
         discard(staged, made)
-        print(f"armour: error: {e.filename or dest}: {e.strerror or e}; {dest} left as it was", file=sys.stderr)
-        sys.exit(2)
+        fail(f"{e.filename or dest}: {e.strerror or e}; {dest} left as it was")
     except KeyboardInterrupt:
         discard(staged, made)
         print(f"armour: error: interrupted; {dest} left as it was", file=sys.stderr)
@@ -244,18 +339,21 @@ def keep(run, dest):
         commit(dest, staged)
     except OSError as e:  # between renames: a few files new, the rest and kept_files.txt old
         discard(staged, made)
-        print(f"armour: error: {e.filename or dest}: {e.strerror or e}; {dest} partly kept: keep again",
-              file=sys.stderr)
-        sys.exit(2)
+        fail(f"{e.filename or dest}: {e.strerror or e}; {dest} partly kept: keep again")
     remove_stale(dest, before - written)
     put(dest, MANIFEST, "".join(name + "\n" for name in sorted(written)))
-    print(f"kept {kept} of {len(summary['cases'])} cases' results in {dest}")
+    return kept
 
 
 if __name__ == "__main__":
     if sys.argv[1:] in (["-h"], ["--help"]):
         print(__doc__)
         sys.exit(0)
-    if len(sys.argv) != 3:
-        sys.exit("usage: keep_results.py SWEEP_OUTPUT_DIR DEST")
-    keep(sys.argv[1], sys.argv[2])
+    if sys.argv[1:2] == ["--runs"]:
+        if len(sys.argv) < 4:
+            fail("--runs: usage: keep_results.py --runs DEST RUN [RUN ...]")
+        keep_runs(sys.argv[2], sys.argv[3:])
+    elif len(sys.argv) != 3:
+        fail("usage: keep_results.py SWEEP_OUTPUT_DIR DEST, or keep_results.py --runs DEST RUN [RUN ...]")
+    else:
+        keep(sys.argv[1], sys.argv[2])

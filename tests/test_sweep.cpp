@@ -756,6 +756,81 @@ TEST_F(SweepTest, KeepCutShortLeavesTheKeptFolderAsItWas) {
     EXPECT_EQ(after, before) << "summary.json and the rest untouched";
 }
 
+// Realisations run one by one as plain `armour run`s (a validation's check)
+// are kept as a sweep's cases: `keep_results.py --runs DEST RUN...` writes a
+// results.csv row per run (its seed from the run's scene, its figures from
+// its summary.json, `waves` as waves.<name>) and each run's damage.csv under
+// cases/<run>/run/, so compare_curves.py counts them against Van der Meer as
+// one curve. A folder that is not a finished damage run is refused first:
+// one error line, DEST not made.
+TEST_F(SweepTest, KeptRunsAreReadAsOneCurveOfRealisations) {
+    const auto damage_run = [&](const std::string &name, int seed, int displaced, double expected,
+                                double ns) {
+        const fs::path folder = dir_ / "runs" / name;
+        write(folder / "scene.resolved.toml",
+              "[waves]\nseed = " + std::to_string(seed) + "\n[[unit]]\nname = \"cube\"\ndensity = 1540.0\n");
+        write(folder / "summary.json", "{\"units_displaced\": " + std::to_string(displaced) +
+                                           ", \"N_od\": " + std::to_string(displaced / 6.0) +
+                                           ", \"units_displaced_van_der_meer\": " + std::to_string(expected) +
+                                           ", \"Ns\": " + std::to_string(ns) +
+                                           ", \"s_om\": 0.034, \"coupled\": true, \"waves\": {\"waves\": 9, "
+                                           "\"incident_height\": 0.115, \"type\": \"irregular\"}}\n");
+        write(folder / "damage.csv", "# damage per unit\nbody,unit,s_m,y_m,at_foot,displaced\n"
+                                     "0,cube,-0.02,0,1," +
+                                         std::string(displaced > 0 ? "1" : "0") + "\n1,cube,0.1,0,0,0\n");
+        return folder.string();
+    };
+    const std::string one = damage_run("seed-1", 1, 2, 3.0, 5.0);
+    const std::string two = damage_run("seed-2", 2, 1, 1.0, 6.1);
+    const fs::path dest = dir_ / "kept";
+    const std::string keep = "/usr/bin/python3 " + kSource + "/studies/keep_results.py --runs ";
+    const Result kept = run(keep + dest.string() + " " + one + " " + two);
+    ASSERT_EQ(kept.status, 0) << kept.output;
+    const std::vector<Row> rows = read_csv(dest / "results.csv");
+    ASSERT_EQ(rows.size(), 2u);
+    EXPECT_EQ(rows[0].at("case"), "seed-1");
+    EXPECT_EQ(rows[1].at("seed"), "2");
+    EXPECT_EQ(rows[1].at("unit.0.density"), "1540");
+    EXPECT_EQ(rows[1].at("waves.waves"), "9");
+    EXPECT_EQ(rows[0].at("units_displaced"), "2");
+    EXPECT_EQ(rows[0].count("coupled"), 0u) << "a flag is not a figure";
+    EXPECT_EQ(read_text(dest / "cases" / "seed-2" / "run" / "summary.json"),
+              read_text(fs::path(two) / "summary.json"));
+
+    // 3 displaced of 4.0 expected: P(X <= 3 | 4) = 71 e^-4 / 3 = 0.43; the toe row holds both runs'
+    // displaced.
+    const Result curve = run("/usr/bin/python3 " + kSource + "/studies/compare_curves.py " + dest.string() +
+                             " --out " + (dir_ / "curve.png").string());
+    ASSERT_EQ(curve.status, 0) << curve.output;
+    EXPECT_NE(curve.output.find("all: 3 / 4.0 (P 0.43)"), std::string::npos) << curve.output;
+    EXPECT_NE(curve.output.find("from the toe row (seated below the face's foot): 2 of 3"), std::string::npos)
+        << curve.output;
+
+    // A run folder without a damage run's summary: refused, nothing made.
+    fs::create_directories(dir_ / "runs" / "empty");
+    const fs::path other = dir_ / "other";
+    const Result bad = run(keep + other.string() + " " + one + " " + (dir_ / "runs" / "empty").string());
+    EXPECT_EQ(bad.status, 2) << bad.output;
+    EXPECT_EQ(
+        bad.output.rfind("armour: error: " + (dir_ / "runs" / "empty" / "summary.json").string() + ": ", 0),
+        0u)
+        << bad.output;
+    EXPECT_FALSE(fs::exists(other));
+
+    // A run whose analysis gave no Van der Meer count (null: no wave train), kept over DEST: refused,
+    // DEST's results as they were.
+    const std::string kept_table = read_text(dest / "results.csv");
+    write(dir_ / "runs" / "dry" / "scene.resolved.toml", "[[unit]]\nname = \"cube\"\n");
+    write(dir_ / "runs" / "dry" / "summary.json",
+          "{\"units_displaced\": 0, \"units_displaced_van_der_meer\": null}\n");
+    const Result dry = run(keep + dest.string() + " " + one + " " + (dir_ / "runs" / "dry").string());
+    EXPECT_EQ(dry.status, 2) << dry.output;
+    EXPECT_NE(dry.output.find("key 'units_displaced_van_der_meer': not a number"), std::string::npos)
+        << dry.output;
+    EXPECT_EQ(std::count(dry.output.begin(), dry.output.end(), '\n'), 1) << dry.output;
+    EXPECT_EQ(read_text(dest / "results.csv"), kept_table);
+}
+
 // A sweep rewrites report.md as each case ends, not only at its own end: a
 // study of days is read as it goes. With one job, the second case (a long
 // one) starts only after the first's row is in the report; the sweep is then
