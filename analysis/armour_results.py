@@ -72,6 +72,17 @@ def read_summary(path):
         return json.load(f)
 
 
+def write_rows(path, rows, comment=None):
+    """Writes rows (dicts) to the CSV file `path`: a '# comment' line first where given (the table's units), a
+    header of every key in the order first met, then a line per row (a key a row lacks left empty)."""
+    with open(path, "w", newline="") as f:
+        if comment:
+            f.write(f"# {comment}\n")
+        writer = csv.DictWriter(f, fieldnames=list(dict.fromkeys(k for row in rows for k in row)))
+        writer.writeheader()
+        writer.writerows(rows)
+
+
 if __name__ == "__main__":
     # A quick look: python3 analysis/armour_results.py RUN_DIR
     import sys

@@ -37,7 +37,7 @@ import sys
 import tomllib
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "analysis"))
-from armour_results import SEATS, read_bodies, read_summary, seat_name, unit_seats  # noqa: E402
+from armour_results import SEATS, read_bodies, read_summary, seat_name, unit_seats, write_rows  # noqa: E402
 
 
 def by_seat(rows, pull_max):
@@ -131,11 +131,8 @@ def main():
                      "window": "s", "margins": "resistance / largest swing (-)"},
     }
     json.dump(summary, open(os.path.join(a.out, "summary.json"), "w"), indent=2)
-    with open(os.path.join(a.out, "pull_vs_loads.csv"), "w", newline="") as f:
-        f.write("# forces in unit weights on the seat at rest (-), moves in Dn (-)\n")
-        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
-        w.writeheader()
-        w.writerows(rows)
+    write_rows(os.path.join(a.out, "pull_vs_loads.csv"), rows,
+               "forces in unit weights on the seat at rest (-), moves in Dn (-)")
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt

@@ -74,11 +74,11 @@ for model in "${models[@]}"; do
   done
 done
 BENCH_SET="${opt_set-}" /usr/bin/python3 - "$out" "${models[@]}" <<'PY'
-import csv, json, math, os, sys
+import json, math, os, sys
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
-from armour_results import read_summary
+from armour_results import read_summary, write_rows
 out, models = sys.argv[1], [m.split("|") for m in sys.argv[2:]]
 a, mu = 0.04, 0.6  # the scene's cube edge (m) and friction
 slide = math.degrees(math.atan(mu))
@@ -127,10 +127,7 @@ for name, spheres, _ in models:
           f"{f['worst_error_deg']:+5.1f} deg (on the {r['seats']} seats it rested on: mean {r['mean_error_deg']:+5.1f}, "
           f"rms {r['rms_error_deg']:4.1f}); never rested on {unrested}, another way out at {differ} of "
           f"{len(errors)}; dt {dt:.3g} s, {f['wall_seconds_per_simulated_second']:.3g} wall s per simulated s")
-with open(f"{out}/seats.csv", "w", newline="") as handle:
-    writer = csv.DictWriter(handle, fieldnames=list(rows[0]))
-    writer.writeheader()
-    writer.writerows(rows)
+write_rows(f"{out}/seats.csv", rows)
 json.dump({"units": "angles deg, positions m, dt s, wall_seconds_per_simulated_second s/s",
            "set": os.environ["BENCH_SET"].split(),
            "reference": "an exact cube leaves at min(atan(0.6), atan((a/2 - x) / (a/2)))",

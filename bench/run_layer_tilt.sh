@@ -68,13 +68,13 @@ for scene in $opt_scenes; do
   done
 done
 /usr/bin/python3 - "$out" "$k" "$angles" <<'PY'
-import csv, json, sys
+import json, sys
 import h5py
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
-from armour_results import read_summary
+from armour_results import read_summary, write_rows
 out, layers, angles = sys.argv[1], int(sys.argv[2]), [float(a) for a in sys.argv[3].split()]
 models = {"liggghts": "clumps (LIGGGHTS)", "bullet": "exact hulls (Bullet)"}
 rows, figures = [], {}
@@ -99,10 +99,7 @@ for engine in models:
         print(f"{models[engine]:22s} +{angle:4.1f} deg: displaced {point['units_displaced']} (mean "
               f"{point['mean_units_displaced']:.1f}), moved 0.25 Dn {point['units_moved']}, median move "
               f"{', '.join(f'{m:.2f}' for m in point['median_move_over_Dn'])} Dn")
-with open(f"{out}/layer_tilt.csv", "w", newline="") as handle:
-    writer = csv.DictWriter(handle, fieldnames=list(rows[0]))
-    writer.writeheader()
-    writer.writerows(rows)
+write_rows(f"{out}/layer_tilt.csv", rows)
 json.dump({"units": "angles deg; moves in Dn; counts of units, from the first record to the last",
            "layers": layers, "models": figures}, open(f"{out}/summary.json", "w"), indent=2)
 fig, ax = plt.subplots(figsize=(6, 4.2))

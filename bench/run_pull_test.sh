@@ -82,6 +82,7 @@ import csv, glob, json, os, re, sys
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
+from armour_results import write_rows
 out, engine, rate, pull_max, angle = sys.argv[1], sys.argv[2], float(sys.argv[3]), float(sys.argv[4]), float(sys.argv[5])
 rows, first, wall = [], None, 0.0
 for d in sorted(glob.glob(f"{out}/round_*/"), key=lambda p: int(re.search(r"round_(\d+)", p).group(1))):
@@ -102,11 +103,8 @@ if not rows:
     sys.exit(f"run_pull_test: {out}: no unit was pulled (no outer units on the slope's face?)")
 held = sorted(float(r["resistance_weights"]) if r["resistance_weights"] else pull_max for r in rows)
 q = lambda p: held[int(p * (len(held) - 1) + 0.5)] if held else None
-with open(f"{out}/pull.csv", "w", newline="") as f:
-    f.write("# pull test: forces in the unit's own weight m|g| (-); s, y, n: on the slope face in Dn (-)\n")
-    w = csv.DictWriter(f, fieldnames=list(dict.fromkeys(k for r in rows + unseated for k in r)))
-    w.writeheader()
-    w.writerows(rows + unseated)
+write_rows(f"{out}/pull.csv", rows + unseated,
+           "pull test: forces in the unit's own weight m|g| (-); s, y, n: on the slope face in Dn (-)")
 summary = {"command": "bench/run_pull_test.sh", "engine": engine, "sets": sys.argv[6].split(), "pull_rate": rate, "pull_max": pull_max,
            "pull_angle_deg": angle, "units": len(rows), "rounds": len({r["round"] for r in rows + unseated}),
            "stayed": sum(1 for r in rows if r["stayed"] == "1"), "unseated": len(unseated),
