@@ -38,21 +38,22 @@ struct GaugeRecord {
     std::vector<std::vector<double>> eta; // per gauge
 };
 
-// The gauges' rows up to `until` (s), eta from the still water level.
+// The gauges' rows up to `until` (s), eta from the still water level: the
+// first `count` gauges, or as many as every row of three or more holds (a
+// case written without the scene's extra gauges keeps its array).
 GaugeRecord read_gauges(const fs::path &case_dir, double level, std::size_t count, double until) {
+    std::vector<std::vector<double>> rows;
+    for (std::vector<double> &row : gauge_rows(case_dir))
+        if (row.size() >= 4 && row[0] <= until) {
+            count = std::min(count, row.size() - 1);
+            rows.push_back(std::move(row));
+        }
     GaugeRecord r;
     r.eta.resize(count);
-    for (const std::vector<double> &row : gauge_rows(case_dir)) {
-        if (row.size() < count + 1)
-            continue;
+    for (const std::vector<double> &row : rows) {
         r.t.push_back(row[0]);
         for (std::size_t i = 0; i < count; ++i)
             r.eta[i].push_back(row[i + 1] - level);
-    }
-    while (!r.t.empty() && r.t.back() > until) {
-        r.t.pop_back();
-        for (auto &eta : r.eta)
-            eta.pop_back();
     }
     return r;
 }
@@ -125,6 +126,18 @@ std::string spectrum_csv(const SceneWaves &w, const std::vector<double> &x, doub
     return csv.str();
 }
 
+// One gauge's total waves (null where too few waves give a figure none).
+json total_waves(double x, const WaveStatistics &w) {
+    const auto figure = [](double v) { return std::isnan(v) ? json(nullptr) : json(v); };
+    return {{"x", x},
+            {"Hm0", w.hm0},
+            {"H_max", figure(w.h_max)},
+            {"H_one_third", figure(w.h_one_third)},
+            {"H_2_percent", figure(w.h_2_percent)},
+            {"waves", w.waves},
+            {"mean_level", w.mean_level}};
+}
+
 // The separation over the window's last `span` s: the figures into r.figures.
 void separate(const Scene &scene, const std::vector<double> &x, const GaugeRecord &rec, double span,
               const IrregularWaves &comps, IncidentWaves &r) {
@@ -135,9 +148,9 @@ void separate(const Scene &scene, const std::vector<double> &x, const GaugeRecor
     // Uniform samples, a whole number per window: 64 per period.
     const auto n = static_cast<std::size_t>(std::lround(span / period * 64.0));
     const double dt = span / static_cast<double>(n), t0 = end - span;
-    GaugeArray array{x, dt, {}};
-    for (const auto &eta : rec.eta)
-        array.eta.push_back(resample(rec.t, eta, t0, dt, n));
+    GaugeArray array{{x.begin(), x.begin() + 3}, dt, {}};
+    for (std::size_t i = 0; i < 3; ++i)
+        array.eta.push_back(resample(rec.t, rec.eta[i], t0, dt, n));
     const double f_min = regular ? 0.5 / period : comps.frequency.front() - 0.5 * comps.frequency_step;
     const double f_max = regular ? 1.5 / period : comps.frequency.back() + 0.5 * comps.frequency_step;
     const SeparatedWaves spectra = separate_waves(array, depth, g, f_min, f_max);
@@ -174,7 +187,13 @@ void separate(const Scene &scene, const std::vector<double> &x, const GaugeRecor
     out["gauge_periods"] = periods;
     out["window"] = {t0, end};
     out["incident_Tm02"] = inc.tm02;
-    r.spectrum_csv = spectrum_csv(w, x, t0, end, spectra, comps);
+    // Each gauge's total waves, the array's beside the extra ones' (a berm's against the toe's).
+    out["array_gauges"] = json::array();
+    out["extra_gauges"] = json::array();
+    for (std::size_t i = 0; i < rec.eta.size(); ++i)
+        out[i < 3 ? "array_gauges" : "extra_gauges"].push_back(
+            total_waves(x[i], wave_statistics(resample(rec.t, rec.eta[i], t0, dt, n), dt, 0.05 * H)));
+    r.spectrum_csv = spectrum_csv(w, array.x, t0, end, spectra, comps);
 }
 
 } // namespace
@@ -186,16 +205,21 @@ IncidentWaves measure_incident_waves(const Scene &scene, const std::vector<doubl
     r.figures = {{"type", w.type},
                  {"target_height", w.target_height()},
                  {"target_period", w.target_period()},
-                 {"gauge_x", x},
+                 {"gauge_x", std::vector<double>(x.begin(), x.begin() + 3)},
                  {"depth", scene.still_water_depth()}};
     if (w.type == "regular")
         r.figures["theory"] = w.theory;
-    const GaugeRecord rec = read_gauges(case_dir, scene.fluid->water_level, 3, until);
+    const GaugeRecord rec = read_gauges(case_dir, scene.fluid->water_level, x.size(), until);
     if (rec.t.size() < 8) {
         r.warnings.push_back("waves: the gauges recorded nothing (" +
                              (case_dir / "postProcessing/gauges").string() + ")");
         return r;
     }
+    if (rec.eta.size() < x.size())
+        r.warnings.push_back("waves: the gauges' record holds " + std::to_string(rec.eta.size()) +
+                             " gauges where the scene names " + std::to_string(x.size()) +
+                             ": waves.extra_gauges from x = " + figure_text(x[rec.eta.size()]) +
+                             " m have no record and are left out");
     const IrregularWaves comps = w.type == "regular" ? IrregularWaves{} : jonswap_components(w.jonswap_sea());
     const double end = rec.t.back();
     const Window win = analysis_window(scene, x, end, comps, r);
@@ -230,7 +254,8 @@ void add_incident_waves(const IncidentWaves &waves,
         if (std::system(plot.c_str()) != 0)
             warn("waves: the spectrum chart failed (needs python3-matplotlib): " + plot);
         out["files"] = {{"spectrum", "waves_spectrum.csv"}, {"chart", "waves_spectrum.png"}};
-        out["si_units"] = {{"heights", "m"}, {"periods", "s"}, {"spectra", "m^2/Hz"}};
+        out["si_units"] = {
+            {"heights", "m"}, {"periods", "s"}, {"spectra", "m^2/Hz"}, {"x", "m"}, {"mean_level", "m"}};
     }
     summary["waves"] = out;
 }

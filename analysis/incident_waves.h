@@ -37,14 +37,16 @@ namespace armour {
 
 struct IncidentWaves {
     // summary["waves"]: the train's targets always; incident_height,
-    // incident_period, s_om, reflection_coefficient, waves, ... when the
-    // record held a window to analyse (SI).
+    // incident_period, s_om, reflection_coefficient, waves, ... and each
+    // gauge's total Hm0, H_max, H_one_third, H_2_percent (array_gauges,
+    // extra_gauges) when the record held a window to analyse (SI).
     nlohmann::json figures;
     std::vector<std::string> warnings; // "waves: ..." (a short record, a repeating train)
     std::string spectrum_csv;          // waves_spectrum.csv's text; "" when nothing was analysed
 };
 
-// The gauges at `gauge_x` (m, the Mansard-Funke array of the case) in
+// The gauges at `gauge_x` (m: the case's Mansard-Funke array, then its
+// waves.extra_gauges, whose total waves go into figures["extra_gauges"]) in
 // `case_dir`, their record up to `until` (s; `armour report --until`).
 IncidentWaves measure_incident_waves(const Scene &scene, const std::vector<double> &gauge_x,
                                      const std::filesystem::path &case_dir, double until = HUGE_VAL);

@@ -76,17 +76,21 @@ bool makes_wave_train(const Scene &scene) {
     return scene.fluid && scene.waves && scene.waves->type != "solitary";
 }
 
-// The Mansard-Funke array, each gauge moved to the centre of its column of
-// cells (a point on a face would sit in two columns).
+// The Mansard-Funke array, then waves.extra_gauges, each gauge moved to the
+// centre of its column of the block's cells (a point on a face would sit in
+// two columns; in a [[refine]] region that centre is the face between the
+// halves, where the gauges' function object reads the cell on its +x side).
 std::vector<double> wave_gauge_positions(const Scene &scene) {
     if (!makes_wave_train(scene))
         return {};
     const SceneWaves &w = *scene.waves;
     const double L = wavelength(w.target_period(), scene.still_water_depth(), scene.gravity.norm());
     const MeshAxis along = flume_mesh(scene).axes[0];
+    std::vector<double> at = {*w.gauge_x, *w.gauge_x + 0.1 * L, *w.gauge_x + 0.25 * L};
+    at.insert(at.end(), w.extra_gauges.begin(), w.extra_gauges.end());
     std::vector<double> x;
-    for (const double at : {*w.gauge_x, *w.gauge_x + 0.1 * L, *w.gauge_x + 0.25 * L})
-        x.push_back(along.column_centre(at));
+    for (const double a : at)
+        x.push_back(along.column_centre(a));
     return x;
 }
 

@@ -8,9 +8,10 @@
 //     irregularMultiDirectional with our JONSWAP components) and absorbing
 //     outlet (shallowWaterAbsorption) into constant/waveProperties, the
 //     outlet's velocity condition, the three gauges of the Mansard-Funke
-//     array at cell centres, and the side patches (2D or walled). A template
-//     with a wave maker needs [waves] regular or irregular, and such waves
-//     need such a template: either mismatch is an InputError naming the key.
+//     array and waves.extra_gauges at cell centres, and the side patches
+//     (2D or walled). A template with a wave maker needs [waves] regular or
+//     irregular, and such waves need such a template: either mismatch is an
+//     InputError naming the key.
 //
 //     After the run, the incident-wave analysis (analysis/incident_waves.h)
 //     reads the gauges at wave_gauge_positions().
@@ -35,8 +36,8 @@ void wave_tokens(const Scene &scene, const std::string &template_text,
                  std::map<std::string, std::string> &tokens);
 
 // m: x of the Mansard-Funke array (x, x + L/10, x + L/4 from waves.gauge_x),
-// each at the centre of its column of cells; empty when the scene makes no
-// wave train.
+// then of waves.extra_gauges, each at the centre of its column of cells;
+// empty when the scene makes no wave train.
 std::vector<double> wave_gauge_positions(const Scene &scene);
 
 } // namespace armour

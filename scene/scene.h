@@ -280,6 +280,7 @@ struct SceneWaves {
     bool active_absorption = true;    // inlet absorbs waves coming back
     std::string outlet = "absorbing"; // absorbing | shallow_water | wall
     std::optional<double> gauge_x;    // m, first gauge of the array (default: one wavelength from the inlet)
+    std::vector<double> extra_gauges; // m, x of more gauges (the total waves there, not separated)
 
     // The train's own period (s) and height (m): T and H regular, Tp and Hs irregular.
     double target_period() const { return type == "regular" ? period : tp; }

@@ -403,6 +403,10 @@ template <class S> KeyInfo describe(const char *section, const Key<S> &k) {
                    [&](std::optional<double> S::*) { info.type = "number"; },
                    [&](std::optional<Eigen::Vector3d> S::*) { info.type = "[x, y, z]"; },
                    [&](std::optional<bool> S::*) { info.type = "boolean"; },
+                   [&](std::vector<double> S::*) {
+                       info.type = "array of numbers";
+                       value = "[]";
+                   },
                },
                k.field);
     if (*k.default_doc)

@@ -56,7 +56,8 @@ template <class S>
 using Field =
     std::variant<std::string S::*, double S::*, int S::*, bool S::*, std::uint64_t S::*, Eigen::Vector3d S::*,
                  Eigen::Vector4d S::*, std::array<bool, 3> S::*, std::array<int, 3> S::*,
-                 std::optional<double> S::*, std::optional<Eigen::Vector3d> S::*, std::optional<bool> S::*>;
+                 std::optional<double> S::*, std::optional<Eigen::Vector3d> S::*, std::optional<bool> S::*,
+                 std::vector<double> S::*>;
 
 // One key of a section whose entries are read into an S.
 template <class S> struct Key {

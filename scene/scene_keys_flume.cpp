@@ -229,6 +229,11 @@ const std::vector<Key<SceneWaves>> &wave_keys() {
             "array must lie inside the flume")
             .defaults("one wavelength L (at T or Tp) from the inlet")
             .written_if(not_solitary),
+        key("extra_gauges", &W::extra_gauges, "m",
+            "x of up to 8 more free-surface gauges anywhere inside the flume (on a toe berm, at a "
+            "structure's toe): each one's total waves (incident and reflected, not separated) over the "
+            "array's analysis window, in summary.json's waves.extra_gauges")
+            .written_if(not_solitary),
     };
     return keys;
 }

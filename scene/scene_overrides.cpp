@@ -105,6 +105,8 @@ std::string type_words(const std::string &type) {
         return "true or false";
     if (type.rfind('[', 0) == 0)
         return "an array " + type;
+    if (type.rfind("array", 0) == 0)
+        return "an " + type;      // "array of numbers"
     return "an array of " + type; // "3 booleans", "3 integers"
 }
 

@@ -16,6 +16,10 @@ using namespace scene_detail;
 
 namespace {
 
+// waves.extra_gauges: a few where the array leaves off (a berm, a toe), not a
+// gauge per cell; each adds a column sum to every fluid step.
+constexpr std::size_t kMaxExtraGauges = 8;
+
 // The still water: its level, or a water column (dam break), and a solitary
 // wave's height below the depth.
 void read_fluid_water(const Table &t, const std::vector<Key<SceneFluid>> &keys, const Scene &s,
@@ -251,7 +255,7 @@ void read_waves(const Table &root, Scene &s) {
         if (*k.when && w.type != k.when)
             read_value(t, k, w);
     if (w.type == "solitary") {
-        for (const char *name : {"ramp_time", "active_absorption", "outlet", "gauge_x"})
+        for (const char *name : {"ramp_time", "active_absorption", "outlet", "gauge_x", "extra_gauges"})
             if (t.has(name))
                 t.fail(name, "not used by type \"solitary\" (the template's solitary wave of "
                              "fluid.wave_height; docs/waves.md)");
@@ -286,6 +290,15 @@ void read_waves(const Table &root, Scene &s) {
         w.gauge_x = s.domain_min.x() + L;
     if (const std::string why = gauge_refusal(s, *w.gauge_x, period); !why.empty())
         t.fail("gauge_x", why);
+    if (w.extra_gauges.size() > kMaxExtraGauges)
+        t.fail("extra_gauges", "at most " + std::to_string(kMaxExtraGauges) + " gauges (got " +
+                                   std::to_string(w.extra_gauges.size()) + ")");
+    for (const double x : w.extra_gauges)
+        if (!(x > s.domain_min.x() && x < s.domain_max.x()))
+            t.fail("extra_gauges",
+                   "each gauge must lie inside the flume run.domain_min.x .. run.domain_max.x = (" +
+                       number_text(s.domain_min.x()) + ", " + number_text(s.domain_max.x()) + ") m (got " +
+                       number_text(x) + ")");
     s.waves = w;
 }
 

@@ -45,6 +45,14 @@ template <class S> std::optional<std::string> value_text(const Key<S> &k, const 
             [&](std::optional<Eigen::Vector3d> S::*f) -> std::optional<std::string> {
                 return (obj.*f) ? std::optional<std::string>(vector_text(*(obj.*f))) : std::nullopt;
             },
+            [&](std::vector<double> S::*f) -> std::optional<std::string> {
+                if ((obj.*f).empty())
+                    return std::nullopt;
+                std::string text;
+                for (const double v : obj.*f)
+                    text += (text.empty() ? "" : ", ") + toml_float(v);
+                return "[" + text + "]";
+            },
         },
         k.field);
 }

@@ -269,6 +269,25 @@ class Table {
         return vec<3>(key, fallback, unit, "[x, y, z]");
     }
 
+    // A list of any length (an empty one too), each entry a finite number.
+    std::vector<double> numbers(const std::string &key, const std::string &unit) const {
+        const toml::node &n = *node(key);
+        const std::string rule = "must be an array of numbers" + (unit.empty() ? "" : " in " + unit);
+        const toml::array *a = n.as_array();
+        if (!a)
+            fail(key, rule + " (got " + type_name(n) + ")");
+        std::vector<double> out;
+        for (std::size_t i = 0; i < a->size(); ++i) {
+            const toml::node &e = *a->get(i);
+            if (!e.is_number())
+                fail(key, rule + " (entry " + std::to_string(i) + " is " + type_name(e) + ")");
+            out.push_back(*e.value<double>());
+            if (!std::isfinite(out.back()))
+                fail(key, rule + " (entry " + std::to_string(i) + " is " + number_text(out.back()) + ")");
+        }
+        return out;
+    }
+
     std::array<bool, 3> flags(const std::string &key, const std::array<bool, 3> &fallback) const {
         const toml::node *n = node(key);
         if (!n)
@@ -399,6 +418,11 @@ template <class S> void read_value(const Table &t, const Key<S> &k, S &obj) {
                    [&](Eigen::Vector4d S::*f) { obj.*f = t.vec<4>(name, obj.*f, unit, "[w, x, y, z]"); },
                    [&](std::array<bool, 3> S::*f) { obj.*f = t.flags(name, obj.*f); },
                    [&](std::array<int, 3> S::*f) { obj.*f = t.cells(name); },
+                   [&](std::vector<double> S::*f) {
+                       obj.*f = t.numbers(name, unit);
+                       for (const double v : obj.*f)
+                           in_range(v);
+                   },
                },
                k.field);
 }

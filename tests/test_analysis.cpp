@@ -5,6 +5,8 @@
 #include "bodies_file.h"
 #include "body_recorder.h"
 #include "gauge_rows.h"
+#include "incident_waves.h"
+#include "scene.h"
 #include "scene_keys.h"
 #include "shapes.h"
 
@@ -175,6 +177,74 @@ TEST_F(Analysis, GaugeRowsLeaveOutALineTheSolverIsStillWriting) {
     std::ofstream(part / "surfaceElevation.dat", std::ios::app) << "85\n"; // the line ends
     ASSERT_EQ(armour::gauge_rows(dir_).size(), 3u);
     EXPECT_EQ(armour::gauge_rows(dir_).back()[3], 0.385);
+}
+
+// waves.extra_gauges: the gauges after the array's three are each measured
+// over the array's window (total waves about their own mean level), the
+// array's figures stay the array's. A synthetic record of the shipped
+// stability scene's gauges: a 1.5 s sine of 60 mm on a 5 mm set-up at the
+// first extra gauge, still water at the second (their x as the analysis
+// is handed them; where the case puts them is test_flume_mesh's).
+TEST_F(Analysis, ExtraGaugesReportTheirOwnWavesOverTheArraysWindow) {
+    const armour::Scene scene = armour::load_scene(
+        std::string(ARMOUR_SOURCE_DIR) + "/scenes/stability_cubes.toml", {"waves.extra_gauges=[1.22, 1.30]"});
+    ASSERT_EQ(scene.waves->extra_gauges, (std::vector<double>{1.22, 1.30}));
+    const double level = scene.fluid->water_level;
+    const fs::path part = dir_ / "postProcessing" / "gauges" / "0";
+    fs::create_directories(part);
+    std::ofstream out(part / "surfaceElevation.dat");
+    out << "# Time z0 z1 z2 z3 z4\n";
+    for (int i = 0; i <= 4000; ++i) { // 40 s at 10 ms
+        const double t = 0.01 * i, array = 0.02 * std::sin(2 * M_PI * t / 1.8);
+        out << t << " " << level + array << " " << level + array << " " << level + array << " "
+            << level + 0.005 + 0.03 * std::sin(2 * M_PI * t / 1.5) << " " << level << "\n";
+    }
+    out.close();
+    const std::vector<double> x = {0.3, 0.63, 1.13, 1.225, 1.305};
+    const armour::IncidentWaves w = armour::measure_incident_waves(scene, x, dir_);
+    ASSERT_TRUE(w.figures.contains("extra_gauges")) << w.figures.dump();
+    EXPECT_EQ(w.figures["gauge_x"].size(), 3u);
+    EXPECT_EQ(w.figures["array_gauges"].size(), 3u);
+    EXPECT_NEAR(w.figures["array_gauges"][2]["H_max"].get<double>(), 0.04, 0.04 * 2e-3);
+    const nlohmann::json &extra = w.figures["extra_gauges"];
+    ASSERT_EQ(extra.size(), 2u);
+    EXPECT_EQ(extra[0]["x"].get<double>(), 1.225);
+    const double span = w.figures["window"][1].get<double>() - w.figures["window"][0].get<double>();
+    ASSERT_GT(span, 10 * 1.5) << "the window holds at least ten of the sine's periods";
+    // Hm0 of a sine, 4 a / sqrt(2), and its mean, the set-up, each within what the part period
+    // the window cuts can move them over >= 10 periods (m0 by < 1 / (4 pi 10), the mean by
+    // < a / (pi 10)); left on the set-up, Hm0 would be 2.7 % high.
+    EXPECT_NEAR(extra[0]["Hm0"].get<double>(), 4 * 0.03 / std::sqrt(2.0), 0.005 * 0.085);
+    EXPECT_NEAR(extra[0]["H_max"].get<double>(), 0.06, 0.06 * 2e-3);
+    EXPECT_NEAR(extra[0]["H_one_third"].get<double>(), 0.06, 0.06 * 2e-3);
+    EXPECT_TRUE(extra[0]["H_2_percent"].is_null()); // under 50 waves
+    EXPECT_NEAR(extra[0]["mean_level"].get<double>(), 0.005, 0.03 / (M_PI * 10));
+    EXPECT_NEAR(extra[0]["waves"].get<int>(), span / 1.5, 2.0); // whole waves between down-crossings
+    EXPECT_EQ(extra[1]["Hm0"].get<double>(), 0.0);
+    EXPECT_EQ(extra[1]["waves"].get<int>(), 0);
+    EXPECT_TRUE(extra[1]["H_max"].is_null());
+    const auto lacks = [](const std::string &text) {
+        return text.find("have no record") != std::string::npos;
+    };
+    EXPECT_TRUE(std::none_of(w.warnings.begin(), w.warnings.end(), lacks));
+    // A record of the array alone (a case written without the extra gauges)
+    // keeps the array and says which gauges it lacks.
+    std::ofstream array_only(part / "surfaceElevation.dat");
+    array_only << "# Time z0 z1 z2\n";
+    for (int i = 0; i <= 4000; ++i) {
+        const double t = 0.01 * i, array = 0.02 * std::sin(2 * M_PI * t / 1.8);
+        array_only << t << " " << level + array << " " << level + array << " " << level + array << "\n";
+    }
+    array_only.close();
+    const armour::IncidentWaves three = armour::measure_incident_waves(scene, x, dir_);
+    ASSERT_TRUE(three.figures.contains("array_gauges")) << three.figures.dump();
+    EXPECT_EQ(three.figures["array_gauges"].size(), 3u);
+    EXPECT_EQ(three.figures["extra_gauges"].size(), 0u);
+    const auto said = std::find_if(three.warnings.begin(), three.warnings.end(), lacks);
+    ASSERT_NE(said, three.warnings.end());
+    EXPECT_NE(said->find("holds 3 gauges where the scene names 5: waves.extra_gauges from x = 1.225 m"),
+              std::string::npos)
+        << *said;
 }
 
 TEST(AnalysisRegistry, HoldsExactlyTheKindsASceneMayName) {

@@ -4,6 +4,7 @@
 // edges off the fine grid's nodes. blockMesh's own points are checked
 // against these lines in test_wave_flume (GradedMesh...).
 #include "flume_mesh.h"
+#include "wave_case.h"
 
 #include <gtest/gtest.h>
 
@@ -56,6 +57,26 @@ TEST(FlumeMesh, UniformWithoutARefinedBox) {
         const double h = (scene.domain_max[i] - scene.domain_min[i]) / axis.cells;
         for (int k = 0; k <= axis.cells; ++k)
             EXPECT_NEAR(axis.nodes[k], scene.domain_min[i] + k * h, 1e-12);
+    }
+}
+
+// waves.extra_gauges follow the Mansard-Funke array, each moved to the
+// centre of the block's cell column it lies in (as the array's are).
+TEST(FlumeMesh, ExtraGaugesFollowTheArrayAtTheirColumnsCentres) {
+    const armour::Scene plain = armour::load_scene(scene_path("stability_cubes.toml"));
+    const armour::Scene scene =
+        armour::load_scene(scene_path("stability_cubes.toml"), {"waves.extra_gauges=[1.22, 1.30, 1.38]"});
+    const std::vector<double> array = armour::wave_gauge_positions(plain);
+    const std::vector<double> x = armour::wave_gauge_positions(scene);
+    ASSERT_EQ(array.size(), 3u);
+    ASSERT_EQ(x.size(), 6u);
+    EXPECT_EQ(std::vector<double>(x.begin(), x.begin() + 3), array);
+    const armour::MeshAxis along = armour::flume_mesh(scene).axes[0];
+    for (std::size_t i = 0; i < 3; ++i) {
+        const double at = scene.waves->extra_gauges[i];
+        const auto upper = std::upper_bound(along.nodes.begin(), along.nodes.end(), at);
+        ASSERT_NE(upper, along.nodes.end());
+        EXPECT_DOUBLE_EQ(x[3 + i], 0.5 * (*(upper - 1) + *upper)) << at;
     }
 }
 

@@ -1173,6 +1173,27 @@ TEST_F(SceneFile, WavesOutsideTheirLimitsAreRefusedNamingTheKey) {
               std::string::npos);
     EXPECT_NE(error_of(p, {"waves.gauge_x=-2"}).find("key 'waves.gauge_x': the gauge array"),
               std::string::npos);
+    // Extra gauges: anywhere inside the flume, a few, numbers; kept in the resolved scene.
+    const Scene extra = load_scene(p, {"waves.extra_gauges=[1.5, 2.25]"});
+    EXPECT_EQ(extra.waves->extra_gauges, (std::vector<double>{1.5, 2.25}));
+    EXPECT_EQ(load_scene(write(armour::resolved_scene_toml(extra), "extra.toml")).waves->extra_gauges,
+              extra.waves->extra_gauges);
+    EXPECT_TRUE(load_scene(p).waves->extra_gauges.empty());
+    for (const char *bad : {"[-2.5]", "[4]"}) // the flume: x -2 .. 4 m
+        EXPECT_NE(error_of(p, {std::string("waves.extra_gauges=") + bad})
+                      .find("key 'waves.extra_gauges': each gauge must lie inside the flume"),
+                  std::string::npos)
+            << bad;
+    EXPECT_NE(error_of(p, {"waves.extra_gauges=[1, \"2\"]"})
+                  .find("key 'waves.extra_gauges': must be an array of numbers in m (entry 1 is string"),
+              std::string::npos);
+    EXPECT_NE(error_of(p, {"waves.extra_gauges=[1, 1, 1, 1, 1, 1, 1, 1, 1]"})
+                  .find("key 'waves.extra_gauges': at most 8 gauges (got 9)"),
+              std::string::npos);
+    EXPECT_NE(error_of(p, {"waves.extra_gauges=abc"})
+                  .find("key 'waves.extra_gauges' takes an array of numbers, and abc is not one"),
+              std::string::npos)
+        << error_of(p, {"waves.extra_gauges=abc"});
     // Each theory's own limit, named: cnoidal in deep water, StokesII where
     // v1912's wavelength iteration has not converged, stream function (no
     // solver for Fenton's coefficients), an irregular train too long for it.

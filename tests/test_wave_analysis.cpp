@@ -164,6 +164,49 @@ TEST(ZeroCrossing, MeasuresASineExactly) {
     EXPECT_NEAR(z.mean_height, 0.1, 0.1 * 2e-3); // sampled crests: within 0.2 %
 }
 
+// 100 waves of 1 to 100 mm, one 1 s sine period each in a scrambled order,
+// on a 10 mm set-up, then a 0.5 mm ripple whose down-crossing closes the
+// last wave: every statistic is known (a sine sampled 100 times a period
+// sums to its exact variance and to zero).
+TEST(WaveStatistics, RanksTheWavesOfAKnownRecordAboutItsMeanLevel) {
+    std::vector<double> heights;
+    for (int k = 1; k <= 100; ++k)
+        heights.push_back(1e-3 * ((k * 37) % 101)); // a permutation of 1..100 mm
+    heights.push_back(0.5e-3);
+    std::vector<double> eta = {0.012}; // above the level: the record opens with a down-crossing
+    double m0 = 0.0;
+    for (const double h : heights) {
+        for (int i = 0; i < 100; ++i)
+            eta.push_back(0.01 - 0.5 * h * std::sin(2 * M_PI * i / 100.0));
+        m0 += 100 * h * h / 8.0; // each sample's square, summed
+    }
+    m0 /= static_cast<double>(eta.size());
+    const WaveStatistics w = wave_statistics(eta, 0.01, 0.9e-3);
+    EXPECT_EQ(w.waves, 100);
+    EXPECT_NEAR(w.mean_level, 0.01, 1e-6);
+    EXPECT_NEAR(w.hm0, 4.0 * std::sqrt(m0), 1e-6);
+    EXPECT_NEAR(w.h_max, 0.100, 1e-12);
+    EXPECT_NEAR(w.h_2_percent, 0.098, 1e-12);                 // two of the 100 exceed it
+    EXPECT_NEAR(w.h_one_third, 0.5 * (0.100 + 0.068), 1e-12); // the mean of 100 .. 68 mm
+    // Waves under min_height do not count: 51 mm and up leaves the 50 highest.
+    const WaveStatistics high = wave_statistics(eta, 0.01, 0.0505);
+    EXPECT_EQ(high.waves, 50);
+    EXPECT_NEAR(high.h_2_percent, 0.099, 1e-12);                 // one of the 50 exceeds it
+    EXPECT_NEAR(high.h_one_third, 0.5 * (0.100 + 0.085), 1e-12); // the mean of 100 .. 85 mm
+    // 49 waves: none of them is exceeded by as few as 2 %.
+    eta.resize(1 + 49 * 100);
+    eta.push_back(-1e-3); // closes the 49th
+    const WaveStatistics few = wave_statistics(eta, 0.01, 0.9e-3);
+    EXPECT_EQ(few.waves, 49);
+    EXPECT_TRUE(std::isnan(few.h_2_percent));
+    EXPECT_FALSE(std::isnan(few.h_one_third));
+    // Still water: no wave, no height.
+    const WaveStatistics still = wave_statistics(std::vector<double>(500, 0.0), 0.01, 1e-3);
+    EXPECT_EQ(still.waves, 0);
+    EXPECT_EQ(still.hm0, 0.0);
+    EXPECT_TRUE(std::isnan(still.h_max));
+}
+
 TEST(Resample, InterpolatesLinearly) {
     const std::vector<double> y = resample({0.0, 1.0, 3.0}, {0.0, 2.0, 0.0}, 0.5, 1.0, 3);
     EXPECT_DOUBLE_EQ(y[0], 1.0);

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <functional>
+#include <numeric>
 #include <stdexcept>
 
 namespace armour {
@@ -193,6 +195,7 @@ ZeroCrossing zero_down_crossing(const std::vector<double> &eta, double dt, doubl
         if (h < min_height)
             continue;
         heights += h;
+        z.heights.push_back(h);
         periods += crossings[c] - crossings[c - 1];
         ++z.waves;
     }
@@ -201,6 +204,35 @@ ZeroCrossing zero_down_crossing(const std::vector<double> &eta, double dt, doubl
         z.mean_period = periods / z.waves;
     }
     return z;
+}
+
+WaveStatistics wave_statistics(std::vector<double> eta, double dt, double min_height) {
+    WaveStatistics w;
+    if (eta.empty())
+        return w;
+    const double n = static_cast<double>(eta.size());
+    for (const double e : eta)
+        w.mean_level += e / n;
+    double m0 = 0.0;
+    for (double &e : eta) {
+        e -= w.mean_level;
+        m0 += e * e / n;
+    }
+    w.hm0 = 4.0 * std::sqrt(m0);
+    const ZeroCrossing z = zero_down_crossing(eta, dt, min_height);
+    w.waves = z.waves;
+    std::vector<double> h = z.heights;
+    std::sort(h.begin(), h.end(), std::greater<>());
+    if (!h.empty())
+        w.h_max = h.front();
+    if (const std::size_t third = h.size() / 3; third > 0)
+        w.h_one_third = std::accumulate(h.begin(), h.begin() + static_cast<long>(third), 0.0) /
+                        static_cast<double>(third);
+    // Highest first, h[k] is exceeded by k waves: k = 2 % of them, rounded
+    // up (N = 50: the second highest; under 50 no height is exceeded by so few).
+    if (h.size() >= 50)
+        w.h_2_percent = h[static_cast<std::size_t>(std::ceil(0.02 * static_cast<double>(h.size())))];
+    return w;
 }
 
 std::vector<double> resample(const std::vector<double> &t, const std::vector<double> &y, double t0, double dt,

@@ -27,6 +27,7 @@
 //     const SpectralParameters in = spectral_parameters(s.frequency, s.incident, 0.3, 1.6);
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -64,6 +65,19 @@ struct ZeroCrossing {
     double mean_height = 0.0; // m, crest to trough between zero down-crossings
     double mean_period = 0.0; // s
     int waves = 0;
+    std::vector<double> heights; // m, each wave's, in time order
+};
+
+// The total waves at one gauge (incident and reflected together), about
+// their mean level (a set-up on a berm left out).
+struct WaveStatistics {
+    double hm0 = 0.0;         // m, 4 sqrt(m0)
+    double h_max = NAN;       // m, by zero down-crossing; NaN without a wave
+    double h_one_third = NAN; // m, the highest third's mean; NaN under 3 waves
+    double h_2_percent = NAN; // m, the height 2 % of the waves exceed; NaN under 50 waves (none
+                              // of a shorter record's heights is exceeded by as few as 2 %)
+    double mean_level = 0.0;  // m, the record's mean (its set-up)
+    int waves = 0;
 };
 
 // Spectra from f_min to f_max (Hz; at least three gauges, equal records).
@@ -74,6 +88,9 @@ SpectralParameters spectral_parameters(const std::vector<double> &frequency,
 RegularSeparation separate_regular(const GaugeArray &gauges, double period, double depth, double g);
 // Waves higher than min_height only (ripples between waves do not count).
 ZeroCrossing zero_down_crossing(const std::vector<double> &eta, double dt, double min_height);
+// eta (m) sampled every dt (s); its mean is taken off before anything else,
+// and only waves higher than min_height count (as zero_down_crossing).
+WaveStatistics wave_statistics(std::vector<double> eta, double dt, double min_height);
 // y(t) linearly interpolated at t0 + i dt, i < n (t increasing).
 std::vector<double> resample(const std::vector<double> &t, const std::vector<double> &y, double t0, double dt,
                              std::size_t n);
