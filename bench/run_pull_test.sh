@@ -121,7 +121,7 @@ ax.scatter(s, [float(r["resistance_weights"]) if r["resistance_weights"] else pu
            c=["tab:red" if r["stayed"] == "1" else "tab:blue" for r in rows], s=18)
 if first["pull_lone_unit_lift"] is not None:
     ax.axhline(first["pull_lone_unit_lift"], color="k", lw=0.8, ls="--", label="a unit held against sliding lifts off")
-ax.axhline(pull_max, color="tab:red", lw=0.6, ls=":", label=f"the largest pull (red: held it)")
+ax.axhline(pull_max, color="tab:red", lw=0.6, ls=":", label="the largest pull (red: held it)")
 ax.set_xlabel("s: up the face from its toe [Dn]")
 ax.set_ylabel("pull held [unit weights m|g|]")
 ax.set_title(f"pull-out test, {engine}: {len(rows)} outer units, median {q(0.5):.2f}", fontsize=10)
