@@ -253,14 +253,8 @@ class Table {
         if (a->size() != static_cast<std::size_t>(N))
             fail(key, rule + " (got " + std::to_string(a->size()) + " entries)");
         Eigen::Matrix<double, N, 1> v;
-        for (int i = 0; i < N; ++i) {
-            const toml::node &e = *a->get(static_cast<std::size_t>(i));
-            if (!e.is_number())
-                fail(key, rule + " (entry " + std::to_string(i) + " is " + type_name(e) + ")");
-            v[i] = *e.value<double>();
-            if (!std::isfinite(v[i]))
-                fail(key, rule + " (entry " + std::to_string(i) + " is " + number_text(v[i]) + ")");
-        }
+        for (int i = 0; i < N; ++i)
+            v[i] = entry_number(key, rule, *a, static_cast<std::size_t>(i));
         return v;
     }
 
@@ -277,15 +271,21 @@ class Table {
         if (!a)
             fail(key, rule + " (got " + type_name(n) + ")");
         std::vector<double> out;
-        for (std::size_t i = 0; i < a->size(); ++i) {
-            const toml::node &e = *a->get(i);
-            if (!e.is_number())
-                fail(key, rule + " (entry " + std::to_string(i) + " is " + type_name(e) + ")");
-            out.push_back(*e.value<double>());
-            if (!std::isfinite(out.back()))
-                fail(key, rule + " (entry " + std::to_string(i) + " is " + number_text(out.back()) + ")");
-        }
+        for (std::size_t i = 0; i < a->size(); ++i)
+            out.push_back(entry_number(key, rule, *a, i));
         return out;
+    }
+
+    // Entry i of an array of numbers, refused under `rule` when it is not a finite number.
+    double entry_number(const std::string &key, const std::string &rule, const toml::array &a,
+                        std::size_t i) const {
+        const toml::node &e = *a.get(i);
+        if (!e.is_number())
+            fail(key, rule + " (entry " + std::to_string(i) + " is " + type_name(e) + ")");
+        const double v = *e.value<double>();
+        if (!std::isfinite(v))
+            fail(key, rule + " (entry " + std::to_string(i) + " is " + number_text(v) + ")");
+        return v;
     }
 
     std::array<bool, 3> flags(const std::string &key, const std::array<bool, 3> &fallback) const {
