@@ -190,9 +190,12 @@ void separate(const Scene &scene, const std::vector<double> &x, const GaugeRecor
     // Each gauge's total waves, the array's beside the extra ones' (a berm's against the toe's).
     out["array_gauges"] = json::array();
     out["extra_gauges"] = json::array();
-    for (std::size_t i = 0; i < rec.eta.size(); ++i)
+    for (std::size_t i = 0; i < rec.eta.size(); ++i) {
+        // The array's records are resampled already, for the separation.
+        std::vector<double> eta = i < 3 ? array.eta[i] : resample(rec.t, rec.eta[i], t0, dt, n);
         out[i < 3 ? "array_gauges" : "extra_gauges"].push_back(
-            total_waves(x[i], wave_statistics(resample(rec.t, rec.eta[i], t0, dt, n), dt, 0.05 * H)));
+            total_waves(x[i], wave_statistics(std::move(eta), dt, 0.05 * H)));
+    }
     r.spectrum_csv = spectrum_csv(w, array.x, t0, end, spectra, comps);
 }
 
