@@ -40,8 +40,11 @@ Scene settle_scene(const Scene &scene, const SceneSetup &setup);
 std::vector<SceneBody> bodies_at_rest(const Scene &scene, const SceneSetup &setup,
                                       const std::vector<BodyState> &states);
 // The scene the waves start from after the settle: every unit an explicit
-// [[body]] at `bodies`, no settle.
-Scene settled_scene(const Scene &scene, std::vector<SceneBody> bodies);
+// [[body]] at `bodies`, no settle; `growth` the settle's (settle_growth).
+Scene settled_scene(const Scene &scene, std::vector<SceneBody> bodies, double growth);
+// How much the settle's scene `dry` (settle_scene) grew the scene's units to
+// hold their clumps: the largest ratio of their sizes, 1 when none grew.
+double settle_growth(const Scene &scene, const Scene &dry);
 // Settles a coupled scene's units in the DEM (a forked child) into OUT/settle
 // and returns the settled scene; `setup` becomes its set-up, `report` the
 // settle's (settled.json).
@@ -57,9 +60,11 @@ void warn_if_no_checkpoint(const Scene &scene);
 // fluid.settle_friction, settle_density or settle_engine without a settle: one
 // warning each.
 void warn_if_settle_keys_unused(const Scene &scene);
-// fluid.settle_engine of sphere clumps handing its layer to exact hulls: one
-// warning (measured: the hulls slump off it before the waves).
-void warn_if_settle_hands_clumps_to_hulls(const Scene &scene);
+// fluid.settle_engine of sphere clumps handing its layer to exact hulls, or
+// exact hulls run from a layer of cubes grown to hold clumps
+// (fluid.settled_growth): one warning (measured: the hulls slump off the
+// first and drop into the second's gaps before the waves).
+void warn_if_hulls_inherit_a_layer(const Scene &scene);
 // The options that do not fit the scene (--np without [fluid], --resume of
 // an engine that cannot restore its state): InputError.
 void check_options(const RunRequest &r, const Scene &scene);

@@ -265,7 +265,7 @@ int dry_run_series(const RunRequest &r, const Scene &scene) {
     if (r.resume)
         checked_series_start(r, scene, setup, out);
     warn_if_settle_keys_unused(scene);
-    warn_if_settle_hands_clumps_to_hulls(scene);
+    warn_if_hulls_inherit_a_layer(scene);
     warn_if_steps_unresumable(scene);
     if (!settles) // the layer the waves meet is known (a settle's is not yet)
         for (const std::string &w : warnings)
@@ -304,7 +304,7 @@ int run_series(const RunRequest &r, const Scene &scene) {
     check_options(r, scene);
     SceneSetup setup = build_scene(scene, r.cache_dir(), true);
     warn_if_settle_keys_unused(scene);
-    warn_if_settle_hands_clumps_to_hulls(scene);
+    warn_if_hulls_inherit_a_layer(scene);
     check_steps(r, scene, setup); // every step's case, before anything is written
     warn_if_steps_unresumable(scene);
     const fs::path out = folder.target();

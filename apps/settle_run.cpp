@@ -172,7 +172,15 @@ std::vector<SceneBody> bodies_at_rest(const Scene &scene, const SceneSetup &setu
     return bodies;
 }
 
-Scene settled_scene(const Scene &scene, std::vector<SceneBody> bodies) {
+double settle_growth(const Scene &scene, const Scene &dry) {
+    double growth = 1.0;
+    for (std::size_t k = 0; k < scene.units.size() && k < dry.units.size(); ++k)
+        if (scene.units[k].size > 0.0)
+            growth = std::max(growth, dry.units[k].size / scene.units[k].size);
+    return growth;
+}
+
+Scene settled_scene(const Scene &scene, std::vector<SceneBody> bodies, double growth) {
     Scene settled = scene;
     settled.fluid->settle_time = 0.0;
     settled.fluid->settle_friction.reset();
@@ -180,6 +188,7 @@ Scene settled_scene(const Scene &scene, std::vector<SceneBody> bodies) {
     settled.fluid->settle_stages = 1;
     settled.fluid->settled_by =
         scene.fluid->settle_engine.empty() ? scene.engine : scene.fluid->settle_engine;
+    settled.fluid->settled_growth = growth;
     settled.fluid->settle_engine.clear();
     settled.drops.clear();
     settled.patterns.clear();
@@ -332,7 +341,7 @@ void run_settle(const RunRequest &r, const Scene &scene, const Scene &dry, const
         displacement = std::max(displacement, (states[i].pose.position - placed[i].position).norm());
     }
     write_text_file(settle_folder.claim(settled_name),
-                    resolved_scene_toml(settled_scene(scene, std::move(bodies))));
+                    resolved_scene_toml(settled_scene(scene, std::move(bodies), settle_growth(scene, dry))));
     write_text_file(
         settle_folder.claim("settled.json"),
         json{
@@ -436,7 +445,7 @@ int settle_only(const RunRequest &r, const Scene &scene) {
         const fs::path out = OutputFolder::check_writable(r.out, "armour run");
         const SceneSetup setup = build_scene(scene, r.cache_dir(), true);
         const Scene dry = settle_scene(scene, setup);
-        warn_if_settle_hands_clumps_to_hulls(scene);
+        warn_if_hulls_inherit_a_layer(scene);
         std::printf("plan: settle %zu units for %g s (fluid.settle_time) in %s under still water at %g m, "
                     "then stop: %s and the layer's figures in %s; no fluid case\n",
                     setup.bodies.size(), scene.fluid->settle_time, dry.engine.c_str(),
@@ -446,7 +455,7 @@ int settle_only(const RunRequest &r, const Scene &scene) {
     }
     OutputFolder folder(r.out, "armour run", OutputFolder::Mode::streaming); // refused before any work
     SceneSetup setup = build_scene(scene, r.cache_dir(), true);
-    warn_if_settle_hands_clumps_to_hulls(scene);
+    warn_if_hulls_inherit_a_layer(scene);
     folder.open();
     json report;
     const Scene settled = settle_before_coupling(r, folder, scene, setup, report);

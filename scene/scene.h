@@ -210,6 +210,11 @@ struct SceneFluid {
     // scene with another unit model is warned that it inherits a layer its
     // units did not settle into.
     std::string settled_by;
+    // How much that settle grew each cube to hold its clump (1 = not grown),
+    // written beside settled_by: exact hulls run from these poses start up to
+    // that growth apart and drop into the gaps before any wave (measured:
+    // docs/validation/stability.md), so a run of them is warned.
+    double settled_growth = 1.0;
     // Turbulence closure (docs/turbulence.md): laminar, or OpenFOAM's RAS
     // kOmegaSST with k and omega at the start from an intensity of the
     // shallow-water celerity sqrt(g depth) and a length scale.

@@ -302,18 +302,31 @@ TEST(StabilityCubes, AHullSettleGrowsItsCubesSoTheClumpsStartFromItsLayer) {
     const std::string settled_text = read_text(settled);
     EXPECT_NE(settled_text.find("size = 0.04 # m"), std::string::npos) << settled_text;
     EXPECT_NE(settled_text.find("settled_by = \"bullet\""), std::string::npos);
+    EXPECT_NE(settled_text.find("settled_growth = 1.06"), std::string::npos) << settled_text;
     EXPECT_EQ(run.summary["engine"], "liggghts");
-    // The same layer for the exact hulls: accepted as it is, no slump said.
+    // The same layer for the exact hulls: accepted, and warned that the
+    // cubes start apart by the growth and drop into the gaps (measured in the
+    // severe sea: a third of the layer moved 0.2 Dn in the first second).
     const SceneRun hulls = armour_test::run_scene(ARMOUR_EXE, settled.string(), "stability_hull_settle_hulls",
                                                   "--engine bullet --dry-run");
     EXPECT_EQ(hulls.status, 0) << hulls.output;
+    EXPECT_NE(
+        hulls.output.find("armour: warning: fluid.settled_growth 1.06: the settle grew each cube 1.06 x"),
+        std::string::npos)
+        << hulls.output;
     EXPECT_EQ(hulls.output.find("slump"), std::string::npos) << hulls.output;
+    // The clumps fill the growth: no warning for them.
+    const SceneRun clumps_again = armour_test::run_scene(ARMOUR_EXE, settled.string(),
+                                                         "stability_hull_settle_clumps_again", "--dry-run");
+    EXPECT_EQ(clumps_again.status, 0) << clumps_again.output;
+    EXPECT_EQ(clumps_again.output.find("settled_growth"), std::string::npos) << clumps_again.output;
     // A layer the hulls settled for themselves (not grown) is refused to the
     // clumps before they run, the remedy named.
     const SceneRun own = run_stability("hull_settle_own", "--engine bullet --set fluid.mesh=graded "
                                                           "--set 'fluid.refine_min=[1.10,-0.124,0.18]' "
                                                           "--set run.duration=0.05");
     ASSERT_EQ(own.status, 0) << own.output;
+    EXPECT_EQ(read_text(own.out / "settle" / "scene.settled.toml").find("settled_growth"), std::string::npos);
     const SceneRun clumps =
         armour_test::run_scene(ARMOUR_EXE, (own.out / "settle" / "scene.settled.toml").string(),
                                "stability_hull_settle_clumps", "--engine liggghts --dry-run");
@@ -324,7 +337,7 @@ TEST(StabilityCubes, AHullSettleGrowsItsCubesSoTheClumpsStartFromItsLayer) {
         std::string::npos)
         << clumps.output;
     if (!HasFailure())
-        for (const SceneRun *r : {&run, &hulls, &own, &clumps})
+        for (const SceneRun *r : {&run, &hulls, &clumps_again, &own, &clumps})
             fs::remove_all(r->dir);
 }
 
