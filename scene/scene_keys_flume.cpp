@@ -155,10 +155,8 @@ const std::vector<Key<SceneFluid>> &fluid_keys() {
             .written_if([](const F &f) { return !f.settled_by.empty(); }),
         key("settled_growth", &F::settled_growth, "",
             "how much that settle grew each cube to hold its clump (fluid.settle_engine bullet for a "
-            "liggghts "
-            "run), written beside settled_by: run with exact hulls (bullet), a warning (they start up to "
-            "that "
-            "growth apart and drop into the gaps before any wave)")
+            "liggghts run), written beside settled_by: run with exact hulls (bullet), a warning (they "
+            "start up to that growth apart and drop into the gaps before any wave)")
             .in(Range::at_least(1))
             .defaults("1 (not grown)")
             .written_if([](const F &f) { return f.settled_growth != 1.0; }),
