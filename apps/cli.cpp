@@ -66,7 +66,10 @@ CLI::App *add_clump_command(CLI::App &app, ClumpRequest &clump) {
         spheres_opt->excludes(tolerance);
     clump_cmd->add_option("--max-spheres", clump.max_spheres, "Tolerance mode: largest N to try")
         ->capture_default_str();
-    clump_cmd->add_option("--method", clump.method, "Clump method: greedy (baseline) or optimised")
+    clump_cmd
+        ->add_option("--method", clump.method,
+                     "Clump method: greedy (baseline), optimised, or inscribed (optimised, every sphere "
+                     "inside the exact shape)")
         ->capture_default_str();
     clump_cmd->add_option("--density", clump.density, "Unit density [kg/m^3]")->capture_default_str();
     clump_cmd->add_option("--seed", clump.seed, "Random seed (results are deterministic per seed)")

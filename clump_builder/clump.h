@@ -13,6 +13,12 @@
 //                  sphere on every corner of every face the unit rests on,
 //                  so that it stands and topples like the unit
 //                  (clump_support.h).
+//       inscribed  the optimised clump with every sphere shrunk until it lies
+//                  inside the exact shape (no volume match, so it under-fills):
+//                  the clump never reaches out of the exact faces, so the
+//                  poses of a layer the exact hulls settled at their own size
+//                  start these clumps in contact or apart (docs/stability.md,
+//                  one layer for both unit models).
 //     Sphere centres are in the unit frame (origin at the exact centroid), m.
 //
 // Usage
@@ -35,7 +41,7 @@ struct Sphere {
 };
 using Clump = std::vector<Sphere>;
 
-enum class ClumpMethod { greedy, optimised };
+enum class ClumpMethod { greedy, optimised, inscribed };
 
 std::string method_name(ClumpMethod method);
 // Throws InputError for an unknown name; lists the known ones.

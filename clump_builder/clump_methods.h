@@ -15,6 +15,11 @@ Clump greedy_inscribed(const Shape &shape, const ShapeQuery &query, int spheres,
 Clump optimise_clump(const Shape &shape, const ShapeQuery &query, Clump start, std::uint64_t seed,
                      std::size_t fixed = 0);
 
+// Shrinks every sphere but the first `fixed` ones until it lies inside the
+// exact shape (radius at most its centre's depth); a centre shallower than
+// 3 % of Dn moves towards the centroid first.
+void hold_inside(Clump &clump, const Shape &shape, const ShapeQuery &query, std::size_t fixed = 0);
+
 // Adds one common offset to every radius but the first `fixed` ones so that
 // the union volume equals `volume`.
 Clump match_volume(Clump clump, double volume, std::size_t fixed = 0);

@@ -279,8 +279,36 @@ Clump match_volume(Clump clump, double volume, std::size_t fixed) {
     return clump;
 }
 
+void hold_inside(Clump &clump, const Shape &shape, const ShapeQuery &query, std::size_t fixed) {
+    // No sphere ends below the optimiser's smallest (3 % of Dn), which would
+    // shrink the DEM's step: one whose centre lies shallower than that moves
+    // towards the centroid until it lies that deep.
+    const double min_radius = 0.03 * shape.Dn();
+    const Eigen::Vector3d centre = shape.props.centroid;
+    for (std::size_t j = fixed; j < clump.size(); ++j) {
+        Sphere &s = clump[j];
+        const double depth = std::min(s.radius, min_radius);
+        if (-query.signed_distance(s.center) < depth) {
+            double lo = 0.0, hi = 1.0; // fraction of the way to the centroid
+            for (int it = 0; it < 40; ++it) {
+                const double mid = 0.5 * (lo + hi);
+                (-query.signed_distance(s.center + mid * (centre - s.center)) < depth ? lo : hi) = mid;
+            }
+            s.center += hi * (centre - s.center);
+        }
+        s.radius = std::min(s.radius, -query.signed_distance(s.center));
+    }
+}
+
 std::string method_name(ClumpMethod method) {
-    return method == ClumpMethod::greedy ? "greedy" : "optimised";
+    switch (method) {
+    case ClumpMethod::greedy:
+        return "greedy";
+    case ClumpMethod::inscribed:
+        return "inscribed";
+    default:
+        return "optimised";
+    }
 }
 
 ClumpMethod parse_method(const std::string &name) {
@@ -288,7 +316,9 @@ ClumpMethod parse_method(const std::string &name) {
         return ClumpMethod::greedy;
     if (name == "optimised" || name == "optimized")
         return ClumpMethod::optimised;
-    throw InputError("--method: unknown clump method '" + name + "' (known: greedy, optimised)");
+    if (name == "inscribed")
+        return ClumpMethod::inscribed;
+    throw InputError("--method: unknown clump method '" + name + "' (known: greedy, optimised, inscribed)");
 }
 
 } // namespace armour::detail
@@ -329,6 +359,11 @@ Clump build_clump(const Shape &shape, ClumpMethod method, int spheres, std::uint
         detail::greedy_inscribed(shape, query, spheres - static_cast<int>(corners.size()), seed);
     clump.insert(clump.end(), body.begin(), body.end());
     clump = detail::optimise_clump(shape, query, std::move(clump), seed, corners.size());
+    // Shrunk after the fit rather than fitted under the constraint: fitted so
+    // (every step held inside) it came out no better on the scene's
+    // 118-sphere cube, surface RMS 2.03 % Dn against 1.97 %.
+    if (method == ClumpMethod::inscribed)
+        detail::hold_inside(clump, shape, query, corners.size());
     place_support_spheres(clump, corners, faces, radius);
     return clump;
 }

@@ -191,7 +191,8 @@ const std::vector<Key<SceneUnit>> &unit_keys() {
             .in(Range::open(0, 1)),
         key("tol_surface", &U::tol_surface, "", "tolerance mode: allowed surface RMS distance / Dn")
             .in(Range::open(0, 1)),
-        key("method", &U::method, "", "clump method (clump_builder.md)").one_of({"greedy", "optimised"}),
+        key("method", &U::method, "", "clump method (clump_builder.md)")
+            .one_of({"greedy", "optimised", "inscribed"}),
         key("material", &U::material, "", "a [[material]]; required when there are several")
             .custom("the only material"),
     };

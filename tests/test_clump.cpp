@@ -259,7 +259,7 @@ TEST(ClumpTopple, OptimisedClumpsStandOnTheExactCorners) {
 }
 
 TEST(ClumpBuilders, AreDeterministicForASeed) {
-    for (ClumpMethod method : {ClumpMethod::greedy, ClumpMethod::optimised}) {
+    for (ClumpMethod method : {ClumpMethod::greedy, ClumpMethod::optimised, ClumpMethod::inscribed}) {
         const Clump a = build_clump(dolos(), method, 12, 7);
         const Clump b = build_clump(dolos(), method, 12, 7);
         ASSERT_EQ(a.size(), 12u);
@@ -282,6 +282,47 @@ TEST(ClumpBuilders, GreedySpheresStayInside) {
     for (const Sphere &s : clump) // an inscribed sphere's centre is at least r deep
         EXPECT_LE(query.signed_distance(s.center), -s.radius * (1 - 1e-12));
     EXPECT_LT(evaluate_clump(dolos(), clump).volume_error, 0.0);
+}
+
+// The inscribed clump (the optimised fit, each sphere shrunk inside) is what
+// a layer the exact hulls settled at their own size hands over to: no sphere
+// may reach out of a face, yet the clump must still stand on the exact
+// face's corners (rest and topple as the unit) and keep its smallest body
+// sphere at the optimiser's 3 % of Dn (else the DEM's step shrinks).
+TEST(ClumpBuilders, InscribedSpheresStayInsideAndTheClumpStandsLikeTheUnit) {
+    for (const Shape *shape : {&unit_cube(), &dolos()}) {
+        const int n = 60; // enough for a corner sphere on every resting face's corner
+        const Clump clump = build_clump(*shape, ClumpMethod::inscribed, n, 2);
+        ASSERT_EQ(clump.size(), static_cast<std::size_t>(n));
+        const ShapeQuery query(shape->mesh);
+        double smallest_body = HUGE_VAL, body_reach = -HUGE_VAL, corner_reach = -HUGE_VAL;
+        for (const Sphere &s : clump) {
+            const double reach = query.signed_distance(s.center) + s.radius; // m beyond the surface
+            const bool corner = s.radius < 0.02 * shape->Dn();               // the corner spheres: 0.01 Dn
+            double &farthest = corner ? corner_reach : body_reach;
+            farthest = std::max(farthest, reach);
+            if (!corner)
+                smallest_body = std::min(smallest_body, s.radius);
+        }
+        EXPECT_LE(body_reach, 1e-9 * shape->Dn()) << shape->kind; // no body sphere outside
+        // The corner spheres sit on the convex hull's corners: inside a cube's
+        // corners, on a dolos's up to their radius out (as in the optimised clump).
+        EXPECT_LE(corner_reach, (shape->kind == "cube" ? 1e-9 : 0.01) * shape->Dn()) << shape->kind;
+        EXPECT_GE(smallest_body, 0.03 * shape->Dn() * (1 - 1e-9)) << shape->kind;
+        const ClumpQuality q = evaluate_clump(*shape, clump);
+        const ClumpQuality opt = evaluate_clump(*shape, build_clump(*shape, ClumpMethod::optimised, n, 2));
+        EXPECT_LT(q.rest_gap, 1e-9) << shape->kind;               // it rests on the exact face's plane
+        EXPECT_LT(q.topple_error_deg, 1.0) << shape->kind;        // on its corners
+        EXPECT_LT(q.volume_error, 0.0) << shape->kind;            // the price: it under-fills ...
+        EXPECT_GT(q.surface_rms, opt.surface_rms) << shape->kind; // ... and fits worse
+        std::printf(
+            "[ inscribed] %s, %d spheres: volume %+.1f %%, surface RMS %.2f %% Dn (optimised %+.1f %%, "
+            "%.2f %%), topple error %.2f deg\n",
+            shape->kind.c_str(), n, 100 * q.volume_error, 100 * q.surface_rms, 100 * opt.volume_error,
+            100 * opt.surface_rms, q.topple_error_deg);
+    }
+    EXPECT_EQ(parse_method("inscribed"), ClumpMethod::inscribed);
+    EXPECT_EQ(method_name(ClumpMethod::inscribed), "inscribed");
 }
 
 TEST(ClumpBuilders, ErrorsShrinkAsSpheresGrow) {

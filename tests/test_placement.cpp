@@ -583,6 +583,14 @@ TEST(SettleGrowth, ACubeGrowsUntilItsClumpIsInsideADolosOnlyPastTwice) {
     ASSERT_TRUE(dolos.has_value());
     EXPECT_GT(*dolos, 2.0);
     std::printf("[ growth   ] the dolos's fluke spheres fit only its shank grown %.3g x\n", *dolos);
+
+    // The inscribed clump of the same cube needs no growth: a layer the hulls
+    // settle at their own size hands over to it as it is.
+    const armour::SceneSetup inscribed = armour::build_scene(
+        stability_scene({"unit.0.method=\"inscribed\"", "unit.0.spheres=118"}), ARMOUR_TEST_CACHE, false);
+    const std::optional<double> none = armour::growth_to_hold_clump(inscribed.units[0]);
+    ASSERT_TRUE(none.has_value());
+    EXPECT_NEAR(*none, 1.0, 1e-12);
 }
 
 } // namespace
