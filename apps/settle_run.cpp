@@ -106,7 +106,9 @@ int with_settle_report(OutputFolder &folder, int status, json report) {
 // (growth_to_hold_clump): the clumps start in contact or apart, and the
 // exact shapes of a run of the settled scene at most that growth apart,
 // one layer for both unit models (docs/stability.md). Only cubes: a dolos's
-// flukes do not grow about its centre, and an STL unit has no size key.
+// flukes do not grow about its centre, and an STL unit has no size key. An
+// inscribed clump (unit.method = "inscribed") needs none: the hulls settle at
+// their own size and hand over to it as they lie.
 void grow_units_to_hold_clumps(Scene &dry, const Scene &scene, const SceneSetup &setup) {
     if (engine_style(dry.engine).capabilities.shape != ShapeModel::convex_hulls ||
         engine_style(scene.engine).capabilities.shape != ShapeModel::sphere_clumps)
@@ -114,6 +116,8 @@ void grow_units_to_hold_clumps(Scene &dry, const Scene &scene, const SceneSetup 
     for (std::size_t k = 0; k < dry.units.size(); ++k) {
         SceneUnit &u = dry.units[k];
         const std::optional<double> growth = growth_to_hold_clump(setup.units[k]);
+        if (growth && *growth <= 1.0 + 1e-9)
+            continue; // an inscribed clump: its spheres touch the faces at most (rounding aside)
         if (u.shape != "cube" || !growth)
             throw InputError(scene.file + ": key 'fluid.settle_engine': " + dry.engine +
                              " settles exact shapes and run.engine " + scene.engine +

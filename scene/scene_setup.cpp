@@ -561,7 +561,8 @@ std::string settled_hulls_remedy(const Scene &scene) {
     return " (fluid.settled_by " + scene.fluid->settled_by +
            " settled exact shapes, which the clumps stand out of: settle for the clumps with run.engine " +
            scene.engine + " and fluid.settle_engine " + scene.fluid->settled_by +
-           ", which grows the cubes to hold them)";
+           ", which grows the cubes to hold them, or give the unit method \"inscribed\", whose spheres lie "
+           "inside the exact shape)";
 }
 
 void check_wall_contacts(const Scene &scene, const Placement &place, const SceneSetup &setup,

@@ -333,11 +333,26 @@ TEST(StabilityCubes, AHullSettleGrowsItsCubesSoTheClumpsStartFromItsLayer) {
     EXPECT_EQ(clumps.status, 2) << clumps.output;
     EXPECT_NE(
         clumps.output.find("settle for the clumps with run.engine liggghts and fluid.settle_engine bullet, "
-                           "which grows the cubes to hold them)"),
+                           "which grows the cubes to hold them, or give the unit method \"inscribed\""),
         std::string::npos)
         << clumps.output;
+    // The inscribed clump takes that layer as it lies: its spheres stay
+    // inside the cubes, so no clump starts inside a neighbour or the slope.
+    const SceneRun inscribed = armour_test::run_scene(
+        ARMOUR_EXE, (own.out / "settle" / "scene.settled.toml").string(), "stability_hull_settle_inscribed",
+        "--engine liggghts --set unit.0.method=inscribed --set unit.0.spheres=118 --dry-run");
+    EXPECT_EQ(inscribed.status, 0) << inscribed.output;
+    EXPECT_EQ(inscribed.output.find("settled_growth"), std::string::npos) << inscribed.output;
+    // And a settle for inscribed clumps in hulls grows nothing (nothing to hold).
+    const SceneRun no_growth = run_stability(
+        "hull_settle_no_growth", "--engine liggghts --set fluid.settle_engine=bullet --set "
+                                 "unit.0.method=inscribed --set unit.0.spheres=118 --settle-only");
+    ASSERT_EQ(no_growth.status, 0) << no_growth.output;
+    EXPECT_EQ(no_growth.output.find("are grown"), std::string::npos) << no_growth.output;
+    EXPECT_EQ(read_text(no_growth.out / "settle" / "scene.settled.toml").find("settled_growth"),
+              std::string::npos);
     if (!HasFailure())
-        for (const SceneRun *r : {&run, &hulls, &clumps_again, &own, &clumps})
+        for (const SceneRun *r : {&run, &hulls, &clumps_again, &own, &clumps, &inscribed, &no_growth})
             fs::remove_all(r->dir);
 }
 
