@@ -296,7 +296,11 @@ void hold_inside(Clump &clump, const Shape &shape, const ShapeQuery &query, std:
             }
             s.center += hi * (centre - s.center);
         }
-        s.radius = std::min(s.radius, -query.signed_distance(s.center));
+        const double held = -query.signed_distance(s.center);
+        if (!(held > 0.0)) // the centroid outside the shape (a ring, say): no way in along this line
+            throw InputError("--method inscribed: a sphere cannot be moved inside the shape towards its "
+                             "centroid, which lies outside it; use --method optimised");
+        s.radius = std::min(s.radius, held);
     }
 }
 
