@@ -13,12 +13,14 @@
 //                  sphere on every corner of every face the unit rests on,
 //                  so that it stands and topples like the unit
 //                  (clump_support.h).
-//       inscribed  the optimised clump with every sphere shrunk until it lies
-//                  inside the exact shape (no volume match, so it under-fills):
-//                  the clump never reaches out of the exact faces, so the
-//                  poses of a layer the exact hulls settled at their own size
-//                  start these clumps in contact or apart (docs/stability.md,
-//                  one layer for both unit models).
+//       inscribed  the optimised clump with every sphere but the corner ones
+//                  shrunk until it lies inside the exact shape (no volume
+//                  match, so it under-fills); the corner spheres then sit on
+//                  the exact corners (a cube's inside, a dolos's up to their
+//                  radius out). A cube's clump never reaches out of its
+//                  faces, so the poses of a layer the exact hulls settled at
+//                  their own size start these clumps in contact or apart
+//                  (docs/stability.md, one layer for both unit models).
 //     Sphere centres are in the unit frame (origin at the exact centroid), m.
 //
 // Usage

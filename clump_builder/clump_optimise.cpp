@@ -157,9 +157,8 @@ int respawn_idle(Clump &clump, const Samples &s, const Fit &fit, double min_radi
 Clump optimise_clump(const Shape &shape, const ShapeQuery &query, Clump clump, std::uint64_t seed,
                      std::size_t fixed) {
     const double Dn = shape.Dn();
-    // Spheres below 3 % of Dn add contact cost and shrink the DEM time step
-    // without improving the fit measurably: they are moved instead.
-    const double min_radius = 0.03 * Dn;
+    // Spheres below kMinSphereRadius are moved instead.
+    const double min_radius = kMinSphereRadius * Dn;
     const double max_step = 0.05 * Dn;
     const Samples samples = make_samples(shape, query, static_cast<int>(clump.size()), seed);
 
@@ -280,10 +279,10 @@ Clump match_volume(Clump clump, double volume, std::size_t fixed) {
 }
 
 void hold_inside(Clump &clump, const Shape &shape, const ShapeQuery &query, std::size_t fixed) {
-    // No sphere ends below the optimiser's smallest (3 % of Dn), which would
-    // shrink the DEM's step: one whose centre lies shallower than that moves
-    // towards the centroid until it lies that deep.
-    const double min_radius = 0.03 * shape.Dn();
+    // No sphere ends below the optimiser's smallest (kMinSphereRadius), which
+    // would shrink the DEM's step: one whose centre lies shallower than that
+    // moves towards the centroid until it lies that deep.
+    const double min_radius = kMinSphereRadius * shape.Dn();
     const Eigen::Vector3d centre = shape.props.centroid;
     for (std::size_t j = fixed; j < clump.size(); ++j) {
         Sphere &s = clump[j];
