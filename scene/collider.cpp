@@ -32,20 +32,71 @@ std::pair<double, int> wall_penetration(const BodyInit &b, const Clump &clump,
     return {deepest, which};
 }
 
-// Deepest cut of a posed exact shape into any wall (m) and the wall's index.
+// m: how deep the deepest point of segment p0-p1 (unit frame) lies inside
+// the convex part (<= 0: outside). A point's depth is the least of the
+// planes' d - n.x, each linear along the segment, so the deepest point is an
+// end or a point where two planes' depths cross.
+double deepest_on_segment(const std::vector<HalfSpace> &part, const Eigen::Vector3d &p0,
+                          const Eigen::Vector3d &p1) {
+    const auto depth_at = [&](double t) {
+        const Eigen::Vector3d p = p0 + t * (p1 - p0);
+        double depth = HUGE_VAL;
+        for (const HalfSpace &h : part)
+            depth = std::min(depth, h.d - h.n.dot(p));
+        return depth;
+    };
+    double deepest = std::max(depth_at(0.0), depth_at(1.0));
+    for (std::size_t i = 0; i < part.size(); ++i)
+        for (std::size_t j = i + 1; j < part.size(); ++j) {
+            const double a = part[i].d - part[i].n.dot(p0), b = part[j].d - part[j].n.dot(p0);
+            const double slope = (part[j].n - part[i].n).dot(p1 - p0); // d(depth_i - depth_j)/dt
+            if (slope == 0.0)
+                continue;
+            const double t = (a - b) / -slope;
+            if (t > 0.0 && t < 1.0)
+                deepest = std::max(deepest, depth_at(t));
+        }
+    return deepest;
+}
+
+// m: how deep wall w's deepest edge point lies inside a posed exact shape's
+// parts. The shape's surface points alone miss a wall's convex edge (a toe
+// step's) pushed into a face between them; its vertices are the edges' ends.
+double wall_edges_inside(const BodyInit &b, const Collider &c, const Wall &w) {
+    const Eigen::Matrix3d to_unit = b.pose.orientation.inverse().toRotationMatrix();
+    const auto &v = w.surface.vertices;
+    double deepest = -HUGE_VAL;
+    for (const auto &t : w.surface.triangles)
+        for (int k = 0; k < 3; ++k) {
+            const Eigen::Vector3d p0 = to_unit * (v[t[k]] - b.pose.position),
+                                  p1 = to_unit * (v[t[(k + 1) % 3]] - b.pose.position);
+            // Farther from the centre than the shape reaches: cannot be inside.
+            const Eigen::Vector3d along = p1 - p0;
+            const double s =
+                along.squaredNorm() > 0.0 ? std::clamp(-p0.dot(along) / along.squaredNorm(), 0.0, 1.0) : 0.0;
+            if ((p0 + s * along).norm() > c.reach)
+                continue;
+            for (const auto &part : c.parts)
+                deepest = std::max(deepest, deepest_on_segment(part, p0, p1));
+        }
+    return deepest;
+}
+
+// Deepest cut of a posed exact shape into any wall (m) and the wall's index:
+// the shape's surface points behind the wall, or the wall's edges inside the shape.
 std::pair<double, int> exact_wall_penetration(const BodyInit &b, const Collider &c,
                                               const std::vector<Wall> &walls) {
     double deepest = -HUGE_VAL;
     int which = -1;
     for (std::size_t w = 0; w < walls.size(); ++w) {
         const double front = wall_front(walls[w], b.pose.position);
-        for (const Eigen::Vector3d &local : c.points) {
-            const double depth = depth_behind_wall(b.pose.position + b.pose.orientation * local, walls[w],
-                                                   b.pose.position, front);
-            if (depth > deepest) {
-                deepest = depth;
-                which = static_cast<int>(w);
-            }
+        double depth = wall_edges_inside(b, c, walls[w]);
+        for (const Eigen::Vector3d &local : c.points)
+            depth = std::max(depth, depth_behind_wall(b.pose.position + b.pose.orientation * local, walls[w],
+                                                      b.pose.position, front));
+        if (depth > deepest) {
+            deepest = depth;
+            which = static_cast<int>(w);
         }
     }
     return {deepest, which};
@@ -149,6 +200,8 @@ Collider make_collider(const UnitTemplate &unit, ShapeModel model, double Dn) {
         c.parts.push_back(std::move(planes));
         c.corners.insert(c.corners.end(), part.vertices.begin(), part.vertices.end());
     }
+    for (const Eigen::Vector3d &v : c.corners)
+        c.reach = std::max(c.reach, v.norm());
     return c;
 }
 

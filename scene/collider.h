@@ -25,7 +25,7 @@ struct Collider {
     std::vector<Eigen::Vector3d> points;       // m, unit frame: the parts' surface, <= 0.05 Dn apart
     std::vector<std::vector<HalfSpace>> parts; // the convex parts as half-spaces
     std::vector<Eigen::Vector3d> corners; // m, unit frame: the parts' vertices (points lie in their hull)
-    double reach = 0.0;                   // m: a clump's spheres all lie within this of its centre
+    double reach = 0.0;                   // m: the spheres (or the parts) all lie within this of its centre
 };
 
 // m: the farthest any of the clump's spheres reaches from the unit's centre.

@@ -513,7 +513,91 @@ TEST(WallDepth, AStepsEdgeIsOutsideAboveAndInsideBelow) {
     EXPECT_FALSE(armour::consistently_wound(turned.surface));
 }
 
+// A wall's convex edge pushed into a hull's face between the face's surface
+// points (0.05 Dn apart): the start check must see it. A step with its edge
+// along y at the origin (solid where x < 0 and z < 0) and the scene's cube
+// turned 45 degrees about y, a face square to the edge's bisector and the
+// edge delta into it. The face's points behind the step lie in a strip 2
+// delta wide and read at most delta / sqrt(2) deep (seed 1's toe, docs/results/
+// severe_sea_one_layer_at_rest: 0.16 mm read, 0.44+ mm in); the edge itself
+// lies delta inside. Backed off by delta, the cube is clear.
+TEST(WallDepth, AStepsEdgeInAHullsFaceIsSeenAtItsDepth) {
+    const armour::SceneSetup setup = random_setup(6, {"run.engine=\"bullet\"", "pattern.0.rows=1"});
+    const double Dn = setup.unit_Dn[0];
+    const armour::Collider c = armour::make_collider(setup.units[0], armour::ShapeModel::convex_hulls, Dn);
+    armour::Wall step;
+    step.name = "step";
+    auto &v = step.surface.vertices;
+    v = {{-0.1, -0.1, 0.0}, {0.0, -0.1, 0.0}, {0.0, 0.1, 0.0}, {-0.1, 0.1, 0.0}, // top, normal +z
+         {0.0, -0.1, -0.1}, {0.0, 0.1, -0.1}};                                   // face, normal +x
+    step.surface.triangles = {{0, 1, 2}, {0, 2, 3}, {4, 5, 2}, {4, 2, 1}};
+    for (const auto &t : step.surface.triangles) // the normals face the bodies' side
+        ASSERT_GT((v[t[1]] - v[t[0]]).cross(v[t[2]] - v[t[0]]).dot(Eigen::Vector3d(1.0, 0.0, 1.0)), 0.0);
+    const Eigen::Vector3d bisector = Eigen::Vector3d(1.0, 0.0, 1.0).normalized();
+    for (const double delta : {0.025 * Dn, -0.025 * Dn}) {
+        armour::BodyInit b;
+        b.unit = 0;
+        // The cube's -z face turned to face -bisector, its plane delta beyond the edge.
+        b.pose.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 4.0, Eigen::Vector3d::UnitY()));
+        b.pose.position = (0.5 * Dn - delta) * bisector + Eigen::Vector3d(0.0, 0.003, 0.0);
+        const auto [depth, wall] = armour::body_wall_penetration(b, setup.units[0], c, {step});
+        EXPECT_EQ(wall, 0);
+        EXPECT_NEAR(depth, delta, 1e-9) << "delta " << delta;
+        // The face's points alone: no deeper than delta / sqrt(2).
+        double points = -HUGE_VAL;
+        for (const Eigen::Vector3d &q : c.points)
+            points = std::max(points, armour::depth_behind_wall(b.pose.position + b.pose.orientation * q,
+                                                                step, b.pose.position));
+        EXPECT_LE(points, std::max(delta, 0.0) / std::sqrt(2.0) + 1e-9) << "delta " << delta;
+    }
+}
+
 } // namespace
+
+// A layer the exact hulls settled for themselves (fluid.settled_by bullet) is
+// held to an exact shape's resting contact, 0.01 Dn: the allowance for a
+// clump's shape error (the exact shape standing out of its clump, ~1.2 mm on
+// the 118-sphere cube) is for poses clumps settled or a placer set. The kept
+// at-rest layer of seed 2 passes as settled. Its unit nearest a wall, pushed
+// down the slope's normal to 0.5 mm+ in (Bullet's triangle walls let seed 1's
+// toe unit sink 0.92 mm), is refused naming the settle; without the record
+// the same poses pass.
+TEST(SettledPoses, HullsSettledForThemselvesAreHeldToAnExactContact) {
+    armour::Scene scene = armour::load_scene(
+        std::string(ARMOUR_SOURCE_DIR) + "/docs/results/severe_sea_one_layer_at_rest/layers/seed-2.toml",
+        {"run.engine=\"bullet\""});
+    ASSERT_EQ(scene.fluid->settled_by, "bullet");
+    const armour::SceneSetup settled = armour::build_scene(scene, ARMOUR_TEST_CACHE, false);
+    const armour::UnitTemplate &unit = settled.units[0];
+    const armour::Collider c = armour::make_collider(unit, armour::ShapeModel::convex_hulls, kDn);
+    const auto depth_of = [&](const armour::BodyInit &b) {
+        return armour::body_wall_penetration(b, unit, c, settled.walls).first;
+    };
+    std::size_t nearest = 0;
+    for (std::size_t i = 1; i < settled.bodies.size(); ++i)
+        if (depth_of(settled.bodies[i]) > depth_of(settled.bodies[nearest]))
+            nearest = i;
+    EXPECT_LE(depth_of(settled.bodies[nearest]), 0.01 * kDn);
+    armour::BodyInit pushed = settled.bodies[nearest];
+    const Eigen::Vector3d inward = Eigen::Vector3d(1.0, 0.0, -1.5).normalized();
+    for (int step = 0; step < 100 && depth_of(pushed) < 0.0125 * kDn; ++step)
+        pushed.pose.position += 1e-4 * inward;
+    ASSERT_GE(depth_of(pushed), 0.0125 * kDn);
+    ASSERT_LT(depth_of(pushed), armour::depth_outside_clump(unit.clump, c.points)); // inside the allowance
+    scene.bodies[nearest].position = pushed.pose.position;
+    try {
+        armour::build_scene(scene, ARMOUR_TEST_CACHE, false);
+        ADD_FAILURE() << "a hull " << depth_of(pushed) << " m into a wall was accepted";
+    } catch (const armour::InputError &e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("body " + std::to_string(nearest) + " (unit 'cube') cuts into wall"),
+                  std::string::npos)
+            << what;
+        EXPECT_NE(what.find("(fluid.settled_by bullet left it so"), std::string::npos) << what;
+    }
+    scene.fluid->settled_by.clear();
+    EXPECT_NO_THROW(armour::build_scene(scene, ARMOUR_TEST_CACHE, false));
+}
 
 namespace {
 
