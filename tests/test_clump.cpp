@@ -2,14 +2,19 @@
 // and the behaviour of both builders.
 #include "clump_evaluator.h"
 #include "clump_io.h"
+#include "clump_methods.h"
 #include "clump_support.h"
 #include "shape_query.h"
+#include "shapes.h"
+#include "stl_io.h"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
 
+#include <array>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -323,6 +328,49 @@ TEST(ClumpBuilders, InscribedSpheresStayInsideAndTheClumpStandsLikeTheUnit) {
     }
     EXPECT_EQ(parse_method("inscribed"), ClumpMethod::inscribed);
     EXPECT_EQ(method_name(ClumpMethod::inscribed), "inscribed");
+}
+
+// The inscribed clump moves a shallow sphere towards the centroid; where the
+// centroid lies outside the shape (a U, its arms 0.1 m thick and 1 m tall on a
+// 0.1 m base: the centroid sits 0.37 m up in the gap between the arms) no
+// move helps, and the builder says so instead of writing a negative radius.
+TEST(ClumpBuilders, AnInscribedSphereThatCannotBeMovedInsideFailsLoudly) {
+    // The U's outline in x-z, counter-clockwise, as three convex pieces.
+    const std::vector<Eigen::Vector2d> outline = {{0.0, 0.0}, {1.0, 0.0}, {1.0, 1.0}, {0.9, 1.0},
+                                                  {0.9, 0.1}, {0.1, 0.1}, {0.1, 1.0}, {0.0, 1.0}};
+    const std::vector<std::array<int, 3>> cap = {{0, 1, 4}, {0, 4, 5}, {1, 2, 3},
+                                                 {1, 3, 4}, {0, 5, 6}, {0, 6, 7}};
+    TriangleMesh u; // extruded 1 m along y
+    for (const double y : {0.0, 1.0})
+        for (const Eigen::Vector2d &p : outline)
+            u.vertices.emplace_back(p.x(), y, p.y());
+    const int n = static_cast<int>(outline.size());
+    for (const auto &t : cap) {
+        u.triangles.push_back({t[0], t[1], t[2]});             // y = 0: ccw in x-z faces -y
+        u.triangles.push_back({n + t[0], n + t[2], n + t[1]}); // y = 1, turned to face +y
+    }
+    for (int k = 0; k < n; ++k) {
+        const int a = k, b = (k + 1) % n;
+        u.triangles.push_back({a, n + a, n + b});
+        u.triangles.push_back({a, n + b, b});
+    }
+    const std::string path = testing::TempDir() + "u_shape.stl";
+    write_stl(u, path);
+    const Shape shape = make_stl_shape(path, 2400.0);
+    std::remove(path.c_str());
+    ASSERT_NEAR(shape.props.volume, 0.28, 1e-6); // outward faces: positive (STL stores floats)
+    const ShapeQuery query(shape.mesh);
+    ASSERT_GT(query.signed_distance(Eigen::Vector3d::Zero()), 0.0); // the centroid (origin) is outside
+    Clump clump = {{Eigen::Vector3d(0.0, 0.0, 0.05), 0.05}};        // in the gap, above the centroid
+    try {
+        detail::hold_inside(clump, shape, query);
+        FAIL() << "a sphere outside the U was kept, radius " << clump[0].radius;
+    } catch (const InputError &e) {
+        EXPECT_NE(std::string(e.what()).find("--method inscribed: a sphere cannot be moved inside the shape "
+                                             "towards its centroid, which lies outside it"),
+                  std::string::npos)
+            << e.what();
+    }
 }
 
 TEST(ClumpBuilders, ErrorsShrinkAsSpheresGrow) {
