@@ -32,19 +32,20 @@ std::pair<double, int> wall_penetration(const BodyInit &b, const Clump &clump,
     return {deepest, which};
 }
 
+// m: how deep p lies inside the convex part (<= 0: outside), the least of the planes' d - n.p.
+double depth_in_part(const std::vector<HalfSpace> &part, const Eigen::Vector3d &p) {
+    double depth = HUGE_VAL;
+    for (const HalfSpace &h : part)
+        depth = std::min(depth, h.d - h.n.dot(p));
+    return depth;
+}
+
 // m: how deep the deepest point of segment p0-p1 (unit frame) lies inside
-// the convex part (<= 0: outside). A point's depth is the least of the
-// planes' d - n.x, each linear along the segment, so the deepest point is an
-// end or a point where two planes' depths cross.
+// the convex part (<= 0: outside). Each plane's depth is linear along the
+// segment, so the deepest point is an end or where two planes' depths cross.
 double deepest_on_segment(const std::vector<HalfSpace> &part, const Eigen::Vector3d &p0,
                           const Eigen::Vector3d &p1) {
-    const auto depth_at = [&](double t) {
-        const Eigen::Vector3d p = p0 + t * (p1 - p0);
-        double depth = HUGE_VAL;
-        for (const HalfSpace &h : part)
-            depth = std::min(depth, h.d - h.n.dot(p));
-        return depth;
-    };
+    const auto depth_at = [&](double t) { return depth_in_part(part, p0 + t * (p1 - p0)); };
     double deepest = std::max(depth_at(0.0), depth_at(1.0));
     for (std::size_t i = 0; i < part.size(); ++i)
         for (std::size_t j = i + 1; j < part.size(); ++j) {
@@ -239,12 +240,8 @@ double depth_outside_clump(const Clump &clump, const std::vector<Eigen::Vector3d
 
 double depth_inside(const Collider &c, const Eigen::Vector3d &p) {
     double deepest = -HUGE_VAL;
-    for (const auto &part : c.parts) {
-        double depth = HUGE_VAL;
-        for (const HalfSpace &h : part)
-            depth = std::min(depth, h.d - h.n.dot(p));
-        deepest = std::max(deepest, depth);
-    }
+    for (const auto &part : c.parts)
+        deepest = std::max(deepest, depth_in_part(part, p));
     return deepest;
 }
 

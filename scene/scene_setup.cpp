@@ -559,15 +559,15 @@ bool settled_by_exact_shapes(const Scene &scene) {
 
 // Exact shapes' settled poses handed to clumps as they are: the clumps'
 // spheres stand out of the shapes, into the neighbours and the slope. Handed
-// to exact shapes again, a unit deeper than a resting contact was pressed
-// into a wall the engine collides as triangles, which hold no inside.
+// to exact shapes again, a unit that deep was pressed into a wall the engine
+// collides as triangles, which hold no inside.
 std::string settled_hulls_remedy(const Scene &scene) {
     if (!settled_by_exact_shapes(scene))
         return "";
     if (engine_style(scene.engine).capabilities.shape != ShapeModel::sphere_clumps)
         return " (fluid.settled_by " + scene.fluid->settled_by +
-               " left it so, deeper than an exact shape's resting contact of 0.01 Dn: a pressed unit can "
-               "sink into a wall's triangle mesh; settle anew, e.g. with another pattern seed)";
+               " left it so: a pressed unit can sink into a wall's triangle mesh; settle anew, e.g. with "
+               "another pattern seed)";
     return " (fluid.settled_by " + scene.fluid->settled_by +
            " settled exact shapes, which the clumps stand out of: settle for the clumps with run.engine " +
            scene.engine + " and fluid.settle_engine " + scene.fluid->settled_by +
@@ -625,11 +625,8 @@ bool bodies_overlap(const BodyInit &a, const BodyInit &b, const Placement &place
 void check_initial_poses(const Scene &scene, const Placement &place, const SceneSetup &setup) {
     check_inside_domain(scene, place, setup);
     RestingDepth resting{scene, setup, std::vector<double>(setup.units.size(), 0.0)};
-    // Poses the exact shapes settled into themselves carry no clump's shape
-    // error: they are held to an exact shape's own resting contact.
-    const bool settled_as_collided = settled_by_exact_shapes(scene);
     for (std::size_t k = 0; k < setup.units.size(); ++k)
-        if (!place.colliders[k].spheres && !settled_as_collided)
+        if (!place.colliders[k].spheres)
             resting.beyond_clump[k] = depth_outside_clump(setup.units[k].clump, place.colliders[k].points);
     const std::string remedy = settled_hulls_remedy(scene);
     check_wall_contacts(scene, place, setup, resting, remedy);

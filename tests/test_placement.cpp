@@ -554,15 +554,14 @@ TEST(WallDepth, AStepsEdgeInAHullsFaceIsSeenAtItsDepth) {
 
 } // namespace
 
-// A layer the exact hulls settled for themselves (fluid.settled_by bullet) is
-// held to an exact shape's resting contact, 0.01 Dn: the allowance for a
-// clump's shape error (the exact shape standing out of its clump, ~1.2 mm on
-// the 118-sphere cube) is for poses clumps settled or a placer set. The kept
-// at-rest layer of seed 2 passes as settled. Its unit nearest a wall, pushed
-// down the slope's normal to 0.5 mm+ in (Bullet's triangle walls let seed 1's
-// toe unit sink 0.92 mm), is refused naming the settle; without the record
-// the same poses pass.
-TEST(SettledPoses, HullsSettledForThemselvesAreHeldToAnExactContact) {
+// A layer the exact hulls settled for themselves (fluid.settled_by bullet)
+// passes the start check as settled; a hull deeper in a wall than the check
+// allows (the depth the exact shape stands out of its clump, ~2.1 mm for the
+// 118-sphere cube) is refused naming the settle, since Bullet's triangle-mesh
+// walls let a pressed hull sink (seed 5's staged settle: 2.25 mm). The kept
+// at-rest layer of seed 2, its unit nearest a wall pushed down the slope's
+// normal past that allowance; without the record, the message names no settle.
+TEST(SettledPoses, AHullSettledIntoAWallIsRefusedNamingTheSettle) {
     armour::Scene scene = armour::load_scene(
         std::string(ARMOUR_SOURCE_DIR) + "/docs/results/severe_sea_one_layer_at_rest/layers/seed-2.toml",
         {"run.engine=\"bullet\""});
@@ -577,26 +576,31 @@ TEST(SettledPoses, HullsSettledForThemselvesAreHeldToAnExactContact) {
     for (std::size_t i = 1; i < settled.bodies.size(); ++i)
         if (depth_of(settled.bodies[i]) > depth_of(settled.bodies[nearest]))
             nearest = i;
-    EXPECT_LE(depth_of(settled.bodies[nearest]), 0.01 * kDn);
+    const double allowed = armour::depth_outside_clump(unit.clump, c.points);
     armour::BodyInit pushed = settled.bodies[nearest];
     const Eigen::Vector3d inward = Eigen::Vector3d(1.0, 0.0, -1.5).normalized();
-    for (int step = 0; step < 100 && depth_of(pushed) < 0.0125 * kDn; ++step)
+    for (int step = 0; step < 200 && depth_of(pushed) < allowed + 2e-4; ++step)
         pushed.pose.position += 1e-4 * inward;
-    ASSERT_GE(depth_of(pushed), 0.0125 * kDn);
-    ASSERT_LT(depth_of(pushed), armour::depth_outside_clump(unit.clump, c.points)); // inside the allowance
+    ASSERT_GE(depth_of(pushed), allowed + 2e-4);
     scene.bodies[nearest].position = pushed.pose.position;
+    const std::string cut = "body " + std::to_string(nearest) + " (unit 'cube') cuts into wall";
+    const std::string remedy =
+        "(fluid.settled_by bullet left it so: a pressed unit can sink into a wall's triangle mesh";
     try {
         armour::build_scene(scene, ARMOUR_TEST_CACHE, false);
         ADD_FAILURE() << "a hull " << depth_of(pushed) << " m into a wall was accepted";
     } catch (const armour::InputError &e) {
-        const std::string what = e.what();
-        EXPECT_NE(what.find("body " + std::to_string(nearest) + " (unit 'cube') cuts into wall"),
-                  std::string::npos)
-            << what;
-        EXPECT_NE(what.find("(fluid.settled_by bullet left it so"), std::string::npos) << what;
+        EXPECT_NE(std::string(e.what()).find(cut), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find(remedy), std::string::npos) << e.what();
     }
     scene.fluid->settled_by.clear();
-    EXPECT_NO_THROW(armour::build_scene(scene, ARMOUR_TEST_CACHE, false));
+    try {
+        armour::build_scene(scene, ARMOUR_TEST_CACHE, false);
+        ADD_FAILURE() << "a hull " << depth_of(pushed) << " m into a wall was accepted";
+    } catch (const armour::InputError &e) {
+        EXPECT_NE(std::string(e.what()).find(cut), std::string::npos) << e.what();
+        EXPECT_EQ(std::string(e.what()).find("settled_by"), std::string::npos) << e.what();
+    }
 }
 
 namespace {
