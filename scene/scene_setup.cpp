@@ -551,18 +551,13 @@ struct RestingDepth {
     }
 };
 
-// Whether the bodies' poses are an exact-shape engine's settle (fluid.settled_by).
-bool settled_by_exact_shapes(const Scene &scene) {
-    return scene.fluid && !scene.fluid->settled_by.empty() &&
-           engine_style(scene.fluid->settled_by).capabilities.shape == ShapeModel::convex_hulls;
-}
-
 // Exact shapes' settled poses handed to clumps as they are: the clumps'
 // spheres stand out of the shapes, into the neighbours and the slope. Handed
 // to exact shapes again, a unit that deep was pressed into a wall the engine
 // collides as triangles, which hold no inside.
 std::string settled_hulls_remedy(const Scene &scene) {
-    if (!settled_by_exact_shapes(scene))
+    if (!scene.fluid || scene.fluid->settled_by.empty() ||
+        engine_style(scene.fluid->settled_by).capabilities.shape != ShapeModel::convex_hulls)
         return "";
     if (engine_style(scene.engine).capabilities.shape != ShapeModel::sphere_clumps)
         return " (fluid.settled_by " + scene.fluid->settled_by +
