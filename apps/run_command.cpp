@@ -156,6 +156,15 @@ void check_options(const RunRequest &r, const Scene &scene) {
     if (r.resume && !engine_style(scene.engine).capabilities.restart)
         throw InputError(r.scene + ": key 'run.engine': the " + scene.engine +
                          " engine cannot restore a state, so its runs cannot be resumed");
+    std::vector<std::string> engines = {scene.engine};
+    if (scene.fluid && scene.fluid->settle_time > 0.0 && !scene.fluid->settle_engine.empty())
+        engines.push_back(scene.fluid->settle_engine);
+    for (const std::string &engine : engines)
+        if (scene.contact_iterations != 0 &&
+            engine_style(engine).capabilities.contacts != ContactKind::rigid_impulse)
+            throw InputError(r.scene + ": key 'run.contact_iterations': the " + engine +
+                             " engine has no iterative contact solve (a key of engines with rigid contacts: "
+                             "bullet)");
 }
 
 void warn_if_settle_keys_unused(const Scene &scene) {

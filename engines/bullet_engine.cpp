@@ -223,6 +223,11 @@ class BulletEngine final : public RigidBodyEngine {
             throw InputError("run.gravity: must be finite");
         if (!(options_.collision_margin >= 0.0) || !std::isfinite(options_.collision_margin))
             throw InputError("bullet.collision_margin: must be >= 0 m (0 = automatic)");
+        if (settings_.contact_iterations < 0)
+            throw InputError("run.contact_iterations: must be >= 0 (0 = bullet's own, " +
+                             std::to_string(options_.solver_iterations) + ")");
+        if (settings_.contact_iterations > 0)
+            options_.solver_iterations = settings_.contact_iterations;
         if (options_.solver_iterations < 1)
             throw InputError("bullet.solver_iterations: must be >= 1");
         build_pair_table();

@@ -40,6 +40,10 @@
 //                              onto it (normal and wall point) before every
 //                              solve: Bullet's multipoint contacts leave
 //                              tilted normals that make resting units creep.
+//       solver iterations      sequential-impulse iterations per step:
+//                              EngineSettings::contact_iterations (the
+//                              scene's run.contact_iterations) when > 0,
+//                              else BulletOptions::solver_iterations (20).
 //     Sleeping is off. Contacts are rigid (Bullet's own; Young's modulus and
 //     Poisson's ratio are not used). Details: docs/bullet.md.
 //

@@ -42,6 +42,9 @@ struct Body {
 class FreeBodyEngine final : public RigidBodyEngine {
   public:
     explicit FreeBodyEngine(const EngineSettings &settings) : gravity_(settings.gravity) {
+        if (settings.contact_iterations != 0)
+            throw InputError("run.contact_iterations: free_body has no contacts to iterate (a key of engines "
+                             "with rigid contacts: bullet)");
         if (settings.time_step < 0.0 || !std::isfinite(settings.time_step))
             throw InputError("free_body engine: time_step must be >= 0 (0 = default 1e-4 s)");
         report_.used = settings.time_step > 0.0 ? settings.time_step : kDefaultStep;

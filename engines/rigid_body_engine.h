@@ -115,6 +115,7 @@ struct EngineSettings {
     Eigen::Vector3d gravity = Eigen::Vector3d(0.0, 0.0, -kStandardGravity); // m/s^2
     double time_step = 0.0;       // s; 0 = the default (safety factor x stability limit)
     bool force_time_step = false; // accept a step above the stability limit (stability studies)
+    int contact_iterations = 0;   // rigid contacts' solver iterations per step (bullet); 0 = the engine's own
     std::string work_dir;         // where the engine may write its own files (logs, meshes)
 };
 

@@ -318,6 +318,7 @@ struct Scene {
     double output_interval = 0.01;   // s
     double time_step = 0.0;          // s; 0 = automatic
     bool force_time_step = false;
+    int contact_iterations = 0; // rigid-contact engines' solver iterations per step; 0 = the engine's own
     Eigen::Vector3d gravity = Eigen::Vector3d(0, 0, -kStandardGravity);                              // m/s^2
     Eigen::Vector3d domain_min = Eigen::Vector3d(-5, -5, -1), domain_max = Eigen::Vector3d(5, 5, 5); // m
     double checkpoint_interval = 0.0; // s of simulated time between checkpoints; 0 = none

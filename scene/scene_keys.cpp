@@ -43,6 +43,12 @@ const std::vector<Key<Scene>> &run_keys() {
             "stiffness, Bullet min(1 ms, sqrt(Dn / g) / 256) for the smallest unit")
             .in(Range::at_least(0)),
         key("force_time_step", &Scene::force_time_step, "", "true: use time_step even above the stable step"),
+        key("contact_iterations", &Scene::contact_iterations, "",
+            "sequential-impulse iterations per step of an engine with rigid contacts (bullet): more hold a "
+            "pile's lower units out of each other and the walls, at more cost (docs/bullet.md); 0 = the "
+            "engine's own (bullet: 20); refused by engines with spring-dashpot contacts or none")
+            .in(Range::at_least(0))
+            .written_if([](const Scene &s) { return s.contact_iterations != 0; }),
         key("gravity", &Scene::gravity, "m/s^2", "gravitational acceleration"),
         key("domain_min", &Scene::domain_min, "m",
             "a corner of the simulated region (with [fluid]: the fluid mesh box)"),

@@ -214,6 +214,7 @@ EngineSettings engine_settings(const Scene &scene) {
     s.gravity = scene.gravity;
     s.time_step = scene.time_step;
     s.force_time_step = scene.force_time_step;
+    s.contact_iterations = scene.contact_iterations;
     return s;
 }
 

@@ -199,6 +199,25 @@ TEST_F(Run, RefusesAnUnstableTimeStepUnlessForced) {
     EXPECT_TRUE(nlohmann::json::parse(in)["dt_forced"].get<bool>());
 }
 
+// run.contact_iterations sets the iterations of an engine with rigid
+// contacts (the summary's step rule says how many); the clumps' engine has
+// springs and dashpots, nothing to iterate, and refuses the key by name.
+TEST_F(Run, ContactIterationsGoToTheRigidContactEngineAndAreRefusedByTheClumps) {
+    EXPECT_EQ(run(scene_text("[0, 0, 0.3]", "", "contact_iterations = 50\n")), 2);
+    EXPECT_NE(error_line().find("scene.toml: key 'run.contact_iterations'"), std::string::npos) << err_;
+    EXPECT_FALSE(fs::exists(out()));
+    EXPECT_EQ(run(scene_text("[0, 0, 0.3]", "", "contact_iterations = -1\n")), 2);
+    EXPECT_NE(error_line().find("run.contact_iterations"), std::string::npos) << err_;
+    const armour::EngineStyle *hulls = hull_engine();
+    if (!hulls)
+        GTEST_SKIP() << "no exact-hull engine in this build";
+    const std::string engine = "engine = \"" + hulls->name + "\"\n";
+    ASSERT_EQ(run(scene_text("[0, 0, 0.3]", "", engine + "contact_iterations = 50\n")), 0) << err_;
+    EXPECT_NE(summary()["dt_rule"].get<std::string>().find("50 solver iterations"), std::string::npos);
+    ASSERT_EQ(run(scene_text("[0, 0, 0.3]", "", engine)), 0) << err_;
+    EXPECT_NE(summary()["dt_rule"].get<std::string>().find("20 solver iterations"), std::string::npos);
+}
+
 TEST_F(Run, RefusesAnUnknownUnitAndNamesTheKey) {
     EXPECT_EQ(run(scene_text("[0, 0, 0.3]", "[[body]]\nunit = \"dolos\"\nposition = [0.5, 0, 0.3]\n")), 2);
     EXPECT_NE(error_line().find("body.1.unit"), std::string::npos) << err_;
