@@ -156,15 +156,21 @@ void check_options(const RunRequest &r, const Scene &scene) {
     if (r.resume && !engine_style(scene.engine).capabilities.restart)
         throw InputError(r.scene + ": key 'run.engine': the " + scene.engine +
                          " engine cannot restore a state, so its runs cannot be resumed");
+    check_engine_keys(scene);
+}
+
+void check_engine_keys(const Scene &scene) {
+    if (scene.contact_iterations == 0)
+        return;
     std::vector<std::string> engines = {scene.engine};
     if (scene.fluid && scene.fluid->settle_time > 0.0 && !scene.fluid->settle_engine.empty())
         engines.push_back(scene.fluid->settle_engine);
     for (const std::string &engine : engines)
-        if (scene.contact_iterations != 0 &&
-            engine_style(engine).capabilities.contacts != ContactKind::rigid_impulse)
-            throw InputError(r.scene + ": key 'run.contact_iterations': the " + engine +
-                             " engine has no iterative contact solve (a key of engines with rigid contacts: "
-                             "bullet)");
+        if (engine_style(engine).capabilities.contacts != ContactKind::rigid_impulse)
+            throw InputError(scene.file + ": key 'run.contact_iterations': the " + engine +
+                             " engine has no iterative contact solve (a key of engines with rigid contacts, "
+                             "bullet; a settled scene keeps its settle's: --set run.contact_iterations=0 "
+                             "clears it)");
 }
 
 void warn_if_settle_keys_unused(const Scene &scene) {
@@ -226,6 +232,7 @@ struct RunCheck {
 };
 
 RunCheck check_run(const Scene &scene, const std::string &cache_dir, int np) {
+    check_engine_keys(scene);
     RunCheck check;
     check.setup = build_scene(scene, cache_dir, false);
     if (scene.fluid) {

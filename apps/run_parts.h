@@ -68,6 +68,10 @@ void warn_if_hulls_inherit_a_layer(const Scene &scene);
 // The options that do not fit the scene (--np without [fluid], --resume of
 // an engine that cannot restore its state): InputError.
 void check_options(const RunRequest &r, const Scene &scene);
+// Engine keys the scene's engines (run.engine, fluid.settle_engine) do not
+// take: run.contact_iterations for engines without an iterative contact
+// solve. InputError naming the scene file and the key.
+void check_engine_keys(const Scene &scene);
 
 // The scene as far as a resume may not change it (resumable_keys: the keys a
 // resume may change set to fixed values), as text to compare.

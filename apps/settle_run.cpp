@@ -444,6 +444,7 @@ int settle_only(const RunRequest &r, const Scene &scene) {
                              " (a settle is not resumed, and runs in the DEM alone on one rank)");
     if (const std::string why = settle_only_refusal(scene); !why.empty())
         throw InputError(r.scene + ": " + why);
+    check_engine_keys(scene);
     const auto start = std::chrono::steady_clock::now();
     if (r.dry_run) { // the settle's checks (units, placement, settle keys, --out), nothing written
         const fs::path out = OutputFolder::check_writable(r.out, "armour run");

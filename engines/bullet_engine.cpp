@@ -224,7 +224,7 @@ class BulletEngine final : public RigidBodyEngine {
         if (!(options_.collision_margin >= 0.0) || !std::isfinite(options_.collision_margin))
             throw InputError("bullet.collision_margin: must be >= 0 m (0 = automatic)");
         if (settings_.contact_iterations < 0)
-            throw InputError("run.contact_iterations: must be >= 0 (0 = bullet's own, " +
+            throw InputError("run.contact_iterations: must be >= 0 (0 = the adapter's " +
                              std::to_string(options_.solver_iterations) + ")");
         if (settings_.contact_iterations > 0)
             options_.solver_iterations = settings_.contact_iterations;

@@ -64,8 +64,9 @@ class LiggghtsEngine final : public RigidBodyEngine {
     explicit LiggghtsEngine(const EngineSettings &settings) : settings_(settings) {
         check_materials(settings_);
         if (settings_.contact_iterations != 0)
-            throw InputError("run.contact_iterations: liggghts's contacts are springs and dashpots, solved "
-                             "without iterations (a key of engines with rigid contacts: bullet)");
+            throw InputError(
+                "run.contact_iterations: the liggghts engine's contacts are springs and dashpots, "
+                "solved without iterations (a key of engines with rigid contacts: bullet)");
         if (!(settings_.domain_max.array() > settings_.domain_min.array()).all())
             throw InputError("run.domain: domain_max must exceed domain_min in x, y and z");
         base_dir_ = settings_.work_dir.empty() ? fs::temp_directory_path() / "armour-liggghts"

@@ -436,12 +436,25 @@ double toe_depth(const Eigen::Vector3d &p) {
 
 // How deep the step's convex edge (x = 1.40 m, z = 0.24 m) lies in a cube of edge a (m; < 0 clear of it).
 double toe_edge_in_cube(const BodyState &s, double a) {
-    double deepest = -a;
-    for (int j = -500; j <= 500; ++j) { // every 0.1 mm over the cube's reach (it starts at y = 0)
-        const Eigen::Vector3d edge(1.40, 1e-4 * j, 0.24);
-        const Eigen::Vector3d local = s.pose.orientation.conjugate() * (edge - s.pose.position);
-        deepest = std::max(deepest, 0.5 * a - local.cwiseAbs().maxCoeff());
+    // Along the edge, y -> local(y) = c + y d in the cube's frame, and the
+    // depth a/2 - max |local_i| is concave and piecewise linear in y: its
+    // largest value lies where two |local_i| meet or one is 0. Try them all.
+    const Eigen::Vector3d c =
+        s.pose.orientation.conjugate() * (Eigen::Vector3d(1.40, 0, 0.24) - s.pose.position);
+    const Eigen::Vector3d d = s.pose.orientation.conjugate() * Eigen::Vector3d::UnitY();
+    std::vector<double> ys;
+    for (int i = 0; i < 3; ++i) {
+        if (d[i] != 0.0)
+            ys.push_back(-c[i] / d[i]);
+        for (int j = 0; j < 3; ++j)
+            for (double sign : {1.0, -1.0})
+                if (i != j && d[i] != sign * d[j])
+                    ys.push_back((sign * c[j] - c[i]) / (d[i] - sign * d[j]));
     }
+    double deepest = -a;
+    for (double y : ys)
+        if (std::abs(y) <= 0.124) // the wall's width
+            deepest = std::max(deepest, 0.5 * a - (c + y * d).cwiseAbs().maxCoeff());
     return deepest;
 }
 
@@ -461,11 +474,11 @@ double cube_in_toe(const BodyState &s, double a) {
 TEST(BulletEngine, ACubePressedIntoTheToesNotchRestsOutOfTheWall) {
     // The scene's cube (Dn 0.04 m, 1540 kg/m^3) set on the slope at its foot,
     // square to the slope's edges or turned 0.3 rad about its normal, pressed
-    // onto the slope and down it by 20 x its weight (the rows above it): it
-    // comes to rest against the step's edge, out of every face to 0.1 % of Dn
-    // at every instant. One collision object per plane of the wall instead
-    // of one mesh broke this (tried: the square cube jittered at 0.04-0.12
-    // m/s and sank 0.6-1.5 mm), so it stays one mesh.
+    // down by 20 x its weight besides it (the rows above it): it comes to
+    // rest against the step's edge, out of every face to 0.1 % of Dn at every
+    // 0.05 s. One collision object per plane of the wall instead of one mesh
+    // broke this (tried: the square cube jittered at 0.04-0.17 m/s and sank
+    // 0.6-1.5 mm), so it stays one mesh.
     const double a = 0.04, slope = std::atan(1.0 / 1.5);
     const Eigen::Vector3d normal(-std::sin(slope), 0, std::cos(slope)),
         up(std::cos(slope), 0, std::sin(slope));
@@ -480,8 +493,7 @@ TEST(BulletEngine, ACubePressedIntoTheToesNotchRestsOutOfTheWall) {
         engine->add_body(body);
         engine->add_wall(toe_wall());
         const double weight = unit.props.mass * 9.81;
-        engine->set_external_load(0, -20.0 * weight * (std::sin(slope) * up + std::cos(slope) * normal),
-                                  Eigen::Vector3d::Zero());
+        engine->set_external_load(0, Eigen::Vector3d(0, 0, -20.0 * weight), Eigen::Vector3d::Zero());
         double deepest = -a;
         for (int i = 0; i < 40; ++i) {
             engine->advance(0.05);
@@ -489,6 +501,8 @@ TEST(BulletEngine, ACubePressedIntoTheToesNotchRestsOutOfTheWall) {
         }
         EXPECT_LT(deepest, 1e-3 * a) << "turned " << turn << " rad";
         EXPECT_LT(engine->state(0).velocity.norm(), 1e-3) << "turned " << turn << " rad";
+        EXPECT_LT(engine->state(0).angular_velocity.norm(), 0.05)
+            << "turned " << turn << " rad"; // < 2 mm/s at its corners
         // Held by the step: the step's edge touches it (within 0.1 mm).
         EXPECT_GT(toe_edge_in_cube(engine->state(0), a), -1e-4) << "turned " << turn << " rad";
     }
@@ -531,6 +545,6 @@ TEST(BulletEngine, MoreContactIterationsHoldATallColumnOutOfItself) {
     const auto [sink_100, fastest_100] = column_sink(30, a, 100);
     EXPECT_LT(sink_100, 1e-3 * a); // 0.1 % of Dn summed over 30 contacts
     EXPECT_LT(fastest_100, 5e-3);
-    EXPECT_GT(sink_default, 10.0 * sink_100) << "the iterations do not reach the solver";
+    EXPECT_GT(sink_default, 10.0 * std::max(sink_100, 1e-7)) << "the iterations do not reach the solver";
     EXPECT_GT(fastest_default, fastest_100);
 }

@@ -206,6 +206,12 @@ TEST_F(Run, ContactIterationsGoToTheRigidContactEngineAndAreRefusedByTheClumps) 
     EXPECT_EQ(run(scene_text("[0, 0, 0.3]", "", "contact_iterations = 50\n")), 2);
     EXPECT_NE(error_line().find("scene.toml: key 'run.contact_iterations'"), std::string::npos) << err_;
     EXPECT_FALSE(fs::exists(out()));
+    // A settle alone is refused alike, before anything is written.
+    EXPECT_EQ(
+        run(shipped_scene("stability_cubes.toml"), {"--settle-only", "--set", "run.contact_iterations=5"}),
+        2);
+    EXPECT_NE(error_line().find("scene.toml: key 'run.contact_iterations'"), std::string::npos) << err_;
+    EXPECT_FALSE(fs::exists(out()));
     EXPECT_EQ(run(scene_text("[0, 0, 0.3]", "", "contact_iterations = -1\n")), 2);
     EXPECT_NE(error_line().find("run.contact_iterations"), std::string::npos) << err_;
     const armour::EngineStyle *hulls = hull_engine();
