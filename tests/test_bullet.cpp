@@ -399,18 +399,23 @@ TEST(BulletEngine, TopplesAtTheRoundedEdgesAngleAtTheTiltScenesRate) {
 
 namespace {
 
-// The stability scene's toe in one wall mesh (scenes/stability_cubes.toml):
-// the berm's top (z = 0.24 m) to x = 1.40 m, the step's face down to the
-// slope's foot (z = 0.20 m), the 1:1.5 slope and the crest, across the flume.
-Wall toe_wall() {
-    const double y = 0.124;
-    const std::vector<Eigen::Vector2d> profile = {
+// The stability scene's toe (scenes/stability_cubes.toml) as its x-z profile
+// across the flume (m): the berm's top (z = 0.24 m) to x = 1.40 m, the
+// step's face down to the slope's foot (z = 0.20 m), the 1:1.5 slope, the crest.
+const std::vector<Eigen::Vector2d> &toe_profile() {
+    static const std::vector<Eigen::Vector2d> profile = {
         {0.0, 0.24}, {1.40, 0.24}, {1.40, 0.20}, {1.91, 0.54}, {2.0, 0.54}};
+    return profile;
+}
+
+// The toe in one wall mesh, across the flume's width (y within +-0.124 m).
+Wall toe_wall() {
+    const auto &profile = toe_profile();
     Wall w;
     w.name = "slope";
     for (const auto &p : profile) {
-        w.surface.vertices.emplace_back(p.x(), -y, p.y());
-        w.surface.vertices.emplace_back(p.x(), y, p.y());
+        w.surface.vertices.emplace_back(p.x(), -0.124, p.y());
+        w.surface.vertices.emplace_back(p.x(), 0.124, p.y());
     }
     for (int i = 0; i + 1 < static_cast<int>(profile.size()); ++i) {
         w.surface.triangles.push_back({2 * i, 2 * i + 2, 2 * i + 3});
@@ -419,17 +424,19 @@ Wall toe_wall() {
     return w;
 }
 
-// How deep a point lies inside the toe wall's solid (m; < 0 outside).
+// How deep a point lies inside the toe wall's solid (m; < 0 outside): its
+// distance to the profile, inside where it lies below a sloping or flat piece.
 double toe_depth(const Eigen::Vector3d &p) {
-    const double x = p.x(), z = p.z();
-    const bool inside = x < 1.40 ? z < 0.24 : x < 1.91 ? z < 0.20 + (x - 1.40) / 1.5 : z < 0.54;
-    const double corners[5][2] = {{-10.0, 0.24}, {1.40, 0.24}, {1.40, 0.20}, {1.91, 0.54}, {10.0, 0.54}};
+    const auto &profile = toe_profile();
+    const Eigen::Vector2d q(p.x(), p.z());
     double d = std::numeric_limits<double>::max();
-    for (int i = 0; i < 4; ++i) {
-        const Eigen::Vector2d a(corners[i][0], corners[i][1]), b(corners[i + 1][0], corners[i + 1][1]),
-            q(x, z);
+    bool inside = false;
+    for (std::size_t i = 0; i + 1 < profile.size(); ++i) {
+        const Eigen::Vector2d a = profile[i], b = profile[i + 1];
         const double t = std::clamp((q - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
         d = std::min(d, (q - a - t * (b - a)).norm());
+        if (a.x() <= q.x() && q.x() < b.x()) // not the step's vertical face
+            inside = q.y() < a.y() + (q.x() - a.x()) / (b.x() - a.x()) * (b.y() - a.y());
     }
     return inside ? d : -d;
 }
@@ -538,7 +545,7 @@ TEST(BulletEngine, MoreContactIterationsHoldATallColumnOutOfItself) {
     // 30 of the stability scene's cubes (Dn 0.04 m) in a column: the lower
     // ones carry many units' weight, as a layer's toe carries the rows above.
     // The sequential-impulse solve leaves overlaps that shrink with its
-    // iterations (run.contact_iterations; measured: 20, Bullet's default here,
+    // iterations (run.contact_iterations; measured: 20, the adapter's default,
     // 0.93 mm summed and still moving at 0.07 m/s; 100, 0.007 mm at rest).
     const double a = 0.04;
     const auto [sink_default, fastest_default] = column_sink(30, a, 0);
