@@ -64,6 +64,12 @@ CLI::App *add_clump_command(CLI::App &app, ClumpRequest &clump) {
         *clump_cmd, "Tolerance mode: ", clump.tol_volume, clump.tol_surface, clump.tol_topple);
     for (CLI::Option *tolerance : tolerances)
         spheres_opt->excludes(tolerance);
+    clump_cmd
+        ->add_option("--edge-spheres", clump.edge_spheres,
+                     "Support spheres along every edge of the faces the unit rests on, besides the corner "
+                     "ones, out of --spheres (optimised and inscribed): a unit resting on this one pivots at "
+                     "its edge (default 0)")
+        ->needs(spheres_opt);
     clump_cmd->add_option("--max-spheres", clump.max_spheres, "Tolerance mode: largest N to try")
         ->capture_default_str();
     clump_cmd

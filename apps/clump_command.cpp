@@ -133,11 +133,11 @@ struct Built {
 
 // A fixed sphere count when `spheres` > 0, else the tolerance search.
 Built build_requested(const Shape &shape, ClumpMethod method, int spheres, const ClumpTolerances &tol,
-                      int max_spheres, std::uint64_t seed, const std::string &label) {
+                      int max_spheres, std::uint64_t seed, const std::string &label, int edge_spheres = 0) {
     Built b;
     if (spheres > 0) {
         const auto start = std::chrono::steady_clock::now();
-        b.clump = build_clump(shape, method, spheres, seed);
+        b.clump = build_clump(shape, method, spheres, seed, edge_spheres);
         const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         b.quality = evaluate_clump(shape, b.clump);
@@ -186,13 +186,14 @@ int run_clump(const ClumpRequest &r) {
         throw InputError("--max-spheres: must be >= 1 (got " + std::to_string(r.max_spheres) + ")");
     const Shape shape = make_requested_shape(r);
     OutputFolder out(r.out, "armour clump", OutputFolder::Mode::staged);
-    const Built b =
-        build_requested(shape, method, r.fixed_count ? r.spheres : 0,
-                        {r.tol_volume, r.tol_surface, r.tol_topple}, r.max_spheres, r.seed, shape.kind);
+    const Built b = build_requested(shape, method, r.fixed_count ? r.spheres : 0,
+                                    {r.tol_volume, r.tol_surface, r.tol_topple}, r.max_spheres, r.seed,
+                                    shape.kind, r.edge_spheres);
     out.open();
     json summary = write_clump_files([&](const std::string &name) { return out.claim(name); }, out.target(),
                                      shape, b.clump, b.quality, r.method, r.seed);
     summary["command"] = "clump";
+    summary["edge_spheres"] = r.edge_spheres;
     summary["tolerance"] = b.tolerance;
     write_text_file(out.claim("summary.json"), summary.dump(2) + "\n");
     out.commit();

@@ -17,6 +17,7 @@ struct ClumpRequest {
     double density = 2400.0;   // kg/m^3
     bool fixed_count = false;  // --spheres given; else tolerance mode
     int spheres = 0;           // with fixed_count
+    int edge_spheres = 0;      // support spheres per resting-face edge, of `spheres`
     double tol_volume = 0.01;  // |V_clump - V| / V
     double tol_surface = 0.02; // surface RMS / Dn
     double tol_topple = 1.0;   // topple angle error, degrees

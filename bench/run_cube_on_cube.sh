@@ -4,7 +4,9 @@
 # cube on a held one, gravity turning about +y at 5 deg/s, friction 0.6) with
 # the free cube placed at x = 0, 3, ..., 18 mm and y = 0, 5, 10 mm off its
 # neighbour's centre (21 seats), for exact hulls (Bullet) and sphere clumps of
-# 47, 64, 118 (the scene's), 200 and 500 spheres (LIGGGHTS). Each run reports
+# 47, 64, 118 (the scene's), 200 and 500 spheres, and the scene's 118 with
+# 1, 3 or 7 of them spread along every edge, and the scene's body of 110 with
+# 7 along every edge (202 spheres; unit.edge_spheres, LIGGGHTS). Each run reports
 # the tilt at which the cube leaves its seat (leave_angle_deg, docs/analysis.md)
 # and how (slid or toppled). An exact cube leaves at the smaller of the slide,
 # atan(0.6) = 30.96 deg, and its tip over the downhill edge,
@@ -15,13 +17,15 @@
 # differs from the exact cube's, the DEM's step and its wall seconds per
 # simulated second over all runs, whose ratios alone are figures on a shared
 # machine), OUT/seats.csv (one row per run),
-# OUT/cube_on_cube.png and the runs. About 10 minutes on 2 cores (clumps of
+# OUT/cube_on_cube.png and the runs. About 15 minutes on 2 cores (clumps of
 # 200 and 500 spheres are built once, then cached).
 # Usage: bash bench/run_cube_on_cube.sh [--build DIR] [--out DIR] [--models 'NAME ...'] [--set 'KEY=VALUE ...']
 #   --build   default the repo's build/ (bash scripts/build.sh armour)
 #   --out     default ${TMPDIR:-/tmp}/armour-bench/cube_on_cube
 #   --models  the models to run, of hulls clump_47 clump_64 clump_118 clump_200
-#             clump_500 (default all)
+#             clump_500 clump_118_edges_1 clump_118_edges_3 clump_118_edges_7
+#             clump_202_edges_7
+#             (default all)
 #   --set     scene keys set in every run, one suspect at a time (e.g.
 #             material.0.youngs_modulus=5e8: the contact 10 x stiffer)
 set -euo pipefail
@@ -35,6 +39,10 @@ all_models=(
   "clump_118|118|"
   "clump_200|200|--set unit.0.spheres=200"
   "clump_500|500|--set unit.0.spheres=500"
+  "clump_118_edges_1|118|--set unit.0.spheres=118 --set unit.0.edge_spheres=1"
+  "clump_118_edges_3|118|--set unit.0.spheres=118 --set unit.0.edge_spheres=3"
+  "clump_118_edges_7|118|--set unit.0.spheres=118 --set unit.0.edge_spheres=7"
+  "clump_202_edges_7|202|--set unit.0.spheres=202 --set unit.0.edge_spheres=7"
 )
 # The models and settings asked for, checked before --out is made (common.sh).
 bench_check_options() {
@@ -136,12 +144,14 @@ json.dump({"units": "angles deg, positions m, dt s, wall_seconds_per_simulated_s
 fig, (angles, cost) = plt.subplots(1, 2, figsize=(11, 4.3))
 xs = [i * 0.0005 for i in range(37)]
 angles.plot([1000 * x for x in xs], [exact(x)[0] for x in xs], "k-", lw=2, label="exact cube")
-for k, ((name, _, _), marker) in enumerate(zip(models, "s^ovDP")):
+for k, ((name, _, _), marker) in enumerate(zip(models, "s^ovDP<>Xh")):
     mine = [r for r in rows if r["model"] == name]
     # Side by side at each x, so that the models' points do not hide each other.
-    angles.plot([1000 * r["x_m"] + 0.25 * (k - 2.5) for r in mine],
+    angles.plot([1000 * r["x_m"] + 0.2 * (k - (len(models) - 1) / 2) for r in mine],
                 [r["leave_angle_deg"] for r in mine], marker, ms=4, alpha=0.75,
-                label=name.replace("_", " ") + ("" if name == "hulls" else " spheres"))
+                label=name.replace("_", " ").replace("clump ", "clump of ")
+                .replace(" edges ", " spheres, edge spheres ")
+                + ("" if name == "hulls" or "edges" in name else " spheres"))
     f = figures[name]
     cost.plot(f["wall_seconds_per_simulated_second"], f["rms_error_deg"], marker, ms=7,
               label=name.replace("_", " "))

@@ -19,14 +19,17 @@
 # in Dn), OUT/layer_tilt.csv (one row per run), OUT/layer_tilt.png and the
 # runs. About 2.3 minutes per layer and angle on 2 cores.
 # Usage: bash bench/run_layer_tilt.sh --scenes 'SCENE...' [--angles 'DEG...'] [--duration S]
-#          [--build DIR] [--out DIR]
+#          [--engines 'ENGINE...'] [--build DIR] [--out DIR]
 #   --scenes    settled scenes, space-separated (required)
 #   --angles    extra tilt down the face, deg (default '0 4 8 12 16')
 #   --duration  s each layer is held (default 3)
+#   --engines   the unit models held, of liggghts (clumps) and bullet (hulls)
+#               (default both; one alone for a variant of it, e.g. scenes
+#               whose [[unit]] sets edge_spheres)
 #   --out       default ${TMPDIR:-/tmp}/armour-bench/layer_tilt
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-bench_name=layer_tilt bench_targets=armour bench_options="scenes angles duration"
+bench_name=layer_tilt bench_targets=armour bench_options="scenes angles duration engines"
 source "$root/bench/common.sh"
 bench_check_options() {
   [ -n "${opt_scenes:-}" ] || bench_fail "--scenes: required (settled scenes, RUN/settle/scene.settled.toml)"
@@ -34,6 +37,11 @@ bench_check_options() {
   for scene in $opt_scenes; do
     [ -f "$scene" ] || bench_fail "--scenes: $scene: no such file"
   done
+  local engine
+  for engine in ${opt_engines-liggghts bullet}; do
+    [[ " liggghts bullet " == *" $engine "* ]] || bench_fail "--engines: no engine '$engine' (liggghts, bullet)"
+  done
+  [ -n "${opt_engines-x}" ] || bench_fail "--engines: no engine named"
 }
 bench_args "$@"
 angles="" duration="${opt_duration:-3}"
@@ -41,6 +49,7 @@ for angle in ${opt_angles:-0 4 8 12 16}; do
   angles+="$(awk -v a="$angle" 'BEGIN { printf "%g ", a + 0 }')" # one name per angle: 8.0 and 8 are 8
 done
 armour="$build/apps/armour"
+engines="${opt_engines-liggghts bullet}"
 # A folder resumed must hold a bench of the same layers and hold (its runs are kept as they are).
 settings="duration=$duration scenes="
 for scene in $opt_scenes; do settings+="$(cd "$(dirname "$scene")" && pwd)/$(basename "$scene") "; done
@@ -57,7 +66,7 @@ for scene in $opt_scenes; do
     bench_fail "--scenes $scene: cannot make its dry scene"
   for angle in $angles; do
     gravity="$(awk -v t="$angle" 'BEGIN { r = t * atan2(0, -1) / 180; printf "[%.6f, 0.0, %.6f]", -9.81 * sin(r), -9.81 * cos(r) }')"
-    for engine in liggghts bullet; do
+    for engine in $engines; do
       run="$layer/${engine}_$angle"
       [ ! -f "$run/summary.json" ] || continue
       rm -rf "$run"
@@ -67,7 +76,7 @@ for scene in $opt_scenes; do
     done
   done
 done
-/usr/bin/python3 - "$out" "$k" "$angles" <<'PY'
+/usr/bin/python3 - "$out" "$k" "$angles" "$engines" <<'PY'
 import json, sys
 import h5py
 import matplotlib
@@ -76,7 +85,8 @@ import matplotlib.pyplot as plt
 import numpy as np
 from armour_results import read_summary, write_rows
 out, layers, angles = sys.argv[1], int(sys.argv[2]), [float(a) for a in sys.argv[3].split()]
-models = {"liggghts": "clumps (LIGGGHTS)", "bullet": "exact hulls (Bullet)"}
+models = {engine: label for engine, label in (("liggghts", "clumps (LIGGGHTS)"), ("bullet", "exact hulls (Bullet)"))
+          if engine in sys.argv[4].split()}
 rows, figures = [], {}
 for engine in models:
     figures[engine] = []

@@ -12,7 +12,9 @@
 //                  volume. With enough spheres it also holds one small
 //                  sphere on every corner of every face the unit rests on,
 //                  so that it stands and topples like the unit
-//                  (clump_support.h).
+//                  (clump_support.h); asked for, also spheres along every
+//                  edge of those faces, so that a unit resting on the clump
+//                  pivots at its edge (edge_spheres below).
 //       inscribed  the optimised clump with every sphere but the corner ones
 //                  shrunk until it lies inside the exact shape (no volume
 //                  match, so it under-fills); the corner spheres then sit on
@@ -49,8 +51,16 @@ std::string method_name(ClumpMethod method);
 // Throws InputError for an unknown name; lists the known ones.
 ClumpMethod parse_method(const std::string &name);
 
-// Builds a clump of exactly `spheres` spheres (>= 1).
-Clump build_clump(const Shape &shape, ClumpMethod method, int spheres, std::uint64_t seed = 1);
+// Builds a clump of exactly `spheres` spheres (>= 1). `edge_spheres` > 0
+// (optimised and inscribed) adds that many support spheres along every edge
+// of every resting face besides the corner ones, out of the same count
+// (clump_support.h, add_edge_supports); too few spheres for them is an
+// InputError.
+Clump build_clump(const Shape &shape, ClumpMethod method, int spheres, std::uint64_t seed = 1,
+                  int edge_spheres = 0);
+// The fewest spheres build_clump accepts with `edge_spheres` > 0: the
+// support spheres (corners and edges) and 8 for the body.
+int fewest_spheres_with_edges(const Shape &shape, int edge_spheres);
 
 // Volume of the union of the spheres (m^3), by exact chord lengths along a
 // grid of lines (2D midpoint rule with `lines` x `lines` lines).

@@ -187,9 +187,11 @@ Clump optimise_clump(const Shape &shape, const ShapeQuery &query, Clump clump, s
             Eigen::Matrix4d A = normal[j];
             A.diagonal() += damping * normal[j].diagonal() + Eigen::Vector4d::Constant(1e-12);
             Eigen::Vector4d step = -A.ldlt().solve(gradient[j]);
+            if (!step.allFinite()) // a step of NaN times 0 would still be NaN
+                step.setZero();
             const double size = step.norm();
-            if (!(size <= max_step)) // also rejects NaN
-                step *= size > 0.0 && std::isfinite(size) ? max_step / size : 0.0;
+            if (size > max_step)
+                step *= max_step / size;
             trial[j].center += step.head<3>();
             trial[j].radius = std::max(trial[j].radius + step[3], 0.5 * min_radius);
         }
@@ -335,24 +337,55 @@ ClumpMethod parse_method(const std::string &name) {
     return detail::parse_method(name);
 }
 
-Clump build_clump(const Shape &shape, ClumpMethod method, int spheres, std::uint64_t seed) {
+namespace {
+// With fewer body spheres than this the fit is worse than the greedy
+// baseline's (cube, 8 corners and 2 body spheres: surface RMS 7.2 % Dn
+// against 6.9 %).
+constexpr std::size_t kMinBodySpheres = 8;
+
+std::vector<SupportCorner> supports_of(const std::vector<RestingFace> &faces, int edge_spheres, double Dn) {
+    std::vector<SupportCorner> corners = support_corners(faces, Dn);
+    if (edge_spheres > 0)
+        add_edge_supports(corners, faces, edge_spheres, Dn);
+    return corners;
+}
+} // namespace
+
+int fewest_spheres_with_edges(const Shape &shape, int edge_spheres) {
+    const double Dn = shape.Dn();
+    const auto faces = resting_faces(shape.mesh, shape.props.centroid, Dn);
+    return static_cast<int>(supports_of(faces, edge_spheres, Dn).size() + kMinBodySpheres);
+}
+
+Clump build_clump(const Shape &shape, ClumpMethod method, int spheres, std::uint64_t seed, int edge_spheres) {
     if (spheres < 1)
         throw InputError("--spheres: the number of spheres must be >= 1 (got " + std::to_string(spheres) +
                          ")");
+    if (edge_spheres < 0)
+        throw InputError("--edge-spheres: must be >= 0 (got " + std::to_string(edge_spheres) + ")");
+    if (edge_spheres > 0 && method == ClumpMethod::greedy)
+        throw InputError("--edge-spheres: the greedy clump has no support spheres; use --method optimised or "
+                         "inscribed");
     const ShapeQuery query(shape.mesh);
     if (method == ClumpMethod::greedy)
         return detail::greedy_inscribed(shape, query, spheres, seed);
     // The optimised clump stands on the corners of every resting face
-    // (clump_support.h) when it has a sphere for each corner and at least
-    // kMinBodySpheres for the body (with fewer the body fits worse than the
-    // greedy baseline: cube, 8 corners and 2 body spheres, surface RMS 7.2 %
-    // Dn against 6.9 %); the body's spheres are fitted around them.
+    // (clump_support.h) when it has a sphere for each corner (and edge
+    // sphere) and at least kMinBodySpheres for the body; the body's spheres
+    // are fitted around them.
     const double Dn = shape.Dn();
     const std::vector<RestingFace> faces = resting_faces(shape.mesh, shape.props.centroid, Dn);
-    std::vector<SupportCorner> corners = support_corners(faces, Dn);
-    constexpr std::size_t kMinBodySpheres = 8;
-    if (static_cast<std::size_t>(spheres) < corners.size() + kMinBodySpheres)
+    std::vector<SupportCorner> corners = supports_of(faces, edge_spheres, Dn);
+    if (static_cast<std::size_t>(spheres) < corners.size() + kMinBodySpheres) {
+        // Asked for, edge spheres are never dropped silently.
+        if (edge_spheres > 0)
+            throw InputError("--edge-spheres: " + std::to_string(edge_spheres) + " per edge make " +
+                             std::to_string(corners.size()) +
+                             " support spheres with the corners, so --spheres must be at least " +
+                             std::to_string(corners.size() + kMinBodySpheres) + " (got " +
+                             std::to_string(spheres) + ")");
         corners.clear();
+    }
     const double radius = kSupportRadius * Dn;
     Clump clump(corners.size(), Sphere{Eigen::Vector3d::Zero(), radius});
     // Inside every face to start with, so that the fit sees where they will be.

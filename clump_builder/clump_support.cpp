@@ -172,6 +172,47 @@ std::vector<SupportCorner> support_corners(const std::vector<RestingFace> &faces
     return corners;
 }
 
+void add_edge_supports(std::vector<SupportCorner> &corners, const std::vector<RestingFace> &faces,
+                       int per_edge, double Dn) {
+    auto corner_index = [&](const Eigen::Vector3d &p) {
+        for (std::size_t k = 0; k < corners.size(); ++k)
+            if ((corners[k].vertex - p).norm() < 1e-9 * Dn)
+                return static_cast<int>(k);
+        return -1;
+    };
+    auto holds = [](const SupportCorner &k, int face) {
+        return std::find(k.faces.begin(), k.faces.end(), face) != k.faces.end();
+    };
+    std::vector<std::pair<int, int>> done; // an edge shared by two faces gets its spheres once
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+        const std::size_t n = faces[f].corners.size();
+        for (std::size_t e = 0; e < n; ++e) {
+            const int a = corner_index(faces[f].corners[e]);
+            const int b = corner_index(faces[f].corners[(e + 1) % n]);
+            const std::pair<int, int> edge{std::min(a, b), std::max(a, b)};
+            if (a < 0 || b < 0 || std::find(done.begin(), done.end(), edge) != done.end())
+                continue;
+            done.push_back(edge);
+            // The faces the edge bounds: those both its corners lie on.
+            std::vector<int> edge_faces;
+            for (int g : corners[static_cast<std::size_t>(a)].faces)
+                if (holds(corners[static_cast<std::size_t>(b)], g))
+                    edge_faces.push_back(g);
+            Eigen::MatrixXd normals(static_cast<Eigen::Index>(edge_faces.size()), 3);
+            for (std::size_t i = 0; i < edge_faces.size(); ++i)
+                normals.row(static_cast<Eigen::Index>(i)) = faces[edge_faces[i]].normal.transpose();
+            const Eigen::Vector3d bisector = normals.completeOrthogonalDecomposition().solve(
+                Eigen::VectorXd::Ones(static_cast<Eigen::Index>(edge_faces.size())));
+            const Eigen::Vector3d pa =
+                corners[static_cast<std::size_t>(a)].vertex; // copies: push_back moves them
+            const Eigen::Vector3d pb = corners[static_cast<std::size_t>(b)].vertex;
+            for (int i = 1; i <= per_edge; ++i)
+                corners.push_back(
+                    {pa + (pb - pa) * (static_cast<double>(i) / (per_edge + 1)), bisector, edge_faces});
+        }
+    }
+}
+
 void place_support_spheres(Clump &clump, const std::vector<SupportCorner> &corners,
                            const std::vector<RestingFace> &faces, double radius) {
     // How far the other spheres reach beyond any face (never less than the

@@ -80,6 +80,16 @@ struct SupportCorner {
     std::vector<int> faces;   // indices into the resting faces
 };
 std::vector<SupportCorner> support_corners(const std::vector<RestingFace> &faces, double Dn);
+// Edge spheres (optional, `edge_spheres` per edge): a clump resting on
+// another clump pivots on the last high sphere cap short of its
+// neighbour's edge, 3-5 mm (0.08-0.12 Dn) back on the stability scene's
+// cube whatever the sphere count (docs/validation/stability.md, a cube on a
+// cube). So `per_edge` more support points, evenly spaced along every edge
+// of every resting face between its corners, are appended to `corners`:
+// each gets a sphere as a corner does, reaching the same plane on both of
+// the edge's faces, so that the face stands as high at its edge as anywhere.
+void add_edge_supports(std::vector<SupportCorner> &corners, const std::vector<RestingFace> &faces,
+                       int per_edge, double Dn);
 // Sets clump[k] for k < corners.size() to the corner spheres, fitted to the
 // other spheres clump[corners.size()...].
 void place_support_spheres(Clump &clump, const std::vector<SupportCorner> &corners,

@@ -40,6 +40,7 @@ struct SceneUnit {
     std::string stl;                   // path, resolved relative to the scene file
     double density = 2400.0;           // kg/m^3
     int spheres = 0;                   // > 0: fixed count; 0: tolerance mode
+    int edge_spheres = 0;              // support spheres along each resting face's edges, of `spheres`
     double tol_volume = 0.01;
     double tol_surface = 0.02;
     std::string method = "optimised";

@@ -195,6 +195,12 @@ const std::vector<Key<SceneUnit>> &unit_keys() {
             .in(Range::at_least(1))
             .defaults("absent")
             .written_if([](const U &u) { return u.spheres > 0; }),
+        key("edge_spheres", &U::edge_spheres, "",
+            "support spheres along every edge of the faces the unit rests on, besides the corner ones, out "
+            "of `spheres` (needs it; optimised and inscribed): a unit resting on this one pivots at its "
+            "edge, not on the last sphere cap short of it (clump_builder.md)")
+            .in(Range::at_least(0))
+            .written_if([](const U &u) { return u.edge_spheres > 0; }),
         key("tol_volume", &U::tol_volume, "", "tolerance mode: allowed relative volume error")
             .in(Range::open(0, 1)),
         key("tol_surface", &U::tol_surface, "", "tolerance mode: allowed surface RMS distance / Dn")

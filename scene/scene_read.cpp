@@ -158,6 +158,13 @@ void read_units(const Table &root, Scene &s) {
         read_keys(t, keys, u, u.shape);
         t.check(u.shape != "cube" || u.chamfer < 0.5 * u.size, "chamfer",
                 "must be in [0, size/2) = [0, " + number_text(0.5 * u.size) + ") m", u.chamfer);
+        // Edge spheres are a layout for a given count: the tolerance search
+        // would pick the count without them.
+        t.check(u.edge_spheres == 0 || u.spheres > 0, "edge_spheres", "needs a fixed `spheres` count",
+                u.edge_spheres);
+        t.check(u.edge_spheres == 0 || u.method != "greedy", "edge_spheres",
+                "the greedy clump has no support spheres (method \"optimised\" or \"inscribed\")",
+                u.edge_spheres);
         u.material = material_of(t, s.materials);
         s.units.push_back(u);
     }

@@ -56,6 +56,8 @@ Clump cached_clump(const SceneUnit &u, const Shape &shape, const std::string &ca
     key.precision(17);
     key << "armour-clump-v2|" << shape.description << "|density=" << u.density << "|method=" << u.method
         << "|spheres=" << u.spheres << "|tol=" << u.tol_volume << "," << u.tol_surface << "|seed=1";
+    if (u.edge_spheres > 0) // only when set, so that existing caches keep their names
+        key << "|edges=" << u.edge_spheres;
     if (u.shape == "stl") { // the file's content, not only its name, decides the clump
         std::ifstream in(u.stl, std::ios::binary);
         key << "|bytes=" << std::hash<std::string>{}(std::string(std::istreambuf_iterator<char>(in), {}));
@@ -77,10 +79,12 @@ Clump cached_clump(const SceneUnit &u, const Shape &shape, const std::string &ca
     const ClumpMethod method = parse_method(u.method);
     Clump clump;
     if (u.spheres > 0) {
+        const std::string edges =
+            u.edge_spheres > 0 ? ", " + std::to_string(u.edge_spheres) + " per edge" : "";
         if (progress)
-            std::fprintf(stderr, "unit %s: building a %d-sphere clump (%s)\n", u.name.c_str(), u.spheres,
-                         u.method.c_str());
-        clump = build_clump(shape, method, u.spheres);
+            std::fprintf(stderr, "unit %s: building a %d-sphere clump (%s%s)\n", u.name.c_str(), u.spheres,
+                         u.method.c_str(), edges.c_str());
+        clump = build_clump(shape, method, u.spheres, 1, u.edge_spheres);
     } else {
         if (progress)
             std::fprintf(stderr, "unit %s: fewest spheres for volume %g, surface %g Dn\n", u.name.c_str(),
@@ -227,6 +231,13 @@ void add_units(const Scene &scene, const std::string &cache_dir, bool progress, 
         t.mesh = shape.mesh;
         t.props = shape.props;
         t.material = material_index(scene, u.material, "unit." + std::to_string(k) + ".material");
+        // Checked here, where the shape is known, before any clump is built.
+        if (u.edge_spheres > 0 && u.spheres < fewest_spheres_with_edges(shape, u.edge_spheres))
+            throw InputError(
+                scene.file + ": key 'unit." + std::to_string(k) + ".edge_spheres': " +
+                std::to_string(u.edge_spheres) + " per edge need unit." + std::to_string(k) +
+                ".spheres >= " + std::to_string(fewest_spheres_with_edges(shape, u.edge_spheres)) +
+                " (the corner and edge spheres, and 8 for the body; got " + std::to_string(u.spheres) + ")");
         t.clump = cached_clump(u, shape, cache_dir, progress);
         t.convex_parts = shape.convex_parts;
         setup.unit_Dn.push_back(shape.Dn());

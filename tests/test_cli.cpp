@@ -172,6 +172,20 @@ TEST_F(Cli, RejectsImpossibleTolerances) {
                     "cannot be met with at most 6 spheres");
 }
 
+TEST_F(Cli, RejectsEdgeSpheresItCannotBuild) {
+    // Edge spheres are a layout of a fixed count: without --spheres, with too
+    // few for them (a cube's 12 edges x 7 + 8 corners + 8 body spheres =
+    // 100), negative, or for the greedy clump, nothing is built.
+    expect_rejected({"clump", "--shape", "cube", "--size", "1", "--edge-spheres", "3"}, "--spheres");
+    expect_rejected({"clump", "--shape", "cube", "--size", "1", "--spheres", "99", "--edge-spheres", "7"},
+                    "at least 100");
+    expect_rejected({"clump", "--shape", "cube", "--size", "1", "--spheres", "99", "--edge-spheres", "-1"},
+                    "--edge-spheres");
+    expect_rejected({"clump", "--shape", "cube", "--size", "1", "--spheres", "99", "--edge-spheres", "1",
+                     "--method", "greedy"},
+                    "greedy");
+}
+
 TEST_F(Cli, HelpStatesUnits) {
     ::testing::internal::CaptureStdout();
     const std::vector<const char *> argv = {"armour", "clump", "--help"};

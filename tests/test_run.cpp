@@ -679,6 +679,50 @@ TEST_F(Run, CubeOnACubeTipsOverItsNeighboursEdge) {
     EXPECT_LT(s["topple_angle_deg"].get<double>(), exact - 4.0) << s.dump();
 }
 
+TEST_F(Run, EdgeSpheresSeatACubeOverItsNeighboursEdgeWhereTheScenesClumpCannot) {
+    // 30 % of the free cube over its held neighbour's downhill edge (x = 12
+    // mm): an exact cube rests there and tips at atan((a/2 - x) / (a/2)) =
+    // 21.8 deg. The scene's 118-sphere clump cannot seat it at all (it
+    // pivots 3-5 mm short of the edge, on the last high sphere cap, so the
+    // cube topples off as it lands), whatever the sphere count. The
+    // builder's edge spheres (unit.edge_spheres) stand the neighbour's face
+    // as high at its edge as at its corners: the scene's body of 110
+    // spheres with 7 along every edge seats it and lets it go within 1.5 deg
+    // of the exact cube (measured 21.8 deg; 22.2-23.0 deg for 1, 3 or 7 of
+    // the 118's, docs/validation/stability.md, "Edge spheres"). Past 35 %
+    // over the edge they still fail there: the bench's rows, not this test.
+    // Their cost is asserted too: squarely on its neighbour (x = 0) the
+    // cube's edge spheres fall between its neighbour's, and it slides late
+    // (measured 41.3 deg where an exact cube slides at 31.0): if a change
+    // cures that, measure the docs' figures again.
+    const std::string scene = shipped_scene("tilt_cube_pair.toml");
+    const double exact = std::atan(0.4) * 57.29577951308232;
+    ASSERT_EQ(run(scene, {"--set", "body.0.position=[0.012, 0.0, 0.065]"}), 0) << err_;
+    nlohmann::json s = summary();
+    EXPECT_EQ(s["spheres_per_unit"]["cube"], 118) << s.dump();
+    EXPECT_EQ(s["left_before_resting"], true) << s.dump();
+    fs::remove_all(out());
+    ASSERT_EQ(run(scene, {"--set", "body.0.position=[0.012, 0.0, 0.065]", "--set", "unit.0.spheres=202",
+                          "--set", "unit.0.edge_spheres=7"}),
+              0)
+        << err_;
+    s = summary();
+    EXPECT_EQ(s["spheres_per_unit"]["cube"], 202) << s.dump();
+    EXPECT_EQ(s["left_before_resting"], false) << s.dump();
+    EXPECT_EQ(s["left_by"], "toppled") << s.dump();
+    EXPECT_NEAR(s["leave_angle_deg"].get<double>(), exact, 1.5) << s.dump();
+    fs::remove_all(out());
+    ASSERT_EQ(run(scene, {"--set", "unit.0.spheres=202", "--set", "unit.0.edge_spheres=7"}), 0) << err_;
+    s = summary();
+    EXPECT_EQ(s["left_by"], "slid") << s.dump();
+    EXPECT_GT(s["leave_angle_deg"].get<double>(), std::atan(0.6) * 57.29577951308232 + 4.0) << s.dump();
+    // Asked for with too few spheres for them, the scene is refused by name.
+    fs::remove_all(out());
+    EXPECT_EQ(run(scene, {"--set", "unit.0.spheres=60", "--set", "unit.0.edge_spheres=7"}), 2);
+    EXPECT_NE(err_.find("unit.0.edge_spheres"), std::string::npos) << err_;
+    EXPECT_FALSE(fs::exists(out() / "summary.json"));
+}
+
 TEST_F(Run, ACubeThatCannotRestOnItsNeighbourLeavesBeforeItRestsAndSaysSo) {
     // The free cube's centre 5 mm past its neighbour's edge: an exact cube
     // has no seat there and topples off as it lands, before it ever comes
