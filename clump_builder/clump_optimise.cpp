@@ -343,10 +343,24 @@ namespace {
 // against 6.9 %).
 constexpr std::size_t kMinBodySpheres = 8;
 
-std::vector<SupportCorner> supports_of(const std::vector<RestingFace> &faces, int edge_spheres, double Dn) {
+// The corners of every resting face and, with edge_spheres > 0, that many
+// points along each of their edges. A hull edge of a concave unit (a
+// dolos's, from one fluke to another) may cross open air: a sphere there
+// would be a contact surface the unit does not have, so only the points on
+// the unit's surface are kept.
+std::vector<SupportCorner> supports_of(const std::vector<RestingFace> &faces, int edge_spheres, double Dn,
+                                       const ShapeQuery &query) {
     std::vector<SupportCorner> corners = support_corners(faces, Dn);
-    if (edge_spheres > 0)
+    if (edge_spheres > 0) {
+        const std::size_t corner_count = corners.size();
         add_edge_supports(corners, faces, edge_spheres, Dn);
+        corners.erase(std::remove_if(corners.begin() + static_cast<std::ptrdiff_t>(corner_count),
+                                     corners.end(),
+                                     [&](const SupportCorner &k) {
+                                         return std::abs(query.signed_distance(k.vertex)) > 1e-6 * Dn;
+                                     }),
+                      corners.end());
+    }
     return corners;
 }
 } // namespace
@@ -354,7 +368,8 @@ std::vector<SupportCorner> supports_of(const std::vector<RestingFace> &faces, in
 int fewest_spheres_with_edges(const Shape &shape, int edge_spheres) {
     const double Dn = shape.Dn();
     const auto faces = resting_faces(shape.mesh, shape.props.centroid, Dn);
-    return static_cast<int>(supports_of(faces, edge_spheres, Dn).size() + kMinBodySpheres);
+    return static_cast<int>(supports_of(faces, edge_spheres, Dn, ShapeQuery(shape.mesh)).size() +
+                            kMinBodySpheres);
 }
 
 Clump build_clump(const Shape &shape, ClumpMethod method, int spheres, std::uint64_t seed, int edge_spheres) {
@@ -375,7 +390,7 @@ Clump build_clump(const Shape &shape, ClumpMethod method, int spheres, std::uint
     // are fitted around them.
     const double Dn = shape.Dn();
     const std::vector<RestingFace> faces = resting_faces(shape.mesh, shape.props.centroid, Dn);
-    std::vector<SupportCorner> corners = supports_of(faces, edge_spheres, Dn);
+    std::vector<SupportCorner> corners = supports_of(faces, edge_spheres, Dn, query);
     if (static_cast<std::size_t>(spheres) < corners.size() + kMinBodySpheres) {
         // Asked for, edge spheres are never dropped silently.
         if (edge_spheres > 0)
