@@ -232,12 +232,13 @@ void add_units(const Scene &scene, const std::string &cache_dir, bool progress, 
         t.props = shape.props;
         t.material = material_index(scene, u.material, "unit." + std::to_string(k) + ".material");
         // Checked here, where the shape is known, before any clump is built.
-        if (u.edge_spheres > 0 && u.spheres < fewest_spheres_with_edges(shape, u.edge_spheres))
-            throw InputError(
-                scene.file + ": key 'unit." + std::to_string(k) + ".edge_spheres': " +
-                std::to_string(u.edge_spheres) + " per edge need unit." + std::to_string(k) +
-                ".spheres >= " + std::to_string(fewest_spheres_with_edges(shape, u.edge_spheres)) +
-                " (the corner and edge spheres, and 8 for the body; got " + std::to_string(u.spheres) + ")");
+        if (const int needed = u.edge_spheres > 0 ? fewest_spheres_with_edges(shape, u.edge_spheres) : 0;
+            u.spheres < needed)
+            throw InputError(scene.file + ": key 'unit." + std::to_string(k) +
+                             ".edge_spheres': " + std::to_string(u.edge_spheres) + " per edge need unit." +
+                             std::to_string(k) + ".spheres >= " + std::to_string(needed) +
+                             " (the corner and edge spheres, and 8 for the body; got " +
+                             std::to_string(u.spheres) + ")");
         t.clump = cached_clump(u, shape, cache_dir, progress);
         t.convex_parts = shape.convex_parts;
         setup.unit_Dn.push_back(shape.Dn());
