@@ -150,6 +150,19 @@ std::vector<FaceTopple> topple_angles(const TriangleMesh &mesh, const Eigen::Vec
     return result;
 }
 
+namespace {
+// The direction s with n_f . s = 1 on each of the given faces (least
+// squares, minimum norm): a sphere moved along it gains the same reach
+// beyond every one of them.
+Eigen::Vector3d bisector_of(const std::vector<RestingFace> &faces, const std::vector<int> &on) {
+    Eigen::MatrixXd normals(static_cast<Eigen::Index>(on.size()), 3);
+    for (std::size_t i = 0; i < on.size(); ++i)
+        normals.row(static_cast<Eigen::Index>(i)) = faces[static_cast<std::size_t>(on[i])].normal.transpose();
+    return normals.completeOrthogonalDecomposition().solve(
+        Eigen::VectorXd::Ones(static_cast<Eigen::Index>(on.size())));
+}
+} // namespace
+
 std::vector<SupportCorner> support_corners(const std::vector<RestingFace> &faces, double Dn) {
     std::vector<SupportCorner> corners;
     for (std::size_t f = 0; f < faces.size(); ++f)
@@ -162,13 +175,8 @@ std::vector<SupportCorner> support_corners(const std::vector<RestingFace> &faces
             else
                 same->faces.push_back(static_cast<int>(f));
         }
-    for (SupportCorner &k : corners) {
-        Eigen::MatrixXd normals(static_cast<Eigen::Index>(k.faces.size()), 3);
-        for (std::size_t i = 0; i < k.faces.size(); ++i)
-            normals.row(static_cast<Eigen::Index>(i)) = faces[k.faces[i]].normal.transpose();
-        k.bisector = normals.completeOrthogonalDecomposition().solve(
-            Eigen::VectorXd::Ones(static_cast<Eigen::Index>(k.faces.size())));
-    }
+    for (SupportCorner &k : corners)
+        k.bisector = bisector_of(faces, k.faces);
     return corners;
 }
 
@@ -198,11 +206,7 @@ void add_edge_supports(std::vector<SupportCorner> &corners, const std::vector<Re
             for (int g : corners[static_cast<std::size_t>(a)].faces)
                 if (holds(corners[static_cast<std::size_t>(b)], g))
                     edge_faces.push_back(g);
-            Eigen::MatrixXd normals(static_cast<Eigen::Index>(edge_faces.size()), 3);
-            for (std::size_t i = 0; i < edge_faces.size(); ++i)
-                normals.row(static_cast<Eigen::Index>(i)) = faces[edge_faces[i]].normal.transpose();
-            const Eigen::Vector3d bisector = normals.completeOrthogonalDecomposition().solve(
-                Eigen::VectorXd::Ones(static_cast<Eigen::Index>(edge_faces.size())));
+            const Eigen::Vector3d bisector = bisector_of(faces, edge_faces);
             const Eigen::Vector3d pa =
                 corners[static_cast<std::size_t>(a)].vertex; // copies: push_back moves them
             const Eigen::Vector3d pb = corners[static_cast<std::size_t>(b)].vertex;
