@@ -228,6 +228,40 @@ TEST(StabilityCubes, ShortIrregularRunWritesEveryDamageFileAndKey) {
     const int refused = std::system(into.c_str());
     EXPECT_TRUE(WIFEXITED(refused) && WEXITSTATUS(refused) == 2);
     EXPECT_TRUE(fs::is_regular_file(run.out / "summary.json"));
+    // studies/damage_growth.py reads the run through `armour report --until`: a row at 5 s (the
+    // record at or before it) and a last row that is the run's own figures.
+    const fs::path growth = run.dir / "growth";
+    const std::string script = std::string("/usr/bin/python3 '") + ARMOUR_SOURCE_DIR +
+                               "/studies/damage_growth.py' '" + run.out.string() +
+                               "' --times 5 --after 1 --armour '" + ARMOUR_EXE + "' --out '" +
+                               growth.string() + "' > '" + growth.string() + ".log' 2>&1";
+    const int grown = std::system(script.c_str());
+    EXPECT_TRUE(WIFEXITED(grown) && WEXITSTATUS(grown) == 0) << read_text(growth.string() + ".log");
+    std::vector<std::string> header;
+    const auto growth_rows = csv_rows(growth / "growth.csv", header);
+    ASSERT_EQ(growth_rows.size(), 2u) << read_text(growth / "growth.csv");
+    const auto column = [&](const std::string &name) {
+        return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
+    };
+    ASSERT_LT(column("units_displaced_van_der_meer"), header.size());
+    EXPECT_LE(growth_rows[0][column("time_s")], 5.0);
+    EXPECT_GT(growth_rows[0][column("time_s")], 5.0 - 0.051);
+    EXPECT_DOUBLE_EQ(growth_rows[1][column("time_s")], s["simulated_seconds"].get<double>());
+    EXPECT_EQ(growth_rows[1][column("units_displaced")], s["units_displaced"].get<double>());
+    EXPECT_NEAR(growth_rows[1][column("units_displaced_van_der_meer")],
+                s["units_displaced_van_der_meer"].get<double>(),
+                1e-12 * (1 + s["units_displaced_van_der_meer"].get<double>()));
+    EXPECT_NEAR(growth_rows[1][column("waves")], s["damage"]["waves"].get<double>(), 1e-12);
+    // Its count of units moved 0.25 Dn or more from their settled poses is the run's damage.csv's.
+    std::vector<std::string> unit_header;
+    const auto units = csv_rows(run.out / "damage.csv", unit_header);
+    const auto final_column = static_cast<std::size_t>(
+        std::find(unit_header.begin(), unit_header.end(), "final_displacement_over_Dn") -
+        unit_header.begin());
+    ASSERT_LT(final_column, unit_header.size());
+    const auto moved =
+        std::count_if(units.begin(), units.end(), [&](const auto &u) { return u[final_column] >= 0.25; });
+    EXPECT_EQ(growth_rows[1][column("units_moved_quarter_Dn")], static_cast<double>(moved));
     if (!HasFailure())
         fs::remove_all(run.dir);
 }

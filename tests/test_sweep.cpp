@@ -1412,6 +1412,90 @@ TEST_F(SweepTest, DamageTimingPutsEachDepartureInTheTrainAndOnItsSeat) {
     }
 }
 
+// Does the damage go on growing with the waves (studies/damage_growth.py): a
+// run's figures at a series of times, from `armour report --until` (here a
+// stand-in program with a known history), and, conditioned on each run's
+// final count, the binomial chance that so few left after the first N0 waves
+// if they left as Van der Meer's expected count grows; pooled, the exact
+// distribution of the sum; bad input is one error line.
+TEST_F(SweepTest, DamageGrowthHoldsEachRunsLateDeparturesAgainstTheFormulasGrowth) {
+    // The stand-in: a run that has come to 100 s; N = t / 2 waves; the formula's count 0.1 N^0.75.
+    // Run a: units displaced 1 from 10 s, 2 from 20 s, 3 from 80 s; run b: 1 from 10 s; run c: refused.
+    const fs::path fake = dir_ / "fake_armour";
+    write(fake,
+          "#!/usr/bin/python3\n"
+          "import json, os, sys\n"
+          "a = sys.argv[1:]\n"
+          "run, out = os.path.basename(a[1]), a[a.index('--out') + 1]\n"
+          "if run == 'c':\n"
+          "    sys.exit(print('armour: error: c: not a coupled run', file=sys.stderr) or 2)\n"
+          "t = min(float(a[a.index('--until') + 1]) if '--until' in a else 100.0, 100.0)\n"
+          "steps = {'a': (10, 20, 80), 'b': (10,)}[run]\n"
+          "n, d = t / 2, sum(t >= s for s in steps)\n"
+          "os.makedirs(out)\n"
+          "json.dump({'simulated_seconds': t, 'damage': {'waves': n, 'wave_source': 'measured'},\n"
+          "           'Ns': 4.2, 's_om': 0.03, 'units_displaced': d, 'N_od': d / 6.2, 'damage_S': 0.5,\n"
+          "           'rocking_units': 3, 'units_displaced_van_der_meer': 0.1 * n ** 0.75,\n"
+          "           'N_od_van_der_meer': 0.1 * n ** 0.75 / 6.2}, open(out + '/summary.json', 'w'))\n");
+    fs::permissions(fake, fs::perms::owner_all);
+    for (const char *r : {"a", "b", "c"})
+        fs::create_directories(dir_ / "runs" / r);
+    const std::string script = "/usr/bin/python3 " + kSource + "/studies/damage_growth.py ";
+    const std::string runs = (dir_ / "runs" / "a").string() + " " + (dir_ / "runs" / "b").string();
+    const std::string tail = " --armour " + fake.string() + " --out " + (dir_ / "g").string();
+    const Result r = run(script + runs + " --every 20 --after 27" + tail);
+    ASSERT_EQ(r.status, 0) << r.output;
+    // Reports at 20, 40, 60, 80 s and the end (100 s); the first at or past 27 waves is 60 s (30
+    // waves), the end 50 waves: the formula's growth puts q = 1 - (30/50)^0.75 of the units after.
+    const double q = 1.0 - std::pow(0.6, 0.75);
+    const auto out = nlohmann::json::parse(read_text(dir_ / "g" / "summary.json"));
+    const auto &a = out["runs"][(dir_ / "runs" / "a").string()];
+    EXPECT_EQ(a["waves_at"].get<double>(), 30.0);
+    EXPECT_EQ(a["displaced_at"].get<int>(), 2);
+    EXPECT_EQ(a["displaced_after"].get<int>(), 1);
+    EXPECT_NEAR(a["share_after_van_der_meer"].get<double>(), q, 1e-12);
+    EXPECT_NEAR(a["chance_of_so_few"].get<double>(), std::pow(1 - q, 3) + 3 * q * std::pow(1 - q, 2), 1e-12);
+    const auto &b = out["runs"][(dir_ / "runs" / "b").string()];
+    EXPECT_EQ(b["displaced_after"].get<int>(), 0);
+    EXPECT_NEAR(b["chance_of_so_few"].get<double>(), 1 - q, 1e-12);
+    // Pooled: 1 of 4 after; both runs share q, so the sum is binomial (4, q).
+    EXPECT_EQ(out["pooled"]["displaced_after"].get<int>(), 1);
+    EXPECT_NEAR(out["pooled"]["expected_after"].get<double>(), 4 * q, 1e-12);
+    EXPECT_NEAR(out["pooled"]["chance_of_so_few"].get<double>(),
+                std::pow(1 - q, 4) + 4 * q * std::pow(1 - q, 3), 1e-12);
+    const std::string csv = read_text(dir_ / "g" / "growth.csv");
+    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 1 + 2 * 5)
+        << csv; // comment, header, 5 rows a run
+    EXPECT_NE(csv.find((dir_ / "runs" / "a").string() + ",80.0,measured,40.0,4.2,0.03,3,"), std::string::npos)
+        << csv;
+    EXPECT_GT(fs::file_size(dir_ / "g" / "growth.png"), 10000u);
+    // --times asks at the times given (those before the run's end) and the end.
+    const Result at = run(script + (dir_ / "runs" / "a").string() + " --times 70,10,250" + tail + "t");
+    ASSERT_EQ(at.status, 0) << at.output;
+    const std::string at_csv = read_text(dir_ / "gt" / "growth.csv");
+    EXPECT_EQ(std::count(at_csv.begin(), at_csv.end(), '\n'), 2 + 3) << at_csv;
+
+    // Bad input, one line each, nothing written: a run the report refuses; both or neither of
+    // --every and --times; a time or an --after that is no number > 0; a folder that is not there.
+    const std::vector<std::pair<std::string, std::string>> bad_inputs = {
+        {(dir_ / "runs" / "c").string() + " --every 20", "runs/c: `armour report` found no damage figures "
+                                                         "(armour: error: c: not a coupled run)"},
+        {runs + " --every 20 --times 10", "give one of --every or --times"},
+        {runs, "give one of --every or --times"},
+        {runs + " --times 10,x", "--times: '10,x' is not a comma-separated list of times in s"},
+        {runs + " --every 0", "--every: must be a finite number > 0 s (got 0)"},
+        {runs + " --every 10 --after -1", "--after: must be a finite number of waves > 0 (got -1)"},
+        {(dir_ / "runs" / "none").string() + " --every 10", "runs/none: not a folder"}};
+    for (const auto &[args, reason] : bad_inputs) {
+        const Result bad =
+            run(script + args + " --armour " + fake.string() + " --out " + (dir_ / "bad").string());
+        EXPECT_EQ(bad.status, 2) << args << "\n" << bad.output;
+        EXPECT_EQ(bad.output.rfind("armour: error: ", 0), 0u) << bad.output;
+        EXPECT_NE(bad.output.find(reason), std::string::npos) << bad.output;
+        EXPECT_EQ(std::count(bad.output.begin(), bad.output.end(), '\n'), 1) << bad.output;
+        EXPECT_FALSE(fs::exists(dir_ / "bad" / "summary.json")) << args;
+    }
+}
 // Two kept curves side by side (studies/compare_curves.py): each curve's
 // units displaced per point and in all against Van der Meer's expected count,
 // with the Poisson chance of so few, and their spread about it and within the
