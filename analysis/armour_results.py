@@ -24,6 +24,7 @@ Usage
     s = read_summary("out/run")               # summary.json as a dict
     seats = unit_seats("out/run")             # body -> Seat(at_foot, above_layer), from damage.csv
     seat_name(seats[0])                       # "in the layer", "on top of the layer", "at the foot" or "unknown"
+    rows = read_rows("out/run/damage.csv")    # a CSV's rows as dicts, its '#' comment lines skipped
 """
 import csv
 import json
@@ -70,6 +71,12 @@ def read_summary(path):
     """A run folder's summary.json (or the file named) as a dict."""
     with open(_in_run(path, "summary.json")) as f:
         return json.load(f)
+
+
+def read_rows(path):
+    """A CSV file's rows as dicts (damage.csv, damage_history.csv, results.csv), its '#' comment lines skipped."""
+    with open(path) as f:
+        return list(csv.DictReader(line for line in f if not line.startswith("#")))
 
 
 def write_rows(path, rows, comment=None):

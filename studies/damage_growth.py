@@ -44,7 +44,6 @@ Usage
     python3 studies/damage_growth.py RUN --times 20,40,80,160 --armour build/apps/armour --out OUT
 """
 import argparse
-import csv
 import json
 import math
 import os
@@ -53,7 +52,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "analysis"))
-from armour_results import read_summary, write_rows  # noqa: E402
+from armour_results import read_rows, read_summary, write_rows  # noqa: E402
 
 COLUMNS = ("time_s", "wave_source", "waves", "Ns", "s_om", "units_displaced", "units_moved_quarter_Dn", "N_od",
            "damage_S", "rocking_units", "units_displaced_van_der_meer", "N_od_van_der_meer")
@@ -104,10 +103,8 @@ def units_moved(path):
     report's damage.csv)."""
     if not os.path.isfile(path):
         return None
-    with open(path) as f:
-        rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
     try:
-        return sum(float(r["final_displacement_over_Dn"]) >= MOVED for r in rows)
+        return sum(float(r["final_displacement_over_Dn"]) >= MOVED for r in read_rows(path))
     except (KeyError, TypeError, ValueError):
         fail(f"{path}: column 'final_displacement_over_Dn' missing or not a number")
 

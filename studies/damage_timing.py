@@ -44,7 +44,6 @@ Usage
         docs/results/stability_curve_dn4 --label staged --label "at once" --out OUT
 """
 import argparse
-import csv
 import glob
 import json
 import os
@@ -54,7 +53,7 @@ import sys
 import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "analysis"))
-from armour_results import seats_of_rows  # noqa: E402
+from armour_results import read_rows, seats_of_rows  # noqa: E402
 
 EXPONENT = 0.75  # N_od ~ N^(0.3/0.4) at one Ns: Van der Meer (1988), cubes
 SHARES = (0.25, 0.5)
@@ -64,12 +63,6 @@ RESAMPLES = 2000
 def fail(message):
     print(f"armour: error: {message}", file=sys.stderr)
     sys.exit(2)
-
-
-def read_rows(path):
-    """A CSV's rows as dicts, its '#' comment lines skipped."""
-    with open(path) as f:
-        return list(csv.DictReader(line for line in f if not line.startswith("#")))
 
 
 def departures(run, displaced):
