@@ -176,11 +176,8 @@ def read_runs(args, asked, scratch):
         if whole is None:
             fail(f"{run}: `armour report` found no damage figures ({error})")
         end = whole["time_s"]  # the run's last record: its end, or how far it has come
-        if asked:
-            times = [t for t in asked if t < end]
-        else:
-            times = [args.every * k for k in range(1, int(end / args.every + 1e-9) + 1)]
-            times = [t for t in times if t < end - 1e-9]
+        times = asked or [args.every * k for k in range(1, int(end / args.every) + 1)]
+        times = [t for t in times if t < end - 1e-9]  # the end itself is `whole`
         rows = []
         for t in times:
             row, error = report(args.armour, run, t, os.path.join(reports, f"t{t:g}"))
