@@ -13,13 +13,9 @@ Description
 Usage
     python3 analysis/damage_chart.py OUT/damage.csv OUT/damage_history.csv OUT/damage.png
 """
-import csv
 import sys
 
-
-def read_rows(path):
-    with open(path) as f:
-        return list(csv.DictReader(line for line in f if not line.startswith("#")))
+from armour_results import read_rows  # this folder: Python puts a script's own folder on its path
 
 
 def main(units_csv, history_csv, png):
