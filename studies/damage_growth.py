@@ -85,7 +85,7 @@ def report(armour, run, until, out):
     try:
         summary = read_summary(path)
         row = {"time_s": float(summary["simulated_seconds"]), "wave_source": summary["damage"]["wave_source"],
-               "waves": float(summary["damage"]["waves"])}
+               "waves": float(summary["damage"]["waves"]), "records": summary.get("records")}
         for key in COLUMNS[3:]:
             row[key] = float(summary[key]) if summary.get(key) is not None else None
         row["units_moved_quarter_Dn"] = units_moved(os.path.join(out, "damage.csv"))
@@ -177,7 +177,10 @@ def read_runs(args, asked, scratch):
             fail(f"{run}: `armour report` found no damage figures ({error})")
         end = whole["time_s"]  # the run's last record: its end, or how far it has come
         times = asked or [args.every * k for k in range(1, int(end / args.every) + 1)]
-        times = [t for t in times if t < end - 1e-9]  # the end itself is `whole`
+        # The end itself is `whole`, and so is a time within one record of it (its report would read the record
+        # before the last: a row that repeats the end's).
+        interval = end / (whole["records"] - 1) if whole["records"] and whole["records"] > 1 else 0.0
+        times = [t for t in times if t < end - max(interval, 1e-9)]
         rows = []
         for t in times:
             row, error = report(args.armour, run, t, os.path.join(reports, f"t{t:g}"))

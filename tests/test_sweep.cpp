@@ -1419,7 +1419,8 @@ TEST_F(SweepTest, DamageTimingPutsEachDepartureInTheTrainAndOnItsSeat) {
 // if they left as Van der Meer's expected count grows; pooled, the exact
 // distribution of the sum; bad input is one error line.
 TEST_F(SweepTest, DamageGrowthHoldsEachRunsLateDeparturesAgainstTheFormulasGrowth) {
-    // The stand-in: a run that has come to 100 s; N = t / 2 waves; the formula's count 0.1 N^0.75.
+    // The stand-in: a run that has come to 100 s, a record every 0.05 s; N = t / 2 waves; the formula's
+    // count 0.1 N^0.75.
     // Run a: units displaced 1 from 10 s, 2 from 20 s, 3 from 80 s; run b: 1 from 10 s; run c: refused.
     const fs::path fake = dir_ / "fake_armour";
     write(fake,
@@ -1433,7 +1434,8 @@ TEST_F(SweepTest, DamageGrowthHoldsEachRunsLateDeparturesAgainstTheFormulasGrowt
           "steps = {'a': (10, 20, 80), 'b': (10,)}[run]\n"
           "n, d = t / 2, sum(t >= s for s in steps)\n"
           "os.makedirs(out)\n"
-          "json.dump({'simulated_seconds': t, 'damage': {'waves': n, 'wave_source': 'measured'},\n"
+          "json.dump({'simulated_seconds': t, 'records': round(t / 0.05) + 1,\n"
+          "           'damage': {'waves': n, 'wave_source': 'measured'},\n"
           "           'Ns': 4.2, 's_om': 0.03, 'units_displaced': d, 'N_od': d / 6.2, 'damage_S': 0.5,\n"
           "           'rocking_units': 3, 'units_displaced_van_der_meer': 0.1 * n ** 0.75,\n"
           "           'N_od_van_der_meer': 0.1 * n ** 0.75 / 6.2}, open(out + '/summary.json', 'w'))\n");
@@ -1469,8 +1471,9 @@ TEST_F(SweepTest, DamageGrowthHoldsEachRunsLateDeparturesAgainstTheFormulasGrowt
     EXPECT_NE(csv.find((dir_ / "runs" / "a").string() + ",80.0,measured,40.0,4.2,0.03,3,"), std::string::npos)
         << csv;
     EXPECT_GT(fs::file_size(dir_ / "g" / "growth.png"), 10000u);
-    // --times asks at the times given (those before the run's end) and the end.
-    const Result at = run(script + (dir_ / "runs" / "a").string() + " --times 70,10,250" + tail + "t");
+    // --times asks at the times given (those before the run's end) and the end; 99.99 s lies within
+    // one record (0.05 s) of the end and would repeat it.
+    const Result at = run(script + (dir_ / "runs" / "a").string() + " --times 70,10,99.99,250" + tail + "t");
     ASSERT_EQ(at.status, 0) << at.output;
     const std::string at_csv = read_text(dir_ / "gt" / "growth.csv");
     EXPECT_EQ(std::count(at_csv.begin(), at_csv.end(), '\n'), 2 + 3) << at_csv;
