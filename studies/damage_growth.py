@@ -128,7 +128,13 @@ def growth_test(rows, after):
     expected_first, expected_last = first["units_displaced_van_der_meer"], last["units_displaced_van_der_meer"]
     if not expected_first or not expected_last or expected_last <= 0:
         return {"tested": False, "why": "Van der Meer's expected count is missing or zero"}
-    q = max(0.0, 1.0 - expected_first / expected_last)
+    if expected_last <= expected_first:
+        # The run's Ns is measured over the waves so far; where it falls faster than N^0.75 grows,
+        # the formula expects no unit after N0, and a test against zero would say nothing.
+        return {"tested": False, "why": f"Van der Meer's expected count does not grow after {after:g} waves "
+                f"({expected_first:.2f} at {first['waves']:g} waves, {expected_last:.2f} at {last['waves']:g}: "
+                "the Ns measured so far falls)"}
+    q = 1.0 - expected_first / expected_last
     total = last["units_displaced"]
     later = max(0, total - first["units_displaced"])
     return {"tested": True, "at_time_s": first["time_s"], "waves_at": first["waves"], "waves_end": last["waves"],

@@ -1421,7 +1421,8 @@ TEST_F(SweepTest, DamageTimingPutsEachDepartureInTheTrainAndOnItsSeat) {
 TEST_F(SweepTest, DamageGrowthHoldsEachRunsLateDeparturesAgainstTheFormulasGrowth) {
     // The stand-in: a run that has come to 100 s, a record every 0.05 s; N = t / 2 waves; the formula's
     // count 0.1 N^0.75.
-    // Run a: units displaced 1 from 10 s, 2 from 20 s, 3 from 80 s; run b: 1 from 10 s; run c: refused.
+    // Run a: units displaced 1 from 10 s, 2 from 20 s, 3 from 80 s; run b: 1 from 10 s; run c: refused;
+    // run f: as b, but the formula's count falls with the waves (as where a run's measured Ns falls).
     const fs::path fake = dir_ / "fake_armour";
     write(fake,
           "#!/usr/bin/python3\n"
@@ -1431,16 +1432,17 @@ TEST_F(SweepTest, DamageGrowthHoldsEachRunsLateDeparturesAgainstTheFormulasGrowt
           "if run == 'c':\n"
           "    sys.exit(print('armour: error: c: not a coupled run', file=sys.stderr) or 2)\n"
           "t = min(float(a[a.index('--until') + 1]) if '--until' in a else 100.0, 100.0)\n"
-          "steps = {'a': (10, 20, 80), 'b': (10,)}[run]\n"
+          "steps = {'a': (10, 20, 80), 'b': (10,), 'f': (10,)}[run]\n"
           "n, d = t / 2, sum(t >= s for s in steps)\n"
+          "vdm = 2.0 - 0.01 * n if run == 'f' else 0.1 * n ** 0.75\n"
           "os.makedirs(out)\n"
           "json.dump({'simulated_seconds': t, 'records': round(t / 0.05) + 1,\n"
           "           'damage': {'waves': n, 'wave_source': 'measured'},\n"
           "           'Ns': 4.2, 's_om': 0.03, 'units_displaced': d, 'N_od': d / 6.2, 'damage_S': 0.5,\n"
-          "           'rocking_units': 3, 'units_displaced_van_der_meer': 0.1 * n ** 0.75,\n"
-          "           'N_od_van_der_meer': 0.1 * n ** 0.75 / 6.2}, open(out + '/summary.json', 'w'))\n");
+          "           'rocking_units': 3, 'units_displaced_van_der_meer': vdm,\n"
+          "           'N_od_van_der_meer': vdm / 6.2}, open(out + '/summary.json', 'w'))\n");
     fs::permissions(fake, fs::perms::owner_all);
-    for (const char *r : {"a", "b", "c"})
+    for (const char *r : {"a", "b", "c", "f"})
         fs::create_directories(dir_ / "runs" / r);
     const std::string script = "/usr/bin/python3 " + kSource + "/studies/damage_growth.py ";
     const std::string runs = (dir_ / "runs" / "a").string() + " " + (dir_ / "runs" / "b").string();
@@ -1477,6 +1479,20 @@ TEST_F(SweepTest, DamageGrowthHoldsEachRunsLateDeparturesAgainstTheFormulasGrowt
     ASSERT_EQ(at.status, 0) << at.output;
     const std::string at_csv = read_text(dir_ / "gt" / "growth.csv");
     EXPECT_EQ(std::count(at_csv.begin(), at_csv.end(), '\n'), 2 + 3) << at_csv;
+
+    // Where the formula's count does not grow after N0, there is nothing to hold the late departures
+    // against: the run is not tested (nor pooled), and says why.
+    const Result falling =
+        run(script + (dir_ / "runs" / "f").string() + " --every 20 --after 27" + tail + "f");
+    ASSERT_EQ(falling.status, 0) << falling.output;
+    const auto f = nlohmann::json::parse(read_text(dir_ / "gf" / "summary.json"));
+    EXPECT_FALSE(f["runs"][(dir_ / "runs" / "f").string()]["tested"].get<bool>());
+    EXPECT_TRUE(f["pooled"].is_null());
+    EXPECT_NE(
+        falling.output.find("not tested: Van der Meer's expected count does not grow after 27 waves (1.70 at "
+                            "30 waves, 1.50 at 50: the Ns measured so far falls)"),
+        std::string::npos)
+        << falling.output;
 
     // Bad input, one line each, nothing written: a run the report refuses; both or neither of
     // --every and --times; a time or an --after that is no number > 0; a folder that is not there.
