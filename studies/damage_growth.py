@@ -28,9 +28,11 @@ Description
     only whether the units left when the formula's would, not how many; a
     small chance says the damage stopped growing as the formula's does (the
     layer lost its units early and then held); with a handful of units a
-    large one says little either way. Units that are displaced and
-    come back count as the reports count them (at each time, those displaced
-    then).
+    large one says little either way. A run whose formula count does not
+    grow after N0 (its Ns, measured over the waves so far, falls faster
+    than N^0.75 grows) is not tested, and the table says why. Units that
+    are displaced and come back count as the reports count them (at each
+    time, those displaced then).
 
     Writes OUT/growth.csv (one row per run and time; SI units and counts),
     OUT/summary.json (the test, per run and pooled) and OUT/growth.png (units
