@@ -45,9 +45,8 @@ const std::vector<Key<Scene>> &run_keys() {
         key("force_time_step", &Scene::force_time_step, "", "true: use time_step even above the stable step"),
         key("contact_iterations", &Scene::contact_iterations, "",
             "sequential-impulse iterations per step of an engine with rigid contacts (bullet): more hold a "
-            "tall stack's lower units out of each other, at more cost; a settled layer gains nothing "
-            "measured "
-            "(docs/bullet.md); 0 = the engine's own (bullet: the adapter's 20); refused where run.engine or "
+            "tall stack's lower units out of each other and a settled layer at rest, at more cost "
+            "(docs/bullet.md); 0 = the engine's own (bullet: the adapter's 50); refused where run.engine or "
             "fluid.settle_engine has spring-dashpot contacts or none")
             .in(Range::at_least(0))
             .written_if([](const Scene &s) { return s.contact_iterations != 0; }),

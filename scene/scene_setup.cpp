@@ -572,7 +572,10 @@ std::string settled_hulls_remedy(const Scene &scene) {
     if (!scene.fluid || scene.fluid->settled_by.empty() ||
         engine_style(scene.fluid->settled_by).capabilities.shape != ShapeModel::convex_hulls)
         return "";
-    if (engine_style(scene.engine).capabilities.shape != ShapeModel::sphere_clumps)
+    // Inscribed clumps lie inside the shapes: a cut is the shape's own.
+    const bool inscribed = std::all_of(scene.units.begin(), scene.units.end(),
+                                       [](const SceneUnit &u) { return u.method == "inscribed"; });
+    if (engine_style(scene.engine).capabilities.shape != ShapeModel::sphere_clumps || inscribed)
         return " (fluid.settled_by " + scene.fluid->settled_by +
                " left it so: a pressed unit can sink into a wall's triangle mesh; settle anew, e.g. with "
                "another pattern seed)";

@@ -355,10 +355,13 @@ TEST(StabilityCubes, AHullSettleGrowsItsCubesSoTheClumpsStartFromItsLayer) {
     EXPECT_EQ(clumps_again.status, 0) << clumps_again.output;
     EXPECT_EQ(clumps_again.output.find("settled_growth"), std::string::npos) << clumps_again.output;
     // A layer the hulls settled for themselves (not grown) is refused to the
-    // clumps before they run, the remedy named.
+    // clumps before they run, the remedy named. Pattern seed 2: seed 1's
+    // small layer leaves its notch cube 0.75 mm into the toe step's edge, a
+    // hull's known sink there (docs/bullet.md), which the start check refuses
+    // to any unit model, rightly, and which is not what this test is about.
     const SceneRun own = run_stability("hull_settle_own", "--engine bullet --set fluid.mesh=graded "
                                                           "--set 'fluid.refine_min=[1.10,-0.124,0.18]' "
-                                                          "--set run.duration=0.05");
+                                                          "--set pattern.0.seed=2 --set run.duration=0.05");
     ASSERT_EQ(own.status, 0) << own.output;
     EXPECT_EQ(read_text(own.out / "settle" / "scene.settled.toml").find("settled_growth"), std::string::npos);
     const SceneRun clumps =
@@ -380,7 +383,8 @@ TEST(StabilityCubes, AHullSettleGrowsItsCubesSoTheClumpsStartFromItsLayer) {
     // And a settle for inscribed clumps in hulls grows nothing (nothing to hold).
     const SceneRun no_growth = run_stability(
         "hull_settle_no_growth", "--engine liggghts --set fluid.settle_engine=bullet --set "
-                                 "unit.0.method=inscribed --set unit.0.spheres=118 --settle-only");
+                                 "unit.0.method=inscribed --set unit.0.spheres=118 --set pattern.0.seed=2 "
+                                 "--settle-only");
     ASSERT_EQ(no_growth.status, 0) << no_growth.output;
     EXPECT_EQ(no_growth.output.find("are grown"), std::string::npos) << no_growth.output;
     EXPECT_EQ(read_text(no_growth.out / "settle" / "scene.settled.toml").find("settled_growth"),
