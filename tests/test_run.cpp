@@ -19,6 +19,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <set>
 #include <sstream>
@@ -757,17 +758,16 @@ TEST_F(Run, ExactHullsHoldTheirOwnSettledLayerDry) {
     const armour::EngineStyle *hulls = hull_engine();
     if (!hulls)
         GTEST_SKIP() << "no exact-hull engine in this build";
-    std::ifstream in(fs::path(ARMOUR_SOURCE_DIR) /
-                     "docs/results/severe_sea_one_layer_at_rest/layers/seed-2.toml");
-    std::string line, dry;
-    bool skip = false; // the fluid's tables: the layer is held dry
-    while (std::getline(in, line)) {
-        if (!line.empty() && line[0] == '[')
-            skip = line == "[fluid]" || line == "[waves]" || line == "[[porous]]" || line == "[[refine]]" ||
-                   line == "[[series]]";
-        if (!skip)
-            dry += line + "\n";
-    }
+    // The layer without the fluid's tables, as users make it (studies/dry_scene.py).
+    const fs::path source(ARMOUR_SOURCE_DIR), dry_file = dir_ / "dry.toml";
+    const std::string make_dry =
+        "/usr/bin/python3 " + (source / "studies/dry_scene.py").string() + " " +
+        (source / "docs/results/severe_sea_one_layer_at_rest/layers/seed-2.toml").string() + " " +
+        dry_file.string();
+    ASSERT_EQ(std::system(make_dry.c_str()), 0) << make_dry;
+    std::ifstream in(dry_file);
+    const std::string dry((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::string line;
     ASSERT_NE(dry.find("[[body]]"), std::string::npos);
     ASSERT_EQ(run(dry, {"--engine", hulls->name, "--set", "run.duration=10"}), 0) << err_;
     // damage.csv: a comment line, the header, one row per unit.
