@@ -19,17 +19,20 @@
 # in Dn), OUT/layer_tilt.csv (one row per run), OUT/layer_tilt.png and the
 # runs. About 2.3 minutes per layer and angle on 2 cores.
 # Usage: bash bench/run_layer_tilt.sh --scenes 'SCENE...' [--angles 'DEG...'] [--duration S]
-#          [--engines 'ENGINE...'] [--build DIR] [--out DIR]
+#          [--engines 'ENGINE...'] [--set 'KEY=VALUE...'] [--build DIR] [--out DIR]
 #   --scenes    settled scenes, space-separated (required)
 #   --angles    extra tilt down the face, deg (default '0 4 8 12 16')
 #   --duration  s each layer is held (default 3)
 #   --engines   the unit models held, of liggghts (clumps) and bullet (hulls)
 #               (default both; one alone for a variant of it, e.g. scenes
 #               whose [[unit]] sets edge_spheres)
+#   --set       scene keys set in every run, both unit models (e.g.
+#               'unit.0.method=inscribed unit.0.spheres=118': clumps held inside
+#               the cube, which take a hull-settled layer's poses as they lie)
 #   --out       default ${TMPDIR:-/tmp}/armour-bench/layer_tilt
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-bench_name=layer_tilt bench_targets=armour bench_options="scenes angles duration engines"
+bench_name=layer_tilt bench_targets=armour bench_options="scenes angles duration engines set"
 source "$root/bench/common.sh"
 bench_check_options() {
   [ -n "${opt_scenes:-}" ] || bench_fail "--scenes: required (settled scenes, RUN/settle/scene.settled.toml)"
@@ -42,6 +45,13 @@ bench_check_options() {
     [[ " liggghts bullet " == *" $engine "* ]] || bench_fail "--engines: no engine '$engine' (liggghts, bullet)"
   done
   [ -n "${opt_engines-x}" ] || bench_fail "--engines: no engine named"
+  local settings=() setting
+  read -ra settings <<<"${opt_set-}"
+  sets=()
+  for setting in "${settings[@]}"; do
+    [[ "$setting" == *=* ]] || bench_fail "--set: '$setting' is not KEY=VALUE"
+    sets+=(--set "$setting")
+  done
 }
 bench_args "$@"
 angles="" duration="${opt_duration:-3}"
@@ -51,10 +61,10 @@ done
 armour="$build/apps/armour"
 engines="${opt_engines-liggghts bullet}"
 # A folder resumed must hold a bench of the same layers and hold (its runs are kept as they are).
-settings="duration=$duration scenes="
+settings="duration=$duration set=${opt_set-} scenes="
 for scene in $opt_scenes; do settings+="$(cd "$(dirname "$scene")" && pwd)/$(basename "$scene") "; done
 if [ -f "$out/settings.txt" ] && [ "$(cat "$out/settings.txt")" != "$settings" ]; then
-  bench_fail "--out $out holds a bench of other layers or another --duration ($(cat "$out/settings.txt")): use a new --out"
+  bench_fail "--out $out holds a bench of other layers, --duration or --set ($(cat "$out/settings.txt")): use a new --out"
 fi
 echo "$settings" >"$out/settings.txt"
 k=0
@@ -72,7 +82,7 @@ for scene in $opt_scenes; do
       rm -rf "$run"
       "$armour" run "$layer/dry.toml" --out "$run" --engine "$engine" --set analysis.kind=damage \
         --set "run.gravity=$gravity" --set "run.duration=$duration" --set run.output_interval=0.05 \
-        >"$run.log" 2>&1 || bench_fail "armour run failed: $run.log"
+        "${sets[@]}" >"$run.log" 2>&1 || bench_fail "armour run failed: $run.log"
     done
   done
 done
