@@ -36,6 +36,18 @@ bench_fail() {
   exit 2
 }
 
+# A bench's --set 'KEY=VALUE ...' as armour's options: sets=(--set KEY=VALUE ...).
+# A word without '=' is refused here, before any run.
+bench_scene_sets() {
+  local settings=() setting
+  read -ra settings <<<"${opt_set-}"
+  sets=()
+  for setting in "${settings[@]}"; do
+    [[ "$setting" == *=* ]] || bench_fail "--set: '$setting' is not KEY=VALUE"
+    sets+=(--set "$setting")
+  done
+}
+
 bench_args() {
   build="${ARMOUR_BUILD:-$root/build}"
   out="${TMPDIR:-/tmp}/armour-bench/$bench_name"

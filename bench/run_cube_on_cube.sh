@@ -46,9 +46,8 @@ all_models=(
 )
 # The models and settings asked for, checked before --out is made (common.sh).
 bench_check_options() {
-  local names=() settings=() name model setting
+  local names=() name model
   read -ra names <<<"${opt_models-}"
-  read -ra settings <<<"${opt_set-}"
   [ -z "${opt_models+x}" ] || [ ${#names[@]} -gt 0 ] || bench_fail "--models: no model named"
   models=()
   for model in "${all_models[@]}"; do
@@ -58,11 +57,7 @@ bench_check_options() {
   for name in "${names[@]}"; do
     [[ " ${all_models[*]} " == *" $name|"* ]] || bench_fail "--models: no model '$name'"
   done
-  sets=()
-  for setting in "${settings[@]}"; do
-    [[ "$setting" == *=* ]] || bench_fail "--set: '$setting' is not KEY=VALUE"
-    sets+=(--set "$setting")
-  done
+  bench_scene_sets
 }
 source "$root/bench/common.sh"
 bench_args "$@"

@@ -45,13 +45,7 @@ bench_check_options() {
     [[ " liggghts bullet " == *" $engine "* ]] || bench_fail "--engines: no engine '$engine' (liggghts, bullet)"
   done
   [ -n "${opt_engines-x}" ] || bench_fail "--engines: no engine named"
-  local settings=() setting
-  read -ra settings <<<"${opt_set-}"
-  sets=()
-  for setting in "${settings[@]}"; do
-    [[ "$setting" == *=* ]] || bench_fail "--set: '$setting' is not KEY=VALUE"
-    sets+=(--set "$setting")
-  done
+  bench_scene_sets
 }
 bench_args "$@"
 angles="" duration="${opt_duration:-3}"
