@@ -121,4 +121,8 @@ WaveConditions wave_conditions(const nlohmann::json &measured, const Scene &scen
 // still-water depth), or from `start` when there is no [waves] train.
 double acting_seconds(const Scene &scene, double toe_x, double start, double end);
 
+// s: when the front of the scene's [waves] train reaches a toe at toe_x (m),
+// as acting_seconds counts it; 0 without a train (or for a solitary wave).
+double wave_front_arrival(const Scene &scene, double toe_x);
+
 } // namespace armour

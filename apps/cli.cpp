@@ -150,6 +150,10 @@ CLI::App *add_report_command(CLI::App &app, ReportRequest &report) {
     report_cmd->add_option("--out", report.out, kOutHelp)->required();
     report_cmd->add_option("--until", report.until, "Use the record up to this simulated time [s]")
         ->check(number_above(0.0, "s"));
+    report_cmd->add_option(
+        "--from", report.from,
+        "Measure the damage from the units' poses at this simulated time [s] (the layer as "
+        "the waves find it; at most when the wave train's front reaches the toe)");
     report_cmd->add_option("--cache", report.cache, kCacheHelp);
     return report_cmd;
 }

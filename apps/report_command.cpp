@@ -2,11 +2,13 @@
 
 #include "analysis.h"
 #include "bodies_file.h"
+#include "damage_analysis.h"
 #include "incident_waves.h"
 #include "input_error.h"
 #include "scene.h"
 #include "scene_keys.h"
 #include "scene_setup.h"
+#include "slope_profile.h"
 #include "wave_case.h"
 
 #include <algorithm>
@@ -23,7 +25,7 @@ using nlohmann::json;
 
 std::string analyse_coupled_record(const Scene &scene, const SceneSetup &setup, const BodiesFile &record,
                                    const fs::path &run_dir, const fs::path &case_dir, OutputFolder &folder,
-                                   json &summary, double until) {
+                                   json &summary, double until, double from) {
     // The analysis samples the record as a dry run's analysis samples the engine.
     AnalysisContext context{scene, setup, run_dir.string(), case_dir.string(),
                             [&](const std::string &name) { return folder.claim(name).string(); }};
@@ -38,6 +40,8 @@ std::string analyse_coupled_record(const Scene &scene, const SceneSetup &setup, 
     const std::unique_ptr<Analysis> analysis = make_analysis(context);
     std::vector<BodyState> states(record.bodies());
     for (std::size_t s = 0; s < record.steps() && record.time[s] <= until; ++s) {
+        if (record.time[s] < from)
+            continue;
         record.states_at(s, states);
         analysis->sample(record.time[s], states);
     }
@@ -82,6 +86,27 @@ bool inside(const fs::path &path, const fs::path &folder) {
     return end == f.end();
 }
 
+// --from: a record to start from, before --until, and no later than the
+// front of the scene's wave train reaches the slope's toe.
+void check_from(const ReportRequest &r, const Scene &scene, const BodiesFile &record) {
+    if (r.from == -HUGE_VAL)
+        return; // not given
+    if (!(r.from < r.until))
+        throw InputError("--from: " + number_text(r.from) + " s is not before --until (" +
+                         number_text(r.until) + " s)");
+    if (r.from > record.time.back())
+        throw InputError("--from: " + number_text(r.from) + " s is after the run's last record (" +
+                         number_text(record.time.back()) + " s)");
+    const std::optional<SlopeFrame> frame = slope_frame(scene);
+    if (!frame || !scene.waves || scene.waves->type == "solitary")
+        return; // no train whose waves Van der Meer's prediction counts
+    const double arrival = wave_front_arrival(scene, frame->origin.x());
+    if (r.from > arrival)
+        throw InputError("--from: " + number_text(r.from) +
+                         " s is after the wave train's front reaches the toe (" + number_text(arrival) +
+                         " s): the damage would be held against waves its reference did not meet");
+}
+
 } // namespace
 
 int run_report(const ReportRequest &r) {
@@ -116,6 +141,7 @@ int run_report(const ReportRequest &r) {
     if (!(r.until >= record.time.front())) // NaN too
         throw InputError("--until: " + number_text(r.until) + " s is before the run's first record (" +
                          number_text(record.time.front()) + " s)");
+    check_from(r, scene, record);
     if (record.bodies() != setup.bodies.size())
         throw InputError((run / "bodies.h5").string() + ": " + std::to_string(record.bodies()) +
                          " bodies, its scene " + scene_file.string() + " " +
@@ -127,23 +153,25 @@ int run_report(const ReportRequest &r) {
     while (steps < record.steps() && record.time[steps] <= r.until)
         ++steps;
     const double last = record.time[steps - 1];
-    json summary = {{"command", "report"},
-                    {"run", run.string()},
-                    {"scene", scene.name},
-                    {"coupled", true},
-                    {"units", static_cast<int>(setup.bodies.size())},
-                    {"records", steps},
-                    {"simulated_seconds", last},
-                    {"until", std::isfinite(r.until) ? json(r.until) : json(nullptr)},
-                    // An ended run has its own summary.json; a stopped or running one none.
-                    {"run_ended", ended},
-                    {"warnings", json::array()},
-                    {"si_units", {{"simulated_seconds", "s"}, {"until", "s"}, {"lengths", "m"}}}};
+    json summary = {
+        {"command", "report"},
+        {"run", run.string()},
+        {"scene", scene.name},
+        {"coupled", true},
+        {"units", static_cast<int>(setup.bodies.size())},
+        {"records", steps},
+        {"simulated_seconds", last},
+        {"until", std::isfinite(r.until) ? json(r.until) : json(nullptr)},
+        {"from", std::isfinite(r.from) ? json(r.from) : json(nullptr)},
+        // An ended run has its own summary.json; a stopped or running one none.
+        {"run_ended", ended},
+        {"warnings", json::array()},
+        {"si_units", {{"simulated_seconds", "s"}, {"until", "s"}, {"from", "s"}, {"lengths", "m"}}}};
     // A running or stopped run's gauges go on past its last whole step: the
     // figures end where the record does (an ended run's, as the run took them).
     const double until = ended ? r.until : std::min(r.until, last);
     const std::string result =
-        analyse_coupled_record(scene, setup, record, run, run / "case", folder, summary, until);
+        analyse_coupled_record(scene, setup, record, run, run / "case", folder, summary, until, r.from);
     write_text_file(folder.claim("summary.json"), summary.dump(2) + "\n");
     folder.commit();
     std::printf("%s: %d units, record to t = %.6g s%s%s -> %s\n", scene.name.c_str(),

@@ -1,4 +1,4 @@
-// `armour report RUN --out DIR [--until T]`: a coupled run's figures as its record stands.
+// `armour report RUN --out DIR [--until T] [--from T0]`: a coupled run's figures as its record stands.
 //
 // Description
 //     A stability test on the scene's own mesh runs for days (docs/stability.md:
@@ -15,6 +15,14 @@
 //     analysis' files, staged: it appears whole or not at all. The run's
 //     folder is only read.
 //
+//     `from` takes the units' poses at the first record at or after T0 as the
+//     damage's reference instead of the run's first record: the layer as it
+//     lies when the waves come, as a laboratory profiles it before a test
+//     (units that re-seat or fall in the still water before any wave are
+//     then not counted). T0 is refused past the moment the wave train's front
+//     reaches the toe, so the waves counted for Van der Meer's prediction are
+//     the waves the reference met.
+//
 //     A report of an ended run without `until` repeats the run's own figures
 //     (tests/test_stability.cpp). A DEM run (no [fluid]) is refused: its
 //     analysis samples the engine as it runs, not the record.
@@ -22,6 +30,7 @@
 // Usage
 //     armour report runs/stability --out runs/stability-report              # as the record stands
 //     armour report runs/stability --out runs/report-100s --until 100        # the figures at t = 100 s
+//     armour report runs/stability --out runs/report-from --from 0.8         # from the layer at 0.8 s
 #pragma once
 
 #include "output_folder.h"
@@ -43,6 +52,7 @@ struct ReportRequest {
     std::string out;         // the report's folder
     std::string cache;       // clump cache folder; empty = default
     double until = HUGE_VAL; // s: the record up to this time
+    double from = -HUGE_VAL; // s: the damage's reference, the first record at or after this time
 };
 
 // Returns the exit status; throws InputError, naming the folder or file and
@@ -52,12 +62,12 @@ int run_report(const ReportRequest &request);
 // What a coupled run computes from its record after the solver, shared by
 // `armour run` and `armour report`: the wave figures from the gauges in
 // `case_dir` (wave trains: analysis/incident_waves.h), then the scene's
-// analysis sampling `record` up to `until` (s), into `summary`; files
+// analysis sampling `record` from `from` up to `until` (s), into `summary`; files
 // through `folder`. `run_dir` holds
 // the plugin's fluid.csv. Returns the analysis' one-line result.
 std::string analyse_coupled_record(const Scene &scene, const SceneSetup &setup, const BodiesFile &record,
                                    const std::filesystem::path &run_dir,
                                    const std::filesystem::path &case_dir, OutputFolder &folder,
-                                   nlohmann::json &summary, double until = HUGE_VAL);
+                                   nlohmann::json &summary, double until = HUGE_VAL, double from = -HUGE_VAL);
 
 } // namespace armour

@@ -122,6 +122,9 @@ const Rule kRules[] = {
     {R"(^armour sweep .*--executor slurm)", Mode::syntax, 0,
      "needs a Slurm controller (tests/test_sweep.cpp starts one)"},
     {R"(^armour sweep --collect)", Mode::syntax, 0, "needs a Slurm sweep's folder"},
+    {R"(^armour report .*--from )", Mode::syntax, 0,
+     "a reference before the waves reach the toe needs a wave run's record, not the short dam-break run "
+     "(tests/test_stability.cpp reports from one)"},
     {R"(^armour clump --out \.$)", Mode::syntax, 0, "the prose's example of a refused folder"},
     {R"(^armour run scenes/(tilt_cube|drop_bounce)\.toml )", Mode::shorten, 0.3,
      "a dry scene: its first 0.3 s (the whole tilt is ~10 s)"},

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -197,8 +198,31 @@ TEST(StabilityCubes, ShortIrregularRunWritesEveryDamageFileAndKey) {
     const double acting = early["damage"]["waves"].get<double>() * tm, end = early["simulated_seconds"];
     EXPECT_LT(acting, end - 1.40 / std::sqrt(9.81 * 0.40));
     EXPECT_GT(acting, end - 1.40 / 1.0);
-    // A record whose scene does not match, and an --until before the record or
-    // not a number: one error line, exit 2, no report folder.
+    // --from takes the units' poses at its record as the damage's reference
+    // (the layer as the waves find it): the history starts there with no unit
+    // moved, and Van der Meer's count is the whole report's (the same waves).
+    const json from = report("report_from", "--from 0.5");
+    ASSERT_TRUE(from.is_object());
+    const double reference = from["damage"]["reference_time"];
+    EXPECT_GE(reference, 0.5);
+    EXPECT_LT(reference, 0.5 + 0.051);
+    EXPECT_EQ(from["damage"]["waves"], whole["damage"]["waves"]);
+    EXPECT_EQ(from["units_displaced_van_der_meer"], whole["units_displaced_van_der_meer"]);
+    {
+        std::ifstream history(run.dir / "report_from" / "damage_history.csv");
+        std::string line;
+        while (std::getline(history, line) && (line.empty() || line[0] == '#' || !std::isdigit(line[0])))
+            ;
+        double t = -1.0, displaced = -1.0, n_od = -1.0, largest = -1.0;
+        char comma;
+        std::istringstream(line) >> t >> comma >> displaced >> comma >> n_od >> comma >> largest;
+        EXPECT_NEAR(t, reference, 1e-9) << line;
+        EXPECT_EQ(displaced, 0.0) << line;
+        EXPECT_EQ(largest, 0.0) << line;
+    }
+    // A record whose scene does not match, an --until before the record or
+    // not a number, and a --from after the wave front reached the toe (1.40 m
+    // from the maker at ~1.5 m/s: 0.9 s): one error line, exit 2, no report folder.
     const fs::path copy = run.dir / "copy";
     fs::copy(run.out, copy, fs::copy_options::recursive);
     {
@@ -209,7 +233,9 @@ TEST(StabilityCubes, ShortIrregularRunWritesEveryDamageFileAndKey) {
     }
     for (const auto &[folder, until, why] :
          {std::tuple(copy, std::string(), std::string("bodies.h5: 45 bodies, its scene")),
-          std::tuple(run.out, std::string("--until nan"), std::string("--until"))}) {
+          std::tuple(run.out, std::string("--until nan"), std::string("--until")),
+          std::tuple(run.out, std::string("--from 2"),
+                     std::string("--from: 2 s is after the wave train's front reaches the toe ("))}) {
         const fs::path out = run.dir / "refused";
         const std::string cmd = std::string("'") + ARMOUR_EXE + "' report '" + folder.string() + "' --out '" +
                                 out.string() + "' " + until + " > '" + out.string() + ".log' 2>&1";
