@@ -443,16 +443,16 @@ double rest_time(const Scene &scene) {
     return std::max(2.0, train ? scene.waves->target_period() : scene.wave_period);
 }
 
-double wave_front_arrival(const Scene &scene, double toe_x) {
+std::optional<double> wave_front_arrival(const Scene &scene, double toe_x) {
     if (!scene.fluid || !scene.waves || scene.waves->type == "solitary")
-        return 0.0;
+        return std::nullopt;
     const double cg =
         group_velocity(scene.waves->target_period(), scene.still_water_depth(), scene.gravity.norm());
     return std::max(0.0, toe_x - scene.domain_min.x()) / cg;
 }
 
 double acting_seconds(const Scene &scene, double toe_x, double start, double end) {
-    return std::max(0.0, end - std::max(start, wave_front_arrival(scene, toe_x)));
+    return std::max(0.0, end - std::max(start, wave_front_arrival(scene, toe_x).value_or(start)));
 }
 
 double rotation_between_deg(const Eigen::Quaterniond &a, const Eigen::Quaterniond &b) {

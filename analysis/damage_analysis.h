@@ -122,7 +122,7 @@ WaveConditions wave_conditions(const nlohmann::json &measured, const Scene &scen
 double acting_seconds(const Scene &scene, double toe_x, double start, double end);
 
 // s: when the front of the scene's [waves] train reaches a toe at toe_x (m),
-// as acting_seconds counts it; 0 without a train (or for a solitary wave).
-double wave_front_arrival(const Scene &scene, double toe_x);
+// as acting_seconds counts it; none without a train (or for a solitary wave).
+std::optional<double> wave_front_arrival(const Scene &scene, double toe_x);
 
 } // namespace armour

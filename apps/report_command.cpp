@@ -98,12 +98,10 @@ void check_from(const ReportRequest &r, const Scene &scene, const BodiesFile &re
         throw InputError("--from: " + number_text(r.from) + " s is after the run's last record (" +
                          number_text(record.time.back()) + " s)");
     const std::optional<SlopeFrame> frame = slope_frame(scene);
-    if (!frame || !scene.waves || scene.waves->type == "solitary")
-        return; // no train whose waves Van der Meer's prediction counts
-    const double arrival = wave_front_arrival(scene, frame->origin.x());
-    if (r.from > arrival)
+    const std::optional<double> arrival = frame ? wave_front_arrival(scene, frame->origin.x()) : std::nullopt;
+    if (arrival && r.from > *arrival) // else no train whose waves Van der Meer's prediction counts
         throw InputError("--from: " + number_text(r.from) +
-                         " s is after the wave train's front reaches the toe (" + number_text(arrival) +
+                         " s is after the wave train's front reaches the toe (" + number_text(*arrival) +
                          " s): the damage would be held against waves its reference did not meet");
 }
 
